@@ -1,0 +1,12 @@
+#pragma once
+// The subcommands of `hapscene`. Each returns its exit code (0 success, 1 failure) and
+// throws InputError for invalid input (exit code 2).
+#include <string>
+#include <vector>
+
+namespace hapscene {
+
+int run_command(std::vector<std::string> args);
+int probe_command(std::vector<std::string> args);
+
+}  // namespace hapscene

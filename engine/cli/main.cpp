@@ -1,0 +1,65 @@
+// The `hapscene` command: dispatch to a subcommand and map errors to exit codes
+// (0 success, 2 invalid input, 1 anything else).
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "engine/cli/commands.hpp"
+#include "engine/core/errors.hpp"
+
+namespace {
+
+constexpr const char* kUsage = R"(hapscene: a data-driven haptic rendering engine
+
+usage:
+  hapscene run ENV [ENV...] [options]     run environments on a device (simulated by default)
+  hapscene probe ENV --x START:STOP:STEP [--v V]
+                                          print the force-displacement curve as CSV
+  hapscene help | --help                  this text
+  hapscene version | --version
+
+run options:
+  --device sim          the device (default: sim, a simulated Hapkit from the scene's profile)
+  --duration T          device time per environment (default 2 s; units allowed: "500 ms")
+  --sim-time            run as fast as possible in simulated time instead of real time
+  --hand MOTION         simulated hand: sweep (default), hold, none
+  --hand-stiffness K    hand grip stiffness (default 200 N/m)
+  --hand-damping B      hand damping (default 2 N*s/m)
+  --hold X              hold position for --hand hold (default 0 m)
+  --start X             handle start position (default 0 m)
+  --noise COUNTS        sensor noise standard deviation in counts (default: the profile's)
+  --seed N              noise seed (default 1)
+  --quiet               no live status line
+
+Values take SI numbers or strings with units ("10 mm", "2 kHz").
+Exit codes: 0 success, 2 invalid input (file, arguments), 1 anything else.
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
+    (args.empty() ? std::cerr : std::cout) << kUsage;
+    return args.empty() ? hapscene::kExitInvalidInput : hapscene::kExitOk;
+  }
+  if (args[0] == "version" || args[0] == "--version") {
+    std::cout << "hapscene " << HAPSCENE_VERSION << "\n";
+    return hapscene::kExitOk;
+  }
+  const std::string command = args[0];
+  args.erase(args.begin());
+  try {
+    if (command == "run") return hapscene::run_command(args);
+    if (command == "probe") return hapscene::probe_command(args);
+    std::cerr << "hapscene: unknown command \"" << command << "\" (try: hapscene --help)\n";
+    return hapscene::kExitInvalidInput;
+  } catch (const hapscene::InputError& error) {
+    std::cerr << "error: " << error.what() << "\n";
+    return hapscene::kExitInvalidInput;
+  } catch (const std::exception& error) {
+    std::cerr << "hapscene: " << error.what() << "\n";
+    return hapscene::kExitFailure;
+  }
+}

@@ -1,0 +1,90 @@
+// `hapscene probe ENV --x START:STOP:STEP [--v V]`: the open-loop force-displacement
+// curve as CSV. force_N is what the environment asks for at (x, v); output_N is what
+// the device would be commanded after the static safety rules (non-finite -> 0, outside
+// the workspace -> 0, clamp to the force limit).
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "engine/cli/arguments.hpp"
+#include "engine/cli/commands.hpp"
+#include "engine/core/step.hpp"
+#include "engine/load/environment.hpp"
+
+namespace hapscene {
+namespace {
+
+constexpr long long kMaxProbePoints = 1'000'000;
+
+struct ProbeRange {
+  double start_m{};
+  double stop_m{};
+  double step_m{};
+  long long points{};
+};
+
+ProbeRange parse_range(const Arguments& arguments, const std::string& text) {
+  const std::size_t first = text.find(':');
+  const std::size_t second = first == std::string::npos ? first : text.find(':', first + 1);
+  if (second == std::string::npos || text.find(':', second + 1) != std::string::npos) {
+    arguments.fail("--x: expected START:STOP:STEP, got \"" + text + "\"");
+  }
+  ProbeRange range;
+  range.start_m = parse_option_quantity(text.substr(0, first), Quantity::length_m, "hapscene probe: --x START");
+  range.stop_m = parse_option_quantity(text.substr(first + 1, second - first - 1), Quantity::length_m,
+                                       "hapscene probe: --x STOP");
+  range.step_m = parse_option_quantity(text.substr(second + 1), Quantity::length_m, "hapscene probe: --x STEP");
+  if (range.step_m == 0.0) arguments.fail("--x: STEP must not be 0");
+  if ((range.stop_m - range.start_m) * range.step_m < 0.0) {
+    arguments.fail("--x: STEP goes away from STOP");
+  }
+  // A tolerance of a millionth of a step keeps STOP when rounding falls just short.
+  const double intervals = std::floor((range.stop_m - range.start_m) / range.step_m + 1e-6);
+  if (intervals + 1.0 > static_cast<double>(kMaxProbePoints)) {
+    arguments.fail("--x: more than " + std::to_string(kMaxProbePoints) + " points");
+  }
+  range.points = static_cast<long long>(intervals) + 1;
+  return range;
+}
+
+// The shortest text that reads back as the same double.
+std::string shortest(double value) {
+  char buffer[64];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return ec == std::errc() ? std::string(buffer, end) : std::string("nan");
+}
+
+}  // namespace
+
+int probe_command(std::vector<std::string> args) {
+  Arguments arguments(std::move(args), "hapscene probe");
+  const std::optional<std::string> x_text = arguments.take_value("x");
+  const double v_m_per_s = arguments.take_quantity("v", Quantity::velocity_m_per_s).value_or(0.0);
+  const std::vector<std::string> files = arguments.positionals();
+  if (files.size() != 1) arguments.fail("expected one environment file");
+  if (!x_text) arguments.fail("--x START:STOP:STEP is required");
+  const ProbeRange range = parse_range(arguments, *x_text);
+
+  const Scene scene = load_environment_file(files[0]);
+  TickState state = make_tick_state(scene);
+  std::string out = "x_m,v_m_per_s,force_N,output_N\n";
+  // x = (start / step + i) * step lands on round values (0.01, not 0.009999999999999998)
+  // whenever start is a whole number of steps.
+  const double start_in_steps = range.start_m / range.step_m;
+  for (long long i = 0; i < range.points; ++i) {
+    EffectInput input;
+    input.x_m = (start_in_steps + static_cast<double>(i)) * range.step_m;
+    input.v_m_per_s = v_m_per_s;
+    input.dt_s = scene.period_s;
+    const double force_N = sum_effects_N(scene, input, &state);
+    const double output_N =
+        apply_static_safety(scene.safety, input.x_m, force_N, &state.safety.counters);
+    out += shortest(input.x_m) + "," + shortest(v_m_per_s) + "," + shortest(force_N) + "," +
+           shortest(output_N) + "\n";
+  }
+  std::fwrite(out.data(), 1, out.size(), stdout);
+  return 0;
+}
+
+}  // namespace hapscene

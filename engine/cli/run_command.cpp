@@ -1,0 +1,191 @@
+// `hapscene run ENV [ENV...]`: runs each environment on the device for a while, with a
+// live status line on a terminal and a summary at the end of each.
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <string>
+#include <thread>
+
+#include "engine/cli/arguments.hpp"
+#include "engine/cli/commands.hpp"
+#include "engine/core/errors.hpp"
+#include "engine/devices/simulated_hapkit.hpp"
+#include "engine/load/environment.hpp"
+#include "engine/load/object_reader.hpp"
+#include "engine/run/live_status.hpp"
+#include "engine/run/runner.hpp"
+
+namespace hapscene {
+namespace {
+
+std::atomic<bool> g_stop_requested{false};
+
+extern "C" void on_interrupt(int /*signal*/) { g_stop_requested.store(true); }
+
+struct RunSettings {
+  std::string device{"sim"};
+  RunOptions options;
+  SimulationConfig simulation;
+  double noise_counts{-1.0};  // < 0: the profile's
+  bool quiet{false};
+};
+
+RunSettings parse_settings(Arguments& arguments) {
+  RunSettings settings;
+  settings.device = arguments.take_value("device").value_or("sim");
+  if (settings.device != "sim") {
+    arguments.fail("--device: unknown device \"" + settings.device + "\" (available: sim)");
+  }
+  settings.options.duration_s =
+      arguments.take_quantity("duration", Quantity::time_s).value_or(settings.options.duration_s);
+  if (!(settings.options.duration_s > 0.0 && settings.options.duration_s <= 24 * 3600.0)) {
+    arguments.fail("--duration: must be > 0 s and at most 24 h");
+  }
+  if (arguments.take_flag("sim-time")) settings.options.pacing = Pacing::simulated_time;
+
+  HandConfig& hand = settings.simulation.hand;
+  if (const auto motion = arguments.take_value("hand")) {
+    const auto* found = std::find(std::begin(kHandMotionNames), std::end(kHandMotionNames), *motion);
+    if (found == std::end(kHandMotionNames)) {
+      arguments.fail("--hand: unknown motion \"" + *motion + "\" (use sweep, hold or none)");
+    }
+    hand.motion = static_cast<HandMotion>(found - std::begin(kHandMotionNames));
+  }
+  hand.stiffness_N_per_m = arguments.take_quantity("hand-stiffness", Quantity::stiffness_N_per_m)
+                               .value_or(hand.stiffness_N_per_m);
+  hand.damping_N_s_per_m = arguments.take_quantity("hand-damping", Quantity::damping_N_s_per_m)
+                               .value_or(hand.damping_N_s_per_m);
+  if (hand.stiffness_N_per_m < 0.0 || hand.damping_N_s_per_m < 0.0) {
+    arguments.fail("--hand-stiffness and --hand-damping must be >= 0");
+  }
+  hand.hold_m = arguments.take_quantity("hold", Quantity::length_m).value_or(hand.hold_m);
+  settings.simulation.start_x_m =
+      arguments.take_quantity("start", Quantity::length_m).value_or(0.0);
+  settings.noise_counts = arguments.take_quantity("noise", Quantity::dimensionless).value_or(-1.0);
+  if (const auto seed = arguments.take_value("seed")) {
+    try {
+      std::size_t used = 0;
+      settings.simulation.noise_seed = std::stoull(*seed, &used);
+      if (used != seed->size()) throw std::invalid_argument(*seed);
+    } catch (const std::exception&) {
+      arguments.fail("--seed: expected a whole number, got \"" + *seed + "\"");
+    }
+  }
+  settings.quiet = arguments.take_flag("quiet");
+  return settings;
+}
+
+// Prints "x, force, loop rate" on one terminal line ten times a second until stopped.
+class StatusLine {
+ public:
+  StatusLine(const LiveStatus& status, double period_s, bool enabled)
+      : status_(status), period_s_(period_s) {
+    if (enabled) thread_ = std::thread([this] { loop(); });
+  }
+  ~StatusLine() {
+    done_.store(true);
+    if (thread_.joinable()) {
+      thread_.join();
+      std::fprintf(stderr, "\r\033[K");
+    }
+  }
+
+ private:
+  void loop() {
+    using namespace std::chrono;
+    std::uint64_t last_ticks = status_.ticks();
+    auto last_time = steady_clock::now();
+    while (!done_.load()) {
+      std::this_thread::sleep_for(milliseconds(100));
+      const auto now = steady_clock::now();
+      const std::uint64_t ticks = status_.ticks();
+      const double rate_hz = static_cast<double>(ticks - last_ticks) /
+                             duration<double>(now - last_time).count();
+      last_ticks = ticks;
+      last_time = now;
+      std::fprintf(stderr, "\r\033[K  t %7.3f s   x %+8.3f mm   force %+7.3f N   loop %8.1f Hz",
+                   static_cast<double>(ticks) * period_s_, status_.x_m() * 1e3,
+                   status_.output_N(), rate_hz);
+      std::fflush(stderr);
+    }
+  }
+
+  const LiveStatus& status_;
+  double period_s_;
+  std::atomic<bool> done_{false};
+  std::thread thread_;
+};
+
+double us(std::uint64_t ns) { return static_cast<double>(ns) * 1e-3; }
+
+void print_summary(const Scene& scene, const RunSettings& settings, const RunSummary& summary) {
+  const bool real_time = settings.options.pacing == Pacing::real_time;
+  std::printf("%s (%s) on %s:%s, %g Hz, %s, hand %s\n", scene.name.c_str(),
+              scene.source_path.c_str(), settings.device.c_str(), scene.device.name.c_str(),
+              scene.rate_hz, real_time ? "real time" : "simulated time",
+              std::string(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]).c_str());
+  std::printf("  ticks            %llu in %.3f s of device time, loop rate %.1f Hz\n",
+              static_cast<unsigned long long>(summary.ticks), summary.device_time_s,
+              summary.achieved_rate_hz);
+  std::printf("  max force        asked %.3f N, commanded %.3f N (limit %g N)\n",
+              summary.max_abs_requested_N, summary.max_abs_output_N, scene.safety.max_force_N);
+  const SafetyCounters& safety = summary.safety;
+  std::printf("  time clamped     %.3f s (%llu ticks); slew-limited %llu, soft start %llu, "
+              "outside workspace %llu ticks\n",
+              static_cast<double>(safety.clamped_ticks) * scene.period_s,
+              static_cast<unsigned long long>(safety.clamped_ticks),
+              static_cast<unsigned long long>(safety.slew_limited_ticks),
+              static_cast<unsigned long long>(safety.soft_start_ticks),
+              static_cast<unsigned long long>(safety.outside_workspace_ticks));
+  std::printf("  faults           %llu non-finite forces\n",
+              static_cast<unsigned long long>(safety.nonfinite_faults));
+  std::printf("  deadline misses  %s\n",
+              real_time ? std::to_string(summary.deadline_misses).c_str() : "n/a (simulated time)");
+  std::printf("  tick compute     p50 %.2f us  p99 %.2f us  max %.2f us\n",
+              us(summary.compute_ns.percentile_ns(0.50)), us(summary.compute_ns.percentile_ns(0.99)),
+              us(summary.compute_ns.max_ns()));
+  if (real_time) {
+    std::printf("  wake-up jitter   p50 %.2f us  p99 %.2f us  max %.2f us\n",
+                us(summary.wake_late_ns.percentile_ns(0.50)),
+                us(summary.wake_late_ns.percentile_ns(0.99)), us(summary.wake_late_ns.max_ns()));
+  }
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int run_command(std::vector<std::string> args) {
+  Arguments arguments(std::move(args), "hapscene run");
+  RunSettings settings = parse_settings(arguments);
+  const std::vector<std::string> files = arguments.positionals();
+  if (files.empty()) arguments.fail("expected at least one environment file");
+
+  // Load everything first: a bad file fails before anything moves.
+  std::vector<Scene> scenes;
+  for (const std::string& file : files) scenes.push_back(load_environment_file(file));
+
+  std::signal(SIGINT, on_interrupt);
+  settings.options.stop_requested = &g_stop_requested;
+  const bool show_status = !settings.quiet && isatty(STDERR_FILENO) == 1;
+  for (std::size_t i = 0; i < scenes.size() && !g_stop_requested.load(); ++i) {
+    const Scene& scene = scenes[i];
+    DeviceProfile profile = scene.device;
+    if (settings.noise_counts >= 0.0) profile.plant.sensor_noise_counts = settings.noise_counts;
+    SimulatedHapkit device(profile, settings.simulation);
+    LiveStatus status;
+    RunSummary summary;
+    {
+      StatusLine line(status, scene.period_s, show_status);
+      summary = run_scene(scene, device, settings.options, &status);
+    }
+    if (i > 0) std::printf("\n");
+    print_summary(scene, settings, summary);
+  }
+  return kExitOk;
+}
+
+}  // namespace hapscene

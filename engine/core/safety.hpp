@@ -1,0 +1,57 @@
+#pragma once
+// The safety stage: applied last, to the sum of all effects (built-in and scripted), and
+// not bypassable by any effect. In order:
+//   1. a non-finite force becomes 0 N and is counted as a fault;
+//   2. outside the workspace limits the force is 0 N (the position may be wrong, e.g.
+//      after capstan slip, so nothing is rendered there);
+//   3. soft start: when a run starts (or a scene is swapped) with the handle in a force
+//      field stronger than the threshold, force ramps in linearly over soft_start_s;
+//   4. clamp to max_force_N (the lower of the device's and the environment's);
+//   5. slew limit: the output changes by at most slew_limit_N_per_s * T per tick.
+#include <cstdint>
+
+namespace hapscene {
+
+struct SafetyConfig {
+  double max_force_N{};
+  double slew_limit_N_per_s{};
+  double workspace_min_m{};
+  double workspace_max_m{};
+  double soft_start_s{};
+  double soft_start_threshold_N{};
+  // Derived from the above and the tick period by finalise_safety().
+  double max_step_N{};         // slew_limit_N_per_s * T
+  double ramp_step_per_tick{}; // T / soft_start_s (1 when soft_start_s is 0)
+};
+
+// Fills the derived fields for a tick period.
+void finalise_safety(double period_s, SafetyConfig* config) noexcept;
+
+// How often each rule acted, in ticks.
+struct SafetyCounters {
+  std::uint64_t nonfinite_faults{};
+  std::uint64_t outside_workspace_ticks{};
+  std::uint64_t soft_start_ticks{};
+  std::uint64_t clamped_ticks{};
+  std::uint64_t slew_limited_ticks{};
+};
+
+struct SafetyState {
+  bool started{};                // false until the first tick (or after restart_soft_start)
+  double ramp_gain{1.0};         // soft-start gain in [0, 1]
+  double previous_output_N{};    // for the slew limit
+  SafetyCounters counters;
+};
+
+// Rules 1, 2 and 4: what a static probe shows as the output for a requested force.
+double apply_static_safety(const SafetyConfig& config, double x_m, double force_N,
+                           SafetyCounters* counters) noexcept;
+
+// All five rules, for one tick of a run.
+double apply_safety(const SafetyConfig& config, double x_m, double force_N,
+                    SafetyState* state) noexcept;
+
+// Makes the next tick decide again whether to ramp force in (after a scene swap).
+void restart_soft_start(SafetyState* state) noexcept;
+
+}  // namespace hapscene

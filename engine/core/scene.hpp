@@ -1,0 +1,41 @@
+#pragma once
+// A compiled scene: the immutable result of loading an environment file. Every run reads
+// it through a const reference; everything a run changes lives in TickState.
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "engine/core/effect_input.hpp"
+#include "engine/core/safety.hpp"
+#include "engine/core/velocity.hpp"
+#include "engine/devices/profile.hpp"
+#include "engine/effects/damper.hpp"
+#include "engine/effects/spring.hpp"
+#include "engine/effects/texture.hpp"
+#include "engine/effects/wall.hpp"
+
+namespace hapscene {
+
+// One built-in effect; the forces of all effects of a scene add up.
+using Effect = std::variant<Spring, Wall, Damper, Texture>;
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::string source_path;          // the file it was loaded from, for messages
+
+  double rate_hz{};                 // tick rate
+  double period_s{};                // 1 / rate_hz
+
+  DeviceProfile device;
+  SafetyConfig safety;              // device limits lowered by the environment's
+  VelocityEstimatorConfig velocity;
+
+  std::vector<Effect> effects;
+  Needs needs;                      // union of the effects' needs: what step() computes
+};
+
+// The declared needs of one effect.
+Needs needs_of(const Effect& effect) noexcept;
+
+}  // namespace hapscene

@@ -1,0 +1,44 @@
+#pragma once
+// Everything one run of a scene changes, grouped by the pipeline stage that writes it.
+// A new TickState is a fresh run: the same scene can be run twice without surprises.
+#include <cstdint>
+
+#include "engine/core/safety.hpp"
+#include "engine/core/velocity.hpp"
+#include "engine/devices/flip_counter.hpp"
+#include "engine/devices/kinematics.hpp"
+
+namespace hapscene {
+
+struct Scene;
+
+struct TickState {
+  // Clock.
+  std::uint64_t tick{};           // ticks completed
+  double t_s{};                   // time of the current tick since the run started
+
+  // Sensor stage: raw counts -> unwrapped counts -> handle position.
+  FlipCounter flip_counter;
+  std::int32_t raw_counts{};
+  std::int32_t unwrapped_counts{};
+  double x_m{};
+
+  // Velocity stage (only when the scene needs it).
+  VelocityState velocity_state;
+  double v_m_per_s{};
+
+  // Effects stage.
+  double effects_force_N{};       // sum of all effects: what the scene asks for
+
+  // Safety stage.
+  SafetyState safety;
+  double output_N{};              // what the device is commanded
+
+  // Command stage.
+  MotorCommand command;
+};
+
+// A fresh state for a run of `scene`.
+TickState make_tick_state(const Scene& scene);
+
+}  // namespace hapscene

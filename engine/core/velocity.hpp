@@ -1,0 +1,41 @@
+#pragma once
+// Velocity estimators from the quantized handle position. Each is a named, swappable part:
+// the environment picks one ("velocity": {"estimator": "hapkit2019"}) and a scene whose
+// effects never read velocity runs none.
+#include <string_view>
+
+namespace hapscene {
+
+enum class VelocityEstimatorKind {
+  hapkit2019,  // (x - x1) / T, then 0.9 * new + 0.1 * previous (Hapkit reference sketch, 2019+)
+  hapkit2013,  // double pole at 0.95 on (x - x1) / T (Hapkit reference sketch, 2013)
+  difference,  // (x - x1) / T, unfiltered
+  lowpass,     // (x - x1) / T through a first-order low-pass at cutoff_Hz
+};
+
+struct VelocityEstimatorConfig {
+  VelocityEstimatorKind kind{VelocityEstimatorKind::hapkit2019};
+  double cutoff_Hz{100.0};   // lowpass only
+  double lowpass_alpha{};    // 1 - exp(-2 pi cutoff T), computed once by lowpass_alpha_for()
+};
+
+// The low-pass smoothing factor for a cutoff and a tick period.
+double lowpass_alpha_for(double cutoff_Hz, double period_s) noexcept;
+
+// Per-run estimator state.
+struct VelocityState {
+  bool started{};
+  double previous_x_m{};
+  double v1_m_per_s{};  // previous estimate
+  double v2_m_per_s{};  // estimate before that (hapkit2013)
+};
+
+// The names accepted in environment files, in VelocityEstimatorKind order.
+inline constexpr std::string_view kVelocityEstimatorNames[] = {"hapkit2019", "hapkit2013",
+                                                               "difference", "lowpass"};
+
+// One estimator step: new velocity from the new position. The first call returns 0.
+double estimate_velocity(const VelocityEstimatorConfig& config, double period_s, double x_m,
+                         VelocityState* state) noexcept;
+
+}  // namespace hapscene

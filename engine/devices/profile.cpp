@@ -1,0 +1,123 @@
+#include "engine/devices/profile.hpp"
+
+#include <filesystem>
+
+#include "engine/core/errors.hpp"
+#include "engine/devices/builtin_profiles.hpp"
+#include "engine/load/json_source.hpp"
+#include "engine/load/object_reader.hpp"
+
+namespace hapscene {
+namespace {
+
+SensorModel parse_sensor(ObjectReader& reader) {
+  SensorModel sensor;
+  sensor.counts_to_deg_slope = reader.quantity("counts_to_deg_slope", Quantity::dimensionless);
+  if (sensor.counts_to_deg_slope == 0.0) reader.fail("counts_to_deg_slope", "must not be 0");
+  sensor.counts_to_deg_offset = reader.quantity("counts_to_deg_offset", Quantity::dimensionless);
+  sensor.min_counts = static_cast<std::int32_t>(reader.integer("min_counts", 0, 65535));
+  sensor.span_counts = static_cast<std::int32_t>(reader.integer("span_counts", 2, 65535));
+  sensor.flip_threshold_counts = static_cast<std::int32_t>(
+      reader.integer("flip_threshold_counts", 1, sensor.span_counts - 1));
+  reader.finish();
+  return sensor;
+}
+
+DriveModel parse_drive(ObjectReader& reader) {
+  DriveModel drive;
+  drive.handle_radius_m = reader.quantity("handle_radius", Quantity::length_m, Bound::positive);
+  drive.pulley_radius_m = reader.quantity("pulley_radius", Quantity::length_m, Bound::positive);
+  drive.sector_radius_m = reader.quantity("sector_radius", Quantity::length_m, Bound::positive);
+  drive.motor_constant_N_m =
+      reader.quantity("motor_constant", Quantity::dimensionless, Bound::positive);
+  drive.duty_max = reader.quantity("duty_max", Quantity::dimensionless, Bound::positive);
+  if (drive.duty_max > 1.0) reader.fail("duty_max", "must be <= 1");
+  drive.direction_sign = static_cast<int>(reader.integer("direction_sign", -1, 1));
+  if (drive.direction_sign == 0) reader.fail("direction_sign", "must be 1 or -1");
+  drive.pwm_levels = static_cast<int>(reader.integer("pwm_levels", 1, 65535));
+  reader.finish();
+  return drive;
+}
+
+DeviceLimits parse_limits(ObjectReader& reader) {
+  DeviceLimits limits;
+  limits.max_force_N = reader.quantity("max_force", Quantity::force_N, Bound::positive);
+  limits.slew_limit_N_per_s =
+      reader.quantity("slew_limit", Quantity::force_rate_N_per_s, Bound::positive);
+  std::tie(limits.workspace_min_m, limits.workspace_max_m) =
+      reader.range("workspace", Quantity::length_m);
+  limits.soft_start_s = reader.quantity("soft_start", Quantity::time_s, Bound::non_negative);
+  limits.soft_start_threshold_N =
+      reader.quantity("soft_start_threshold", Quantity::force_N, Bound::non_negative);
+  reader.finish();
+  return limits;
+}
+
+PlantModel parse_plant(ObjectReader& reader) {
+  PlantModel plant;
+  plant.mass_kg = reader.quantity("mass", Quantity::mass_kg, Bound::positive);
+  plant.viscous_N_s_per_m =
+      reader.quantity("viscous", Quantity::damping_N_s_per_m, Bound::non_negative);
+  plant.coulomb_N = reader.quantity("coulomb", Quantity::force_N, Bound::non_negative);
+  std::tie(plant.end_stop_min_m, plant.end_stop_max_m) =
+      reader.range("end_stops", Quantity::length_m);
+  plant.end_stop_stiffness_N_per_m =
+      reader.quantity("end_stop_stiffness", Quantity::stiffness_N_per_m, Bound::positive);
+  plant.sensor_noise_counts =
+      reader.quantity("sensor_noise_counts", Quantity::dimensionless, Bound::non_negative);
+  reader.finish();
+  return plant;
+}
+
+// Reads a sub-object "key" of `parent` with `parse`.
+template <typename Parse>
+auto parse_part(ObjectReader& parent, std::string_view key, Parse parse) {
+  const nlohmann::json* value = parent.get(key);
+  if (value == nullptr) parent.fail("", "missing required key \"" + std::string(key) + "\"");
+  ObjectReader reader(*value, parent.pointer_to(key), parent.file());
+  return parse(reader);
+}
+
+bool looks_like_path(const std::string& name_or_path) {
+  return name_or_path.find('/') != std::string::npos ||
+         (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
+}
+
+}  // namespace
+
+DeviceProfile parse_device_profile(std::string_view json_text, const std::string& display_name) {
+  const nlohmann::json root = parse_json_text(json_text, display_name);
+  ObjectReader reader(root, "", display_name);
+  DeviceProfile profile;
+  profile.name = reader.string("name");
+  profile.description = reader.string_or("description", "");
+  profile.sensor = parse_part(reader, "sensor", parse_sensor);
+  profile.drive = parse_part(reader, "drive", parse_drive);
+  profile.limits = parse_part(reader, "limits", parse_limits);
+  profile.plant = parse_part(reader, "plant", parse_plant);
+  reader.finish();
+  return profile;
+}
+
+DeviceProfile load_device_profile(const std::string& name_or_path, const std::string& base_dir) {
+  if (looks_like_path(name_or_path)) {
+    std::filesystem::path path(name_or_path);
+    if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
+    const std::string shown = path.lexically_normal().string();
+    return parse_device_profile(read_text_file(shown, kMaxJsonFileBytes), shown);
+  }
+  std::vector<std::string_view> names;
+  for (const BuiltinProfile& builtin : builtin_profiles()) {
+    if (builtin.name == name_or_path) {
+      return parse_device_profile(builtin.json_text,
+                                  "environments/devices/" + std::string(builtin.name) + ".json");
+    }
+    names.push_back(builtin.name);
+  }
+  std::string message = "unknown device profile \"" + name_or_path + "\"";
+  const std::string suggestion = nearest_name(name_or_path, names);
+  if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
+  throw UnknownProfileError(message);
+}
+
+}  // namespace hapscene

@@ -1,0 +1,77 @@
+#pragma once
+// A device profile: everything hapscene knows about one kind of device, loaded from JSON
+// (environments/devices/*.json). The host uses the sensor and drive parts to turn counts
+// into a handle position and a force into a PWM duty; the simulator also uses the plant.
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "engine/core/errors.hpp"
+
+namespace hapscene {
+
+// Magnetoresistive angle sensor read by a 10-bit ADC, repeating every half turn of the
+// motor shaft. Unwrapped counts = raw + flips * span_counts.
+struct SensorModel {
+  double counts_to_deg_slope{};     // sector angle per unwrapped count (deg/count)
+  double counts_to_deg_offset{};    // sector angle at count 0 (deg)
+  std::int32_t min_counts{};        // lowest raw reading of one period
+  std::int32_t span_counts{};       // raw counts in one sensor period
+  std::int32_t flip_threshold_counts{};  // a jump larger than this between samples is a flip
+};
+
+// Capstan drive: motor pulley, sector pulley and handle.
+struct DriveModel {
+  double handle_radius_m{};
+  double pulley_radius_m{};
+  double sector_radius_m{};
+  double motor_constant_N_m{};  // motor torque at full duty; torque = Km * duty^2
+  double duty_max{};            // highest duty the host commands, in [0, 1]
+  int direction_sign{1};        // +1: positive force drives the direction pin high
+  int pwm_levels{};             // PWM steps at full duty (255 for Arduino analogWrite)
+};
+
+// Safety limits of the device itself; an environment may only lower them.
+struct DeviceLimits {
+  double max_force_N{};
+  double slew_limit_N_per_s{};
+  double workspace_min_m{};
+  double workspace_max_m{};
+  double soft_start_s{};             // ramp-in duration when a run starts in a force field
+  double soft_start_threshold_N{};   // first-tick force above which the ramp is used
+};
+
+// Physical parameters for the simulated device (not used with real hardware).
+struct PlantModel {
+  double mass_kg{};                  // effective mass at the handle
+  double viscous_N_s_per_m{};        // physical damping b
+  double coulomb_N{};                // dry friction
+  double end_stop_min_m{};           // hard stops of the handle's travel
+  double end_stop_max_m{};
+  double end_stop_stiffness_N_per_m{};
+  double sensor_noise_counts{};      // standard deviation of sensor noise (0: none)
+};
+
+struct DeviceProfile {
+  std::string name;
+  std::string description;
+  SensorModel sensor;
+  DriveModel drive;
+  DeviceLimits limits;
+  PlantModel plant;
+};
+
+// A profile name that is neither shipped nor a path; the caller knows where it was written.
+class UnknownProfileError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+// Loads a profile by name ("hapkit3": shipped and compiled in) or by path (contains a
+// "/" or ends in ".json"; relative paths are taken from `base_dir`). Throws InputError.
+DeviceProfile load_device_profile(const std::string& name_or_path, const std::string& base_dir);
+
+// Parses a profile from JSON text; `display_name` names it in messages. Throws InputError.
+DeviceProfile parse_device_profile(std::string_view json_text, const std::string& display_name);
+
+}  // namespace hapscene

@@ -1,0 +1,20 @@
+#pragma once
+// The Hapkit lab damper: F = -B v.
+#include "engine/core/effect_input.hpp"
+
+namespace hapscene {
+
+class ObjectReader;
+
+struct Damper {
+  static constexpr const char* kType = "damper";
+  static constexpr Needs kNeeds{.velocity = true};
+
+  double damping_N_s_per_m{};
+
+  static Damper parse(ObjectReader& reader);
+
+  double force_N(const EffectInput& in) const noexcept { return -damping_N_s_per_m * in.v_m_per_s; }
+};
+
+}  // namespace hapscene

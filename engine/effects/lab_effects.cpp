@@ -1,0 +1,47 @@
+// JSON keys of the four Hapkit lab effects. Each parse reads every key the effect
+// accepts (so unknown keys can be refused with a suggestion) and checks its bounds.
+#include "engine/effects/damper.hpp"
+#include "engine/effects/spring.hpp"
+#include "engine/effects/texture.hpp"
+#include "engine/effects/wall.hpp"
+#include "engine/load/object_reader.hpp"
+
+namespace hapscene {
+
+Spring Spring::parse(ObjectReader& reader) {
+  Spring spring;
+  spring.stiffness_N_per_m =
+      reader.quantity("stiffness", Quantity::stiffness_N_per_m, Bound::non_negative);
+  spring.center_m = reader.quantity_or("center", Quantity::length_m, 0.0);
+  return spring;
+}
+
+Wall Wall::parse(ObjectReader& reader) {
+  Wall wall;
+  wall.position_m = reader.quantity("position", Quantity::length_m);
+  wall.stiffness_N_per_m =
+      reader.quantity("stiffness", Quantity::stiffness_N_per_m, Bound::non_negative);
+  wall.solid_above = reader.choice("solid", {"above", "below"}) == "above";
+  return wall;
+}
+
+Damper Damper::parse(ObjectReader& reader) {
+  Damper damper;
+  damper.damping_N_s_per_m =
+      reader.quantity("damping", Quantity::damping_N_s_per_m, Bound::non_negative);
+  return damper;
+}
+
+Texture Texture::parse(ObjectReader& reader) {
+  Texture texture;
+  texture.width_m = reader.quantity("width", Quantity::length_m, Bound::positive);
+  texture.damping_N_s_per_m =
+      reader.quantity("damping", Quantity::damping_N_s_per_m, Bound::non_negative);
+  texture.spacing_m =
+      reader.quantity_or("spacing", Quantity::length_m, texture.width_m, Bound::non_negative);
+  texture.offset_m = reader.quantity_or("offset", Quantity::length_m, 0.0);
+  texture.period_m = texture.width_m + texture.spacing_m;
+  return texture;
+}
+
+}  // namespace hapscene

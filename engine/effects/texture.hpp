@@ -1,0 +1,42 @@
+#pragma once
+// The Hapkit lab texture: damping fields of width w separated by gaps s, repeating over
+// the whole workspace with period p = w + s. The handle is in a field when
+// (x - x0) mod p, taken in [0, p), is below w; there F = -B v, elsewhere 0.
+// Constant cost whatever the number of fields: one floor per tick.
+#include <cmath>
+
+#include "engine/core/effect_input.hpp"
+
+namespace hapscene {
+
+class ObjectReader;
+
+struct Texture {
+  static constexpr const char* kType = "texture";
+  static constexpr Needs kNeeds{.velocity = true};
+
+  double width_m{};
+  double spacing_m{};
+  double offset_m{};
+  double damping_N_s_per_m{};
+  double period_m{};  // width_m + spacing_m, computed at load
+
+  static Texture parse(ObjectReader& reader);
+
+  bool in_field(double x_m) const noexcept {
+    const double phase_m = x_m - offset_m;
+    double within_m = phase_m - period_m * std::floor(phase_m / period_m);
+    // Edges written in decimal (x = 0.015 for w = 5 mm) are not exact in binary; positions
+    // within a billionth of a period of an edge count as on it, so a field is [x0, x0 + w)
+    // as written. (A nanometre is far below any sensor's resolution.)
+    const double snap_m = 1e-9 * period_m;
+    if (within_m > period_m - snap_m) within_m = 0.0;
+    return within_m < width_m - snap_m;
+  }
+
+  double force_N(const EffectInput& in) const noexcept {
+    return in_field(in.x_m) ? -damping_N_s_per_m * in.v_m_per_s : 0.0;
+  }
+};
+
+}  // namespace hapscene

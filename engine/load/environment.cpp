@@ -1,0 +1,190 @@
+#include "engine/load/environment.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+
+#include "engine/core/errors.hpp"
+#include "engine/load/json_source.hpp"
+#include "engine/load/object_reader.hpp"
+
+namespace hapscene {
+namespace {
+
+inline constexpr double kMinRate_Hz = 10.0;
+inline constexpr double kMaxRate_Hz = 100000.0;
+
+// Built-in effect types by their "type" name.
+struct EffectType {
+  std::string_view name;
+  std::function<Effect(ObjectReader&)> parse;
+};
+
+template <typename T>
+EffectType effect_type() {
+  return EffectType{T::kType, [](ObjectReader& reader) { return Effect{T::parse(reader)}; }};
+}
+
+const std::vector<EffectType>& effect_types() {
+  static const std::vector<EffectType> types{effect_type<Spring>(), effect_type<Wall>(),
+                                             effect_type<Damper>(), effect_type<Texture>()};
+  return types;
+}
+
+// One element of "effects". Returns false when it is disabled ("enabled": false).
+bool parse_effect(const nlohmann::json& value, const std::string& pointer,
+                  const std::string& file, Effect* effect) {
+  ObjectReader reader(value, pointer, file);
+  std::vector<std::string_view> names;
+  for (const EffectType& type : effect_types()) names.push_back(type.name);
+
+  const std::string type_name = reader.string("type");
+  const auto type = std::find_if(effect_types().begin(), effect_types().end(),
+                                 [&](const EffectType& t) { return t.name == type_name; });
+  if (type == effect_types().end()) {
+    std::string message = "unknown effect type \"" + type_name + "\"";
+    const std::string suggestion = nearest_name(type_name, names);
+    if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
+    reader.fail("type", message);
+  }
+  bool enabled = true;
+  if (const nlohmann::json* flag = reader.get("enabled")) {
+    if (!flag->is_boolean()) reader.fail("enabled", "expected a boolean, got " + json_type_name(*flag));
+    enabled = flag->get<bool>();
+  }
+  *effect = type->parse(reader);
+  reader.finish();
+  return enabled;
+}
+
+// The environment's "safety" block: each limit may only be made safer than the device's.
+void parse_safety(ObjectReader& reader, const DeviceLimits& device, SafetyConfig* safety) {
+  const auto lower_or_equal = [&](std::string_view key, double value, double device_value,
+                                  const char* unit) {
+    if (value > device_value) {
+      reader.fail(key, "must not exceed the device's " + format_number(device_value) + " " + unit);
+    }
+    return value;
+  };
+  safety->max_force_N = lower_or_equal(
+      "max_force", reader.quantity_or("max_force", Quantity::force_N, device.max_force_N, Bound::positive),
+      device.max_force_N, "N");
+  safety->slew_limit_N_per_s = lower_or_equal(
+      "slew_limit",
+      reader.quantity_or("slew_limit", Quantity::force_rate_N_per_s, device.slew_limit_N_per_s,
+                         Bound::positive),
+      device.slew_limit_N_per_s, "N/s");
+  safety->soft_start_s = reader.quantity_or("soft_start", Quantity::time_s, device.soft_start_s,
+                                            Bound::non_negative);
+  if (safety->soft_start_s < device.soft_start_s) {
+    reader.fail("soft_start", "must not be shorter than the device's " +
+                                  format_number(device.soft_start_s) + " s");
+  }
+  if (reader.has("workspace")) {
+    const auto [low_m, high_m] = reader.range("workspace", Quantity::length_m);
+    if (low_m < device.workspace_min_m || high_m > device.workspace_max_m) {
+      reader.fail("workspace", "must lie within the device's workspace [" +
+                                   format_number(device.workspace_min_m) + ", " +
+                                   format_number(device.workspace_max_m) + "] m");
+    }
+    safety->workspace_min_m = low_m;
+    safety->workspace_max_m = high_m;
+  } else {
+    reader.get("workspace");
+  }
+  reader.finish();
+}
+
+VelocityEstimatorConfig parse_velocity(ObjectReader& reader) {
+  VelocityEstimatorConfig config;
+  const std::string name = reader.choice(
+      "estimator", {kVelocityEstimatorNames[0], kVelocityEstimatorNames[1],
+                    kVelocityEstimatorNames[2], kVelocityEstimatorNames[3]},
+      std::string(kVelocityEstimatorNames[0]));
+  for (std::size_t i = 0; i < std::size(kVelocityEstimatorNames); ++i) {
+    if (kVelocityEstimatorNames[i] == name) config.kind = static_cast<VelocityEstimatorKind>(i);
+  }
+  config.cutoff_Hz =
+      reader.quantity_or("cutoff", Quantity::frequency_Hz, config.cutoff_Hz, Bound::positive);
+  reader.finish();
+  return config;
+}
+
+Scene compile(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
+  ObjectReader reader(root, "", file);
+  Scene scene;
+  scene.source_path = file;
+  scene.name = reader.string_or("name", std::filesystem::path(file).stem().string());
+  scene.description = reader.string_or("description", "");
+
+  // Tick rate.
+  scene.rate_hz = reader.quantity_or("rate_hz", Quantity::frequency_Hz, 1000.0, Bound::positive);
+  if (scene.rate_hz < kMinRate_Hz || scene.rate_hz > kMaxRate_Hz) {
+    reader.fail("rate_hz", "must be between 10 Hz and 100 kHz");
+  }
+  scene.period_s = 1.0 / scene.rate_hz;
+
+  // Device profile: by name (shipped) or by path relative to this file.
+  const std::string device_name = reader.string_or("device", "hapkit3");
+  try {
+    scene.device = load_device_profile(device_name, base_dir);
+  } catch (const UnknownProfileError& error) {
+    reader.fail("device", error.what());  // errors inside a profile file name that file
+  }
+
+  // Safety: the device's limits, lowered by the environment's.
+  const DeviceLimits& limits = scene.device.limits;
+  scene.safety = SafetyConfig{limits.max_force_N,  limits.slew_limit_N_per_s,
+                              limits.workspace_min_m, limits.workspace_max_m,
+                              limits.soft_start_s, limits.soft_start_threshold_N};
+  if (const nlohmann::json* safety = reader.get("safety")) {
+    ObjectReader safety_reader(*safety, reader.pointer_to("safety"), file);
+    parse_safety(safety_reader, limits, &scene.safety);
+  }
+  finalise_safety(scene.period_s, &scene.safety);
+
+  // Velocity estimator.
+  if (const nlohmann::json* velocity = reader.get("velocity")) {
+    ObjectReader velocity_reader(*velocity, reader.pointer_to("velocity"), file);
+    scene.velocity = parse_velocity(velocity_reader);
+  }
+  scene.velocity.lowpass_alpha = lowpass_alpha_for(scene.velocity.cutoff_Hz, scene.period_s);
+
+  // Effects, and what they need.
+  const nlohmann::json* effects = reader.get("effects");
+  if (effects == nullptr) reader.fail("", "missing required key \"effects\"");
+  if (!effects->is_array()) {
+    reader.fail("effects", "expected an array of effects, got " + json_type_name(*effects));
+  }
+  for (std::size_t i = 0; i < effects->size(); ++i) {
+    Effect effect;
+    const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
+    if (parse_effect((*effects)[i], pointer, file, &effect)) {
+      scene.needs |= needs_of(effect);
+      scene.effects.push_back(effect);
+    }
+  }
+  reader.finish();
+  return scene;
+}
+
+}  // namespace
+
+std::vector<std::string> effect_type_names() {
+  std::vector<std::string> names;
+  for (const EffectType& type : effect_types()) names.emplace_back(type.name);
+  return names;
+}
+
+Scene load_environment_text(std::string_view json_text, const std::string& display_name,
+                            const std::string& base_dir) {
+  return compile(parse_json_text(json_text, display_name), display_name, base_dir);
+}
+
+Scene load_environment_file(const std::string& path) {
+  const std::string base_dir = std::filesystem::path(path).parent_path().string();
+  return load_environment_text(read_text_file(path, kMaxJsonFileBytes), path,
+                               base_dir.empty() ? "." : base_dir);
+}
+
+}  // namespace hapscene

@@ -1,0 +1,22 @@
+#pragma once
+// Loading an environment file into a compiled Scene: parse, check every value with a
+// located error, then compile (device profile, safety limits, what the effects need).
+#include <string>
+#include <string_view>
+
+#include "engine/core/scene.hpp"
+
+namespace hapscene {
+
+// Loads an environment file. Throws InputError naming the file and the place.
+Scene load_environment_file(const std::string& path);
+
+// Compiles environment JSON text; `display_name` names it in messages and relative
+// paths in it (a device profile) are taken from `base_dir`. Throws InputError.
+Scene load_environment_text(std::string_view json_text, const std::string& display_name,
+                            const std::string& base_dir = ".");
+
+// The effect types an environment may use, for messages and documentation.
+std::vector<std::string> effect_type_names();
+
+}  // namespace hapscene

@@ -1,0 +1,187 @@
+#include "engine/load/json_source.hpp"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "engine/core/errors.hpp"
+
+namespace hapscene {
+namespace {
+
+struct TextPosition {
+  std::size_t line{1};
+  std::size_t column{1};
+};
+
+// Line and column (1-based) of byte `offset` in `text`.
+TextPosition position_of(std::string_view text, std::size_t offset) {
+  TextPosition position;
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++position.line;
+      position.column = 1;
+    } else {
+      ++position.column;
+    }
+  }
+  return position;
+}
+
+std::string located(const std::string& name, TextPosition position, const std::string& message) {
+  return name + ":" + std::to_string(position.line) + ":" + std::to_string(position.column) +
+         ": " + message;
+}
+
+// Refuses nesting deeper than kMaxJsonDepth before the parser sees the text.
+void check_nesting(std::string_view text, const std::string& display_name) {
+  int depth = 0;
+  bool in_string = false;
+  bool escaped = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') in_string = true;
+    else if (c == '{' || c == '[') {
+      if (++depth > kMaxJsonDepth) {
+        throw InputError(located(display_name, position_of(text, i),
+                                 "nesting deeper than " + std::to_string(kMaxJsonDepth) +
+                                     " levels"));
+      }
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
+}
+
+// Follows the parser's events to know the JSON pointer of each key, and refuses a key
+// given twice in one object.
+class DuplicateKeyCheck {
+ public:
+  bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start:
+        note_value_start();
+        frames_.push_back(Frame{event == Event::array_start, {}, {}, 0});
+        break;
+      case Event::object_end:
+      case Event::array_end:
+        frames_.pop_back();
+        break;
+      case Event::key: {
+        Frame& frame = frames_.back();
+        frame.key = parsed.get<std::string>();
+        if (!frame.keys.insert(frame.key).second) {
+          throw InputError(pointer() + ": key \"" + frame.key + "\" appears twice");
+        }
+        break;
+      }
+      case Event::value:
+        note_value_start();
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool is_array{};
+    std::set<std::string> keys;
+    std::string key;
+    std::size_t next_index{};
+  };
+
+  // A value inside an array advances that array's index.
+  void note_value_start() {
+    if (!frames_.empty() && frames_.back().is_array) ++frames_.back().next_index;
+  }
+
+  std::string pointer() const {
+    std::string out;
+    for (const Frame& frame : frames_) {
+      out = frame.is_array ? json_pointer_append(out, frame.next_index - 1)
+                           : json_pointer_append(out, frame.key);
+    }
+    return out;
+  }
+
+  std::vector<Frame> frames_;
+};
+
+// nlohmann's message after its "[json.exception...] parse error at line L, column C: ".
+std::string parser_message(const std::string& what) {
+  const std::size_t column = what.find("column ");
+  if (column != std::string::npos) {
+    const std::size_t colon = what.find(": ", column);
+    if (colon != std::string::npos) return what.substr(colon + 2);
+  }
+  return what;
+}
+
+}  // namespace
+
+std::string read_text_file(const std::string& path, std::size_t max_bytes) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path + ": cannot open file");
+  std::string text;
+  char buffer[16384];
+  while (file.read(buffer, sizeof buffer) || file.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(file.gcount()));
+    if (text.size() > max_bytes) {
+      throw InputError(path + ": file larger than " + std::to_string(max_bytes) + " bytes");
+    }
+  }
+  if (file.bad()) throw InputError(path + ": cannot read file");
+  return text;
+}
+
+nlohmann::json parse_json_text(std::string_view text, const std::string& display_name) {
+  if (text.size() > kMaxJsonFileBytes) {
+    throw InputError(display_name + ": larger than " + std::to_string(kMaxJsonFileBytes) +
+                     " bytes");
+  }
+  check_nesting(text, display_name);
+  try {
+    return nlohmann::json::parse(text, DuplicateKeyCheck{}, /*allow_exceptions=*/true,
+                                 /*ignore_comments=*/false);
+  } catch (const nlohmann::json::parse_error& error) {
+    const std::size_t offset = error.byte > 0 ? error.byte - 1 : 0;
+    throw InputError(located(display_name, position_of(text, offset), parser_message(error.what())));
+  } catch (const InputError& error) {
+    throw InputError(display_name + ": " + error.what());
+  }
+}
+
+nlohmann::json read_json_file(const std::string& path) {
+  return parse_json_text(read_text_file(path, kMaxJsonFileBytes), path);
+}
+
+std::string json_pointer_append(const std::string& parent, std::string_view key) {
+  std::string out = parent + "/";
+  for (const char c : key) {
+    if (c == '~') out += "~0";
+    else if (c == '/') out += "~1";
+    else out += c;
+  }
+  return out;
+}
+
+std::string json_pointer_append(const std::string& parent, std::size_t index) {
+  return parent + "/" + std::to_string(index);
+}
+
+std::string json_type_name(const nlohmann::json& value) {
+  if (value.is_boolean()) return "boolean";
+  if (value.is_number()) return "number";
+  return value.type_name();
+}
+
+}  // namespace hapscene

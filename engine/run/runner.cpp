@@ -1,0 +1,93 @@
+#include "engine/run/runner.hpp"
+
+#include <sys/prctl.h>
+
+#include <cmath>
+#include <ctime>
+
+#include "engine/core/step.hpp"
+
+namespace hapscene {
+namespace {
+
+std::int64_t monotonic_ns() noexcept {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
+}
+
+// Sleeps until shortly before `deadline_ns` on an absolute clock, then spins to it.
+void wait_until(std::int64_t deadline_ns) noexcept {
+  constexpr std::int64_t kSpin_ns = 50'000;
+  const std::int64_t sleep_until_ns = deadline_ns - kSpin_ns;
+  if (monotonic_ns() < sleep_until_ns) {
+    timespec until{};
+    until.tv_sec = static_cast<time_t>(sleep_until_ns / 1'000'000'000);
+    until.tv_nsec = static_cast<long>(sleep_until_ns % 1'000'000'000);
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) != 0) {
+    }
+  }
+  while (monotonic_ns() < deadline_ns) {
+  }
+}
+
+}  // namespace
+
+RunSummary run_scene(const Scene& scene, Device& device, const RunOptions& options,
+                     TickObserver* observer) {
+  RunSummary summary;
+  summary.scene_name = scene.name;
+  TickState state = make_tick_state(scene);
+  const auto total_ticks = static_cast<std::uint64_t>(std::llround(options.duration_s * scene.rate_hz));
+  const auto period_ns = static_cast<std::int64_t>(std::llround(scene.period_s * 1e9));
+  const bool real_time = options.pacing == Pacing::real_time;
+
+  // Wake-ups exactly when asked: the default 50 us timer slack would eat the spin margin.
+  if (real_time) prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+
+  const std::int64_t start_ns = monotonic_ns();
+  std::int64_t deadline_ns = start_ns;
+  for (std::uint64_t tick = 0; tick < total_ticks; ++tick) {
+    if (options.stop_requested != nullptr && options.stop_requested->load(std::memory_order_relaxed)) {
+      break;
+    }
+    // Pace: wait for this tick's absolute deadline.
+    if (real_time) {
+      wait_until(deadline_ns);
+      summary.wake_late_ns.record(static_cast<std::uint64_t>(monotonic_ns() - deadline_ns));
+    }
+
+    // Read the device, compute, write the device.
+    const std::int64_t begin_ns = monotonic_ns();
+    const std::int32_t raw_counts = device.read_counts();
+    step(scene, raw_counts, &state);
+    device.write(state.command);
+    const std::int64_t end_ns = monotonic_ns();
+    summary.compute_ns.record(static_cast<std::uint64_t>(end_ns - begin_ns));
+
+    // Count, and let device time pass.
+    summary.max_abs_requested_N = std::fmax(summary.max_abs_requested_N, std::abs(state.effects_force_N));
+    summary.max_abs_output_N = std::fmax(summary.max_abs_output_N, std::abs(state.output_N));
+    if (observer != nullptr) observer->on_tick(state);
+    device.advance(scene.period_s);
+
+    deadline_ns += period_ns;
+    if (real_time && monotonic_ns() > deadline_ns) {
+      // Overran into the next tick: count it and realign rather than burst to catch up.
+      ++summary.deadline_misses;
+      const std::int64_t behind_ns = monotonic_ns() - deadline_ns;
+      deadline_ns += (behind_ns / period_ns + 1) * period_ns;
+    }
+  }
+
+  summary.ticks = state.tick;
+  summary.safety = state.safety.counters;
+  summary.device_time_s = static_cast<double>(state.tick) * scene.period_s;
+  summary.wall_time_s = static_cast<double>(monotonic_ns() - start_ns) * 1e-9;
+  summary.achieved_rate_hz = real_time && summary.wall_time_s > 0.0
+                                 ? static_cast<double>(summary.ticks) / summary.wall_time_s
+                                 : scene.rate_hz;
+  return summary;
+}
+
+}  // namespace hapscene

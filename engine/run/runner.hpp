@@ -1,0 +1,55 @@
+#pragma once
+// The fixed-rate haptic loop. The same tick code runs in simulated time (as fast as
+// possible, for tests and validation) and in real time (absolute deadlines: each tick's
+// deadline is start + n * T, never "sleep one period"; a short spin before the deadline
+// for precision; deadline misses and wake-up lateness counted).
+//
+// Each tick, in four named steps: read the device, step the scene, write the device,
+// count. The observer (telemetry, live status, test traces) sees every tick and must not
+// block.
+#include <atomic>
+#include <cstdint>
+#include <string>
+
+#include "engine/core/scene.hpp"
+#include "engine/core/tick_state.hpp"
+#include "engine/devices/device.hpp"
+#include "engine/run/latency_histogram.hpp"
+
+namespace hapscene {
+
+enum class Pacing { simulated_time, real_time };
+
+struct RunOptions {
+  double duration_s{2.0};
+  Pacing pacing{Pacing::real_time};
+  // Set from another thread (e.g. on Ctrl-C) to end the run at the next tick.
+  const std::atomic<bool>* stop_requested{nullptr};
+};
+
+// Sees every tick after the device write. Must not allocate, lock or do I/O.
+class TickObserver {
+ public:
+  virtual ~TickObserver() = default;
+  virtual void on_tick(const TickState& state) noexcept = 0;
+};
+
+struct RunSummary {
+  std::string scene_name;
+  std::uint64_t ticks{};
+  double device_time_s{};         // ticks * period
+  double wall_time_s{};           // elapsed real time
+  double achieved_rate_hz{};      // ticks / wall time (real time) or the scene rate (simulated)
+  double max_abs_requested_N{};   // largest |force| the scene asked for
+  double max_abs_output_N{};      // largest |force| commanded after safety
+  SafetyCounters safety;
+  std::uint64_t deadline_misses{};  // ticks that ended after the next tick's deadline
+  LatencyHistogram compute_ns;      // read + step + write of each tick
+  LatencyHistogram wake_late_ns;    // real time: how late each tick started
+};
+
+// Runs `scene` on `device` for options.duration_s of device time.
+RunSummary run_scene(const Scene& scene, Device& device, const RunOptions& options,
+                     TickObserver* observer);
+
+}  // namespace hapscene
