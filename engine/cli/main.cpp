@@ -23,10 +23,11 @@ run options:
   --device sim          the device (default: sim, a simulated Hapkit from the scene's profile)
   --duration T          device time per environment (default 2 s; units allowed: "500 ms")
   --sim-time            run as fast as possible in simulated time instead of real time
-  --hand MOTION         simulated hand: sweep (default), hold, none
+  --hand MOTION         simulated hand: sweep (default), hold, release, none
   --hand-stiffness K    hand grip stiffness (default 200 N/m)
   --hand-damping B      hand damping (default 2 N*s/m)
-  --hold X              hold position for --hand hold (default 0 m)
+  --hold X              hold position for --hand hold and release (default 0 m)
+  --release T           when --hand release lets go (default 0.5 s)
   --start X             handle start position (default 0 m)
   --noise COUNTS        sensor noise standard deviation in counts (default: the profile's)
   --seed N              noise seed (default 1)

@@ -51,7 +51,7 @@ RunSettings parse_settings(Arguments& arguments) {
   if (const auto motion = arguments.take_value("hand")) {
     const auto* found = std::find(std::begin(kHandMotionNames), std::end(kHandMotionNames), *motion);
     if (found == std::end(kHandMotionNames)) {
-      arguments.fail("--hand: unknown motion \"" + *motion + "\" (use sweep, hold or none)");
+      arguments.fail("--hand: unknown motion \"" + *motion + "\" (use sweep, hold, release or none)");
     }
     hand.motion = static_cast<HandMotion>(found - std::begin(kHandMotionNames));
   }
@@ -63,6 +63,7 @@ RunSettings parse_settings(Arguments& arguments) {
     arguments.fail("--hand-stiffness and --hand-damping must be >= 0");
   }
   hand.hold_m = arguments.take_quantity("hold", Quantity::length_m).value_or(hand.hold_m);
+  hand.release_s = arguments.take_quantity("release", Quantity::time_s).value_or(hand.release_s);
   settings.simulation.start_x_m =
       arguments.take_quantity("start", Quantity::length_m).value_or(0.0);
   settings.noise_counts = arguments.take_quantity("noise", Quantity::dimensionless).value_or(-1.0);

@@ -21,7 +21,8 @@ double VirtualHand::sweep_phase_m(double t_s) const noexcept {
 double VirtualHand::reference_m(double t_s) const noexcept {
   switch (config_.motion) {
     case HandMotion::none: return start_x_m_;
-    case HandMotion::hold: return config_.hold_m;
+    case HandMotion::hold:
+    case HandMotion::release: return config_.hold_m;
     case HandMotion::sweep: {
       const double length_m = config_.sweep_max_m - config_.sweep_min_m;
       const double phase_m = sweep_phase_m(t_s);
@@ -40,6 +41,7 @@ double VirtualHand::reference_velocity_m_per_s(double t_s) const noexcept {
 
 double VirtualHand::force_N(double t_s, double x_m, double v_m_per_s) const noexcept {
   if (config_.motion == HandMotion::none) return 0.0;
+  if (config_.motion == HandMotion::release && t_s >= config_.release_s) return 0.0;
   return config_.stiffness_N_per_m * (reference_m(t_s) - x_m) +
          config_.damping_N_s_per_m * (reference_velocity_m_per_s(t_s) - v_m_per_s);
 }

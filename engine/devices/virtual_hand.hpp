@@ -1,14 +1,15 @@
 #pragma once
 // A simple virtual hand for simulated runs: a spring-damper pulling the handle toward a
 // reference motion. "sweep" moves slowly across the workspace and back (pushing into
-// whatever is there), "hold" holds one position, "none" leaves the handle alone.
+// whatever is there), "hold" holds one position, "release" holds it and lets go at
+// release_s (does the spring oscillate?), "none" leaves the handle alone.
 #include <string_view>
 
 namespace hapscene {
 
-enum class HandMotion { none, hold, sweep };
+enum class HandMotion { none, hold, sweep, release };
 
-inline constexpr std::string_view kHandMotionNames[] = {"none", "hold", "sweep"};
+inline constexpr std::string_view kHandMotionNames[] = {"none", "hold", "sweep", "release"};
 
 struct HandConfig {
   HandMotion motion{HandMotion::sweep};
@@ -17,7 +18,8 @@ struct HandConfig {
   double speed_m_per_s{0.08};       // sweep speed
   double sweep_min_m{-0.04};
   double sweep_max_m{0.04};
-  double hold_m{0.0};               // hold position
+  double hold_m{0.0};               // hold and release position
+  double release_s{0.5};            // release: when the hand lets go
 };
 
 class VirtualHand {

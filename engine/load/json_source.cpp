@@ -155,6 +155,15 @@ nlohmann::json parse_json_text(std::string_view text, const std::string& display
   } catch (const nlohmann::json::parse_error& error) {
     const std::size_t offset = error.byte > 0 ? error.byte - 1 : 0;
     throw InputError(located(display_name, position_of(text, offset), parser_message(error.what())));
+  } catch (const nlohmann::json::out_of_range& error) {
+    // A number too large for a double ("1e999"): locate the token the parser names.
+    const std::string what = error.what();
+    const std::size_t open = what.find('\'');
+    const std::size_t close = what.rfind('\'');
+    const std::string token = open < close ? what.substr(open + 1, close - open - 1) : "";
+    const std::size_t offset = token.empty() ? 0 : text.find(token);
+    throw InputError(located(display_name, position_of(text, offset == std::string_view::npos ? 0 : offset),
+                             "number out of range: " + token));
   } catch (const InputError& error) {
     throw InputError(display_name + ": " + error.what());
   }

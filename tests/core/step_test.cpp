@@ -1,0 +1,108 @@
+// One tick: the sensor pipeline, what a compiled scene skips, and velocity estimators.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "engine/core/step.hpp"
+#include "engine/devices/kinematics.hpp"
+#include "tests/support.hpp"
+
+using namespace hapscene;
+using hapscene::test::scene_from;
+
+namespace {
+// The raw reading the board reports for a handle position in the home period.
+std::int32_t counts_at(const Scene& scene, double x_m) {
+  return static_cast<std::int32_t>(std::lround(position_to_counts(scene.device, x_m)));
+}
+}  // namespace
+
+TEST_CASE("step: counts in, force and motor command out") {
+  const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 100}]})");
+  TickState state = make_tick_state(scene);
+  const std::int32_t counts = counts_at(scene, 0.004);
+  step(scene, counts, &state);
+  CHECK(state.raw_counts == counts);
+  CHECK(state.unwrapped_counts == counts);
+  CHECK(state.x_m == counts_to_position_m(scene.device, counts));
+  CHECK(state.effects_force_N == -100.0 * state.x_m);
+  CHECK(state.output_N == state.effects_force_N);  // 0.4 N: below the soft-start threshold
+  CHECK(state.command.duty == force_to_motor(scene.device, state.output_N).duty);
+  CHECK(state.command.direction_high == (state.output_N > 0.0));
+  CHECK(state.tick == 1);
+}
+
+TEST_CASE("step: a scene with no velocity-dependent effect runs no velocity estimator") {
+  const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 100},
+    {"type": "wall", "position": 0.002, "stiffness": 500, "solid": "above"}]})");
+  REQUIRE_FALSE(scene.needs.velocity);
+  TickState state = make_tick_state(scene);
+  for (int i = 0; i < 100; ++i) step(scene, counts_at(scene, 0.0001 * i / 100.0 * 40), &state);
+  CHECK_FALSE(state.velocity_state.started);
+  CHECK(state.v_m_per_s == 0.0);
+
+  const Scene damped = scene_from(R"({"effects": [{"type": "damper", "damping": 1}]})");
+  REQUIRE(damped.needs.velocity);
+  TickState damped_state = make_tick_state(damped);
+  step(damped, counts_at(damped, 0.0), &damped_state);
+  step(damped, counts_at(damped, 0.001), &damped_state);
+  CHECK(damped_state.velocity_state.started);
+  CHECK(damped_state.v_m_per_s > 0.5);
+}
+
+TEST_CASE("step: the sensor pipeline follows the handle across sensor periods") {
+  const Scene scene = scene_from(R"({"effects": []})");
+  TickState state = make_tick_state(scene);
+  const DeviceProfile& p = scene.device;
+  // Sweep 0 -> +45 mm -> -50 mm in 20 um steps: several flips each way.
+  double x_m = 0.0;
+  const auto feed = [&](double target_m, double step_m) {
+    while ((step_m > 0) ? x_m < target_m : x_m > target_m) {
+      x_m += step_m;
+      const auto unwrapped = static_cast<std::int64_t>(std::lround(position_to_counts(p, x_m)));
+      std::int64_t within = (unwrapped - p.sensor.min_counts) % p.sensor.span_counts;
+      if (within < 0) within += p.sensor.span_counts;
+      step(scene, static_cast<std::int32_t>(p.sensor.min_counts + within), &state);
+      REQUIRE(std::abs(state.x_m - x_m) < 7e-6);  // within half a count
+    }
+  };
+  feed(0.045, 20e-6);
+  feed(-0.05, -20e-6);
+  CHECK(state.flip_counter.flips != 0);
+}
+
+TEST_CASE("velocity: estimators on a constant-velocity ramp") {
+  const double period_s = 0.001;
+  const double v_true = 0.05;
+  for (const VelocityEstimatorKind kind :
+       {VelocityEstimatorKind::difference, VelocityEstimatorKind::hapkit2019,
+        VelocityEstimatorKind::hapkit2013, VelocityEstimatorKind::lowpass}) {
+    CAPTURE(static_cast<int>(kind));
+    VelocityEstimatorConfig config{.kind = kind, .cutoff_Hz = 50.0,
+                                   .lowpass_alpha = lowpass_alpha_for(50.0, period_s)};
+    VelocityState state;
+    CHECK(estimate_velocity(config, period_s, 0.0, &state) == 0.0);  // first sample
+    double v = 0.0;
+    for (int i = 1; i <= 500; ++i) v = estimate_velocity(config, period_s, v_true * period_s * i, &state);
+    CHECK(v == doctest::Approx(v_true).epsilon(1e-6));
+  }
+}
+
+TEST_CASE("velocity: hapkit2019 is the reference sketch's 0.9 / 0.1 filter") {
+  VelocityEstimatorConfig config;  // default
+  REQUIRE(config.kind == VelocityEstimatorKind::hapkit2019);
+  VelocityState state;
+  estimate_velocity(config, 0.001, 0.0, &state);
+  CHECK(estimate_velocity(config, 0.001, 0.001, &state) == doctest::Approx(0.9 * 1.0));
+  CHECK(estimate_velocity(config, 0.001, 0.001, &state) == doctest::Approx(0.1 * 0.9));
+}
+
+TEST_CASE("environment: the velocity block selects the estimator") {
+  const Scene scene = scene_from(R"({"velocity": {"estimator": "lowpass", "cutoff": "30 Hz"},
+    "effects": [{"type": "damper", "damping": 1}]})");
+  CHECK(scene.velocity.kind == VelocityEstimatorKind::lowpass);
+  CHECK(scene.velocity.lowpass_alpha == doctest::Approx(lowpass_alpha_for(30.0, 0.001)));
+  CHECK(test::load_error(R"({"velocity": {"estimator": "kalman"}, "effects": []})") ==
+        "test.json: /velocity/estimator: \"kalman\" is not one of \"hapkit2019\", \"hapkit2013\", "
+        "\"difference\", \"lowpass\"");
+}
