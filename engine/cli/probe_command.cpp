@@ -74,7 +74,7 @@ int probe_command(std::vector<std::string> args) {
   const double start_in_steps = range.start_m / range.step_m;
   for (long long i = 0; i < range.points; ++i) {
     EffectInput input;
-    input.x_m = (start_in_steps + static_cast<double>(i)) * range.step_m;
+    input.x_m = (start_in_steps + static_cast<double>(i)) * range.step_m + 0.0;  // no "-0"
     input.v_m_per_s = v_m_per_s;
     input.dt_s = scene.period_s;
     const double force_N = sum_effects_N(scene, input, &state);
