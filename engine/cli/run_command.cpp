@@ -13,7 +13,7 @@
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/core/errors.hpp"
-#include "engine/devices/simulated_hapkit.hpp"
+#include "engine/devices/open_device.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/load/object_reader.hpp"
 #include "engine/run/live_status.hpp"
@@ -37,9 +37,6 @@ struct RunSettings {
 RunSettings parse_settings(Arguments& arguments) {
   RunSettings settings;
   settings.device = arguments.take_value("device").value_or("sim");
-  if (settings.device != "sim") {
-    arguments.fail("--device: unknown device \"" + settings.device + "\" (available: sim)");
-  }
   settings.options.duration_s =
       arguments.take_quantity("duration", Quantity::time_s).value_or(settings.options.duration_s);
   if (!(settings.options.duration_s > 0.0 && settings.options.duration_s <= 24 * 3600.0)) {
@@ -165,23 +162,30 @@ int run_command(std::vector<std::string> args) {
   const std::vector<std::string> files = arguments.positionals();
   if (files.empty()) arguments.fail("expected at least one environment file");
 
-  // Load everything first: a bad file fails before anything moves.
+  // Load everything and open every device first: a bad file fails before anything moves.
   std::vector<Scene> scenes;
-  for (const std::string& file : files) scenes.push_back(load_environment_file(file));
+  std::vector<std::unique_ptr<Device>> devices;
+  for (const std::string& file : files) {
+    scenes.push_back(load_environment_file(file));
+    DeviceProfile profile = scenes.back().device;
+    if (settings.noise_counts >= 0.0) profile.plant.sensor_noise_counts = settings.noise_counts;
+    try {
+      devices.push_back(open_device(settings.device, profile, settings.simulation));
+    } catch (const InputError& error) {
+      arguments.fail(error.what());
+    }
+  }
 
   std::signal(SIGINT, on_interrupt);
   settings.options.stop_requested = &g_stop_requested;
   const bool show_status = !settings.quiet && isatty(STDERR_FILENO) == 1;
   for (std::size_t i = 0; i < scenes.size() && !g_stop_requested.load(); ++i) {
     const Scene& scene = scenes[i];
-    DeviceProfile profile = scene.device;
-    if (settings.noise_counts >= 0.0) profile.plant.sensor_noise_counts = settings.noise_counts;
-    SimulatedHapkit device(profile, settings.simulation);
     LiveStatus status;
     RunSummary summary;
     {
       StatusLine line(status, scene.period_s, show_status);
-      summary = run_scene(scene, device, settings.options, &status);
+      summary = run_scene(scene, *devices[i], settings.options, &status);
     }
     if (i > 0) std::printf("\n");
     print_summary(scene, settings, summary);
