@@ -15,6 +15,9 @@ namespace {
 std::atomic<long> g_allocations{0};
 }  // namespace
 
+// GCC pairs the replaced operator new with std::free and warns; both are ours and match.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
 // Counts every allocation in the test binary (the counter is only read around the loop).
 void* operator new(std::size_t size) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
