@@ -8,5 +8,6 @@ namespace hapscene {
 
 int run_command(std::vector<std::string> args);
 int probe_command(std::vector<std::string> args);
+int bench_command(std::vector<std::string> args);
 
 }  // namespace hapscene

@@ -16,6 +16,8 @@ usage:
   hapscene run ENV [ENV...] [options]     run environments on a device (simulated by default)
   hapscene probe ENV --x START:STOP:STEP [--v V]
                                           print the force-displacement curve as CSV
+  hapscene bench [ENV...] [--seconds T] [--passes N]
+                                          tick cost against the hand-written lab code
   hapscene help | --help                  this text
   hapscene version | --version
 
@@ -54,6 +56,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "run") return hapscene::run_command(args);
     if (command == "probe") return hapscene::probe_command(args);
+    if (command == "bench") return hapscene::bench_command(args);
     std::cerr << "hapscene: unknown command \"" << command << "\" (try: hapscene --help)\n";
     return hapscene::kExitInvalidInput;
   } catch (const hapscene::InputError& error) {

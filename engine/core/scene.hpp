@@ -8,6 +8,7 @@
 #include "engine/core/effect_input.hpp"
 #include "engine/core/safety.hpp"
 #include "engine/core/velocity.hpp"
+#include "engine/devices/kinematics.hpp"
 #include "engine/devices/profile.hpp"
 #include "engine/effects/damper.hpp"
 #include "engine/effects/spring.hpp"
@@ -28,6 +29,7 @@ struct Scene {
   double period_s{};                // 1 / rate_hz
 
   DeviceProfile device;
+  Kinematics kinematics;            // the device's, compiled for the tick
   SafetyConfig safety;              // device limits lowered by the environment's
   VelocityEstimatorConfig velocity;
 

@@ -28,7 +28,7 @@ void step(const Scene& scene, std::int32_t raw_counts, TickState* state) noexcep
   state->t_s = static_cast<double>(state->tick) * scene.period_s;
   state->raw_counts = raw_counts;
   state->unwrapped_counts = state->flip_counter.update(raw_counts);
-  state->x_m = counts_to_position_m(scene.device, state->unwrapped_counts);
+  state->x_m = counts_to_position_m(scene.kinematics, state->unwrapped_counts);
 
   // Velocity: only when some effect reads it.
   if (scene.needs.velocity) {
@@ -46,7 +46,7 @@ void step(const Scene& scene, std::int32_t raw_counts, TickState* state) noexcep
 
   // Safety, then the motor command the board needs.
   state->output_N = apply_safety(scene.safety, state->x_m, state->effects_force_N, &state->safety);
-  state->command = force_to_motor(scene.device, state->output_N);
+  state->command = force_to_motor(scene.kinematics, state->output_N);
   ++state->tick;
 }
 

@@ -5,6 +5,12 @@
 // Sector angle (deg) = slope * counts + offset; handle x = handle_radius * angle (rad).
 // Motor torque Tp = pulley_radius / sector_radius * handle_radius * F;
 // duty = sqrt(|Tp| / Km) clamped to [0, duty_max]; direction from the sign of F.
+//
+// The constants are combined once (compile_kinematics), so a tick multiplies and never
+// divides.
+#include <algorithm>
+#include <cmath>
+
 #include "engine/devices/profile.hpp"
 
 namespace hapscene {
@@ -15,14 +21,39 @@ struct MotorCommand {
   bool direction_high{};    // level of the direction pin
 };
 
-double counts_to_position_m(const DeviceProfile& profile, double unwrapped_counts) noexcept;
-// Inverse, for the simulated sensor (continuous counts, before quantization).
-double position_to_counts(const DeviceProfile& profile, double x_m) noexcept;
+// A profile's kinematics, combined into the few constants a tick uses.
+struct Kinematics {
+  double x_m_per_count{};           // handle_radius * slope * pi / 180
+  double x_m_at_count_zero{};       // handle_radius * offset * pi / 180
+  double torque_N_m_per_N{};        // pulley_radius / sector_radius * handle_radius
+  double motor_constant_N_m{};      // Km
+  double inverse_motor_constant{};  // 1 / Km
+  double duty_max{};
+  int direction_sign{1};
+};
 
+Kinematics compile_kinematics(const DeviceProfile& profile) noexcept;
+
+inline double counts_to_position_m(const Kinematics& k, double unwrapped_counts) noexcept {
+  return k.x_m_per_count * unwrapped_counts + k.x_m_at_count_zero;
+}
+
+inline MotorCommand force_to_motor(const Kinematics& k, double force_N) noexcept {
+  const double torque_N_m = k.torque_N_m_per_N * std::abs(force_N);
+  MotorCommand command;
+  command.duty = std::min(std::sqrt(torque_N_m * k.inverse_motor_constant), k.duty_max);
+  command.direction_high = force_N * k.direction_sign > 0.0;
+  return command;
+}
+
+// The same from a profile (for tests and tools; a tick uses the compiled form).
+double counts_to_position_m(const DeviceProfile& profile, double unwrapped_counts) noexcept;
 MotorCommand force_to_motor(const DeviceProfile& profile, double force_N) noexcept;
+
+// Inverse of counts_to_position_m, for the simulated sensor (continuous counts).
+double position_to_counts(const DeviceProfile& profile, double x_m) noexcept;
 // The handle force a command produces (duty taken as given), for the simulator.
 double motor_to_force_N(const DeviceProfile& profile, const MotorCommand& command) noexcept;
-
 // The largest handle force the motor can produce at duty_max.
 double max_motor_force_N(const DeviceProfile& profile) noexcept;
 

@@ -132,6 +132,8 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
     reader.fail("device", error.what());  // errors inside a profile file name that file
   }
 
+  scene.kinematics = compile_kinematics(scene.device);
+
   // Safety: the device's limits, lowered by the environment's.
   const DeviceLimits& limits = scene.device.limits;
   scene.safety = SafetyConfig{limits.max_force_N,  limits.slew_limit_N_per_s,

@@ -1,0 +1,55 @@
+#pragma once
+// The baseline a Hapkit user has today: the lab's per-tick code written by hand, the way
+// the reference sketch does it (flip counting on the raw reading, the linear counts fit,
+// the 0.9 / 0.1 velocity filter, one hard-coded force law, torque and duty). Compiled
+// into the benchmark so `hapscene bench` can put the engine's cost next to it.
+#include <cstdint>
+
+#include "engine/core/scene.hpp"
+
+namespace hapscene {
+
+// The hand-written program's constants, copied from a scene's profile and single effect.
+struct LabBaselineConstants {
+  double slope_deg_per_count{};
+  double offset_deg{};
+  std::int32_t flip_threshold_counts{};
+  std::int32_t span_counts{};
+  double handle_radius_m{};
+  double pulley_radius_m{};
+  double sector_radius_m{};
+  double motor_constant_N_m{};
+  double period_s{};
+  // The one effect, as the lab code would hard-code it.
+  double stiffness_N_per_m{};
+  double position_m{};     // spring center or wall position
+  bool solid_above{};
+  double damping_N_s_per_m{};
+  double width_m{};
+  double spacing_m{};
+  double offset_m{};
+};
+
+// What the sketch keeps between loop() calls.
+struct LabBaselineState {
+  std::int32_t last_raw{};
+  std::int32_t flips{};
+  bool started{};
+  double last_x_m{};
+  double last_v_m_per_s{};
+  double duty{};
+  bool direction_high{};
+};
+
+enum class LabBaselineKind { spring, wall, damper, texture };
+
+// The constants for `scene` when it is one lab effect; false when it is anything else.
+bool lab_baseline_for(const Scene& scene, LabBaselineKind* kind, LabBaselineConstants* constants);
+
+// One loop() of the hand-written sketch for each lab environment.
+void lab_spring_tick(const LabBaselineConstants& c, std::int32_t raw, LabBaselineState* s) noexcept;
+void lab_wall_tick(const LabBaselineConstants& c, std::int32_t raw, LabBaselineState* s) noexcept;
+void lab_damper_tick(const LabBaselineConstants& c, std::int32_t raw, LabBaselineState* s) noexcept;
+void lab_texture_tick(const LabBaselineConstants& c, std::int32_t raw, LabBaselineState* s) noexcept;
+
+}  // namespace hapscene
