@@ -34,6 +34,7 @@ run options:
   --noise COUNTS        sensor noise standard deviation in counts (default: the profile's)
   --seed N              noise seed (default 1)
   --quiet               no live status line
+  --no-reload           do not reload the environment when its files change
 
 Values take SI numbers or strings with units ("10 mm", "2 kHz").
 Exit codes: 0 success, 2 invalid input (file, arguments), 1 anything else.

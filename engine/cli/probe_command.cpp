@@ -77,7 +77,7 @@ int probe_command(std::vector<std::string> args) {
     input.x_m = (start_in_steps + static_cast<double>(i)) * range.step_m + 0.0;  // no "-0"
     input.v_m_per_s = v_m_per_s;
     input.dt_s = scene.period_s;
-    const double force_N = sum_effects_N(scene, input, &state);
+    const double force_N = sum_effects_N(scene, input, state.scripts);
     const double output_N =
         apply_static_safety(scene.safety, input.x_m, force_N, &state.safety.counters);
     out += shortest(input.x_m) + "," + shortest(v_m_per_s) + "," + shortest(force_N) + "," +

@@ -17,6 +17,7 @@
 #include "engine/load/environment.hpp"
 #include "engine/load/object_reader.hpp"
 #include "engine/run/live_status.hpp"
+#include "engine/run/reload_watcher.hpp"
 #include "engine/run/runner.hpp"
 
 namespace hapscene {
@@ -32,6 +33,7 @@ struct RunSettings {
   SimulationConfig simulation;
   double noise_counts{-1.0};  // < 0: the profile's
   bool quiet{false};
+  bool reload{true};          // watch the files and hot-reload them
 };
 
 RunSettings parse_settings(Arguments& arguments) {
@@ -74,13 +76,15 @@ RunSettings parse_settings(Arguments& arguments) {
     }
   }
   settings.quiet = arguments.take_flag("quiet");
+  settings.reload = !arguments.take_flag("no-reload");
   return settings;
 }
 
-// Prints "x, force, loop rate" on one terminal line ten times a second until stopped.
+// Prints script log lines as they come, and "x, force, loop rate" on one terminal line
+// ten times a second, until stopped.
 class StatusLine {
  public:
-  StatusLine(const LiveStatus& status, double period_s, bool enabled)
+  StatusLine(LiveStatus& status, double period_s, bool enabled)
       : status_(status), period_s_(period_s) {
     if (enabled) thread_ = std::thread([this] { loop(); });
   }
@@ -105,6 +109,9 @@ class StatusLine {
                              duration<double>(now - last_time).count();
       last_ticks = ticks;
       last_time = now;
+      log_lines_.clear();
+      status_.drain_log(&log_lines_);
+      for (const std::string& line : log_lines_) std::fprintf(stderr, "\r\033[K%s\n", line.c_str());
       std::fprintf(stderr, "\r\033[K  t %7.3f s   x %+8.3f mm   force %+7.3f N   loop %8.1f Hz",
                    static_cast<double>(ticks) * period_s_, status_.x_m() * 1e3,
                    status_.output_N(), rate_hz);
@@ -112,7 +119,8 @@ class StatusLine {
     }
   }
 
-  const LiveStatus& status_;
+  LiveStatus& status_;
+  std::vector<std::string> log_lines_;
   double period_s_;
   std::atomic<bool> done_{false};
   std::thread thread_;
@@ -141,6 +149,15 @@ void print_summary(const Scene& scene, const RunSettings& settings, const RunSum
               static_cast<unsigned long long>(safety.outside_workspace_ticks));
   std::printf("  faults           %llu non-finite forces\n",
               static_cast<unsigned long long>(safety.nonfinite_faults));
+  for (const ScriptReport& script : summary.scripts) {
+    if (script.disabled) {
+      std::printf("  script disabled  %s (at t = %.3f s; 0 N for the remaining %llu ticks)\n",
+                  script.fault.c_str(), script.fault_time_s,
+                  static_cast<unsigned long long>(script.skipped_calls));
+    } else {
+      std::printf("  script ok        %s\n", script.name.c_str());
+    }
+  }
   std::printf("  deadline misses  %s\n",
               real_time ? std::to_string(summary.deadline_misses).c_str() : "n/a (simulated time)");
   std::printf("  tick compute     p50 %.2f us  p99 %.2f us  max %.2f us\n",
@@ -183,12 +200,28 @@ int run_command(std::vector<std::string> args) {
     const Scene& scene = scenes[i];
     LiveStatus status;
     RunSummary summary;
+    SceneExchange exchange;
+    RunOptions options = settings.options;
+    if (settings.reload) options.reload = &exchange;
     {
       StatusLine line(status, scene.period_s, show_status);
-      summary = run_scene(scene, *devices[i], settings.options, &status);
+      std::unique_ptr<ReloadWatcher> watcher;
+      if (settings.reload) {
+        watcher = std::make_unique<ReloadWatcher>(
+            files[i], scene, &exchange, [show_status](const std::string& message) {
+              std::fprintf(stderr, "%s%s\n", show_status ? "\r\033[K" : "", message.c_str());
+            });
+      }
+      summary = run_scene(scene, *devices[i], options, &status);
     }
+    std::vector<std::string> log_lines;
+    status.drain_log(&log_lines);
+    for (const std::string& line : log_lines) std::fprintf(stderr, "%s\n", line.c_str());
     if (i > 0) std::printf("\n");
     print_summary(scene, settings, summary);
+    if (exchange.swaps() > 0) {
+      std::printf("  reloads          %llu\n", static_cast<unsigned long long>(exchange.swaps()));
+    }
   }
   return kExitOk;
 }

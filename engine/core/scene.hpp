@@ -11,14 +11,15 @@
 #include "engine/devices/kinematics.hpp"
 #include "engine/devices/profile.hpp"
 #include "engine/effects/damper.hpp"
+#include "engine/effects/script_effect.hpp"
 #include "engine/effects/spring.hpp"
 #include "engine/effects/texture.hpp"
 #include "engine/effects/wall.hpp"
 
 namespace hapscene {
 
-// One built-in effect; the forces of all effects of a scene add up.
-using Effect = std::variant<Spring, Wall, Damper, Texture>;
+// One effect; the forces of all effects of a scene add up.
+using Effect = std::variant<Spring, Wall, Damper, Texture, ScriptEffect>;
 
 struct Scene {
   std::string name;
@@ -34,6 +35,7 @@ struct Scene {
   VelocityEstimatorConfig velocity;
 
   std::vector<Effect> effects;
+  std::size_t script_count{};       // ScriptEffects among them (instance_index 0..n-1)
   Needs needs;                      // union of the effects' needs: what step() computes
 };
 

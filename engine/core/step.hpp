@@ -9,10 +9,25 @@
 
 namespace hapscene {
 
-// A full tick from a raw sensor reading. Writes state->command (and every stage's field).
-void step(const Scene& scene, std::int32_t raw_counts, TickState* state) noexcept;
+// A cross-fade from a scene being replaced (hot reload): the effects stage gives
+// (1 - weight_to) * F_from + weight_to * F_to, so the handle never gets a jolt.
+struct Crossfade {
+  const Scene* from{};
+  ScriptList* from_scripts{};
+  double weight_to{};  // in [0, 1]
+};
 
-// The effects stage alone: the sum of every effect's force for one input.
-double sum_effects_N(const Scene& scene, const EffectInput& input, TickState* state) noexcept;
+// A full tick from a raw sensor reading. Writes state->command (and every stage's field).
+// With `fade`, `scene` is the new scene and state->scripts its instances.
+void step(const Scene& scene, std::int32_t raw_counts, TickState* state,
+          const Crossfade* fade = nullptr) noexcept;
+
+// The effects stage alone: the sum of every effect's force for one input, with the
+// scene's script instances.
+double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts) noexcept;
+
+// Housekeeping for the tick's slack, after the command is written: a little garbage
+// collection for each script (their collectors are stopped while they compute force).
+void collect_script_garbage(TickState* state) noexcept;
 
 }  // namespace hapscene

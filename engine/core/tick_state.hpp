@@ -2,15 +2,21 @@
 // Everything one run of a scene changes, grouped by the pipeline stage that writes it.
 // A new TickState is a fresh run: the same scene can be run twice without surprises.
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include "engine/core/safety.hpp"
 #include "engine/core/velocity.hpp"
 #include "engine/devices/flip_counter.hpp"
 #include "engine/devices/kinematics.hpp"
+#include "engine/lua/script.hpp"
 
 namespace hapscene {
 
 struct Scene;
+
+// The script instances of one run of a scene, one per ScriptEffect in scene order.
+using ScriptList = std::vector<std::unique_ptr<ScriptInstance>>;
 
 struct TickState {
   // Clock.
@@ -28,6 +34,7 @@ struct TickState {
   double v_m_per_s{};
 
   // Effects stage.
+  ScriptList scripts;             // the current scene's script instances, made at start
   double effects_force_N{};       // sum of all effects: what the scene asks for
 
   // Safety stage.
@@ -38,7 +45,11 @@ struct TickState {
   MotorCommand command;
 };
 
-// A fresh state for a run of `scene`.
+// A fresh state for a run of `scene`: new script instances, each reset. Throws InputError
+// when a script instance cannot be created.
 TickState make_tick_state(const Scene& scene);
+
+// New, reset script instances for `scene` (what make_tick_state puts in `scripts`).
+ScriptList make_script_instances(const Scene& scene);
 
 }  // namespace hapscene

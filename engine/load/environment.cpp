@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 
 #include "engine/core/errors.hpp"
@@ -27,14 +28,16 @@ EffectType effect_type() {
 
 const std::vector<EffectType>& effect_types() {
   static const std::vector<EffectType> types{effect_type<Spring>(), effect_type<Wall>(),
-                                             effect_type<Damper>(), effect_type<Texture>()};
+                                             effect_type<Damper>(), effect_type<Texture>(),
+                                             effect_type<ScriptEffect>()};
   return types;
 }
 
-// One element of "effects". Returns false when it is disabled ("enabled": false).
+// One element of "effects". Returns false when it is disabled ("enabled": false): then
+// it is not compiled at all (a disabled script is not even loaded).
 bool parse_effect(const nlohmann::json& value, const std::string& pointer,
-                  const std::string& file, Effect* effect) {
-  ObjectReader reader(value, pointer, file);
+                  const std::string& file, const std::string& base_dir, Effect* effect) {
+  ObjectReader reader(value, pointer, file, base_dir);
   std::vector<std::string_view> names;
   for (const EffectType& type : effect_types()) names.push_back(type.name);
 
@@ -52,9 +55,10 @@ bool parse_effect(const nlohmann::json& value, const std::string& pointer,
     if (!flag->is_boolean()) reader.fail("enabled", "expected a boolean, got " + json_type_name(*flag));
     enabled = flag->get<bool>();
   }
+  if (!enabled) return false;
   *effect = type->parse(reader);
   reader.finish();
-  return enabled;
+  return true;
 }
 
 // The environment's "safety" block: each limit may only be made safer than the device's.
@@ -161,9 +165,10 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
   for (std::size_t i = 0; i < effects->size(); ++i) {
     Effect effect;
     const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
-    if (parse_effect((*effects)[i], pointer, file, &effect)) {
+    if (parse_effect((*effects)[i], pointer, file, base_dir, &effect)) {
+      if (auto* script = std::get_if<ScriptEffect>(&effect)) script->instance_index = scene.script_count++;
       scene.needs |= needs_of(effect);
-      scene.effects.push_back(effect);
+      scene.effects.push_back(std::move(effect));
     }
   }
   reader.finish();
@@ -184,9 +189,17 @@ Scene load_environment_text(std::string_view json_text, const std::string& displ
 }
 
 Scene load_environment_file(const std::string& path) {
-  const std::string base_dir = std::filesystem::path(path).parent_path().string();
-  return load_environment_text(read_text_file(path, kMaxJsonFileBytes), path,
-                               base_dir.empty() ? "." : base_dir);
+  const std::filesystem::path file(path);
+  const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
+  // A .lua file is a one-effect environment with the script's default parameters.
+  if (file.extension() == ".lua") {
+    if (!std::ifstream(path)) throw InputError(path + ": cannot open file");
+    const nlohmann::json script = nlohmann::json::object({{"type", "script"}, {"file", file.filename().string()}});
+    const nlohmann::json root = nlohmann::json::object(
+        {{"name", file.stem().string()}, {"effects", nlohmann::json::array({script})}});
+    return compile(root, path, base_dir);
+  }
+  return load_environment_text(read_text_file(path, kMaxJsonFileBytes), path, base_dir);
 }
 
 }  // namespace hapscene

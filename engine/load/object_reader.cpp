@@ -21,8 +21,9 @@ std::string located_message(const std::string& file, const std::string& pointer,
   return file + ": " + pointer + ": " + message;
 }
 
-ObjectReader::ObjectReader(const nlohmann::json& value, std::string pointer, std::string file)
-    : object_(value), pointer_(std::move(pointer)), file_(std::move(file)) {
+ObjectReader::ObjectReader(const nlohmann::json& value, std::string pointer, std::string file,
+                           std::string base_dir)
+    : object_(value), pointer_(std::move(pointer)), file_(std::move(file)), base_dir_(std::move(base_dir)) {
   if (!object_.is_object()) {
     throw InputError(located_message(file_, pointer_,
                                      "expected an object, got " + json_type_name(object_)));
@@ -110,6 +111,15 @@ long long ObjectReader::integer(std::string_view key, long long min, long long m
                   std::to_string(number));
   }
   return number;
+}
+
+long long ObjectReader::integer_or(std::string_view key, long long min, long long max,
+                                  long long fallback) {
+  if (!has(key)) {
+    get(key);
+    return fallback;
+  }
+  return integer(key, min, max);
 }
 
 std::string ObjectReader::string(std::string_view key) {

@@ -21,8 +21,10 @@ enum class Bound { any, non_negative, positive };
 class ObjectReader {
  public:
   // `file` names the source in messages; `pointer` is this object's JSON pointer ("" for
-  // the root). Throws InputError when `value` is not an object.
-  ObjectReader(const nlohmann::json& value, std::string pointer, std::string file);
+  // the root); relative paths inside it are taken from `base_dir`. Throws InputError when
+  // `value` is not an object.
+  ObjectReader(const nlohmann::json& value, std::string pointer, std::string file,
+               std::string base_dir = ".");
 
   // A required quantity: a number (SI) or a string with a unit of `quantity`.
   double quantity(std::string_view key, Quantity quantity, Bound bound = Bound::any);
@@ -31,8 +33,9 @@ class ObjectReader {
                      Bound bound = Bound::any);
   // A required pair [low, high] of quantities with low < high.
   std::pair<double, double> range(std::string_view key, Quantity quantity);
-  // A required whole number in [min, max].
+  // A required whole number in [min, max], and one with a fallback.
   long long integer(std::string_view key, long long min, long long max);
+  long long integer_or(std::string_view key, long long min, long long max, long long fallback);
   // A required string, and one with a fallback.
   std::string string(std::string_view key);
   std::string string_or(std::string_view key, std::string fallback);
@@ -51,6 +54,7 @@ class ObjectReader {
 
   const std::string& file() const { return file_; }
   const std::string& pointer() const { return pointer_; }
+  const std::string& base_dir() const { return base_dir_; }
   std::string pointer_to(std::string_view key) const;
 
  private:
@@ -60,6 +64,7 @@ class ObjectReader {
   const nlohmann::json& object_;
   std::string pointer_;
   std::string file_;
+  std::string base_dir_;
   std::vector<std::string> read_keys_;
 };
 

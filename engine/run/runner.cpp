@@ -33,11 +33,13 @@ void wait_until(std::int64_t deadline_ns) noexcept {
 
 }  // namespace
 
-RunSummary run_scene(const Scene& scene, Device& device, const RunOptions& options,
+RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOptions& options,
                      TickObserver* observer) {
   RunSummary summary;
-  summary.scene_name = scene.name;
-  TickState state = make_tick_state(scene);
+  TickState state = make_tick_state(initial_scene);
+  HotSwap hot_swap(initial_scene, options.reload, &state);
+  // Rate and device stay for the whole run (a reload that changes them is refused).
+  const Scene& scene = initial_scene;
   const auto total_ticks = static_cast<std::uint64_t>(std::llround(options.duration_s * scene.rate_hz));
   const auto period_ns = static_cast<std::int64_t>(std::llround(scene.period_s * 1e9));
   const bool real_time = options.pacing == Pacing::real_time;
@@ -45,6 +47,7 @@ RunSummary run_scene(const Scene& scene, Device& device, const RunOptions& optio
   // Wake-ups exactly when asked: the default 50 us timer slack would eat the spin margin.
   if (real_time) prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
 
+  if (observer != nullptr) observer->on_start(state);
   const std::int64_t start_ns = monotonic_ns();
   std::int64_t deadline_ns = start_ns;
   for (std::uint64_t tick = 0; tick < total_ticks; ++tick) {
@@ -59,11 +62,13 @@ RunSummary run_scene(const Scene& scene, Device& device, const RunOptions& optio
 
     // Read the device, compute, write the device.
     const std::int64_t begin_ns = monotonic_ns();
+    const Crossfade* fade = hot_swap.before_tick(&state);
     const std::int32_t raw_counts = device.read_counts();
-    step(scene, raw_counts, &state);
+    step(hot_swap.scene(), raw_counts, &state, fade);
     device.write(state.command);
     const std::int64_t end_ns = monotonic_ns();
     summary.compute_ns.record(static_cast<std::uint64_t>(end_ns - begin_ns));
+    collect_script_garbage(&state);  // in the slack, after the command is out
 
     // Count, and let device time pass.
     summary.max_abs_requested_N = std::fmax(summary.max_abs_requested_N, std::abs(state.effects_force_N));
@@ -80,6 +85,19 @@ RunSummary run_scene(const Scene& scene, Device& device, const RunOptions& optio
     }
   }
 
+  if (observer != nullptr) observer->on_finish(state);
+
+  // Script faults, reported once here: each disabled script says where and when.
+  summary.scene_name = hot_swap.scene().name;
+  std::size_t script_index = 0;
+  for (const Effect& effect : hot_swap.scene().effects) {
+    if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
+      const ScriptInstance& instance = *state.scripts[script_index++];
+      summary.scripts.push_back(ScriptReport{script->program->display_name, instance.disabled(),
+                                             std::string(instance.fault_message()),
+                                             instance.fault_time_s(), instance.skipped_calls()});
+    }
+  }
   summary.ticks = state.tick;
   summary.safety = state.safety.counters;
   summary.device_time_s = static_cast<double>(state.tick) * scene.period_s;

@@ -10,10 +10,12 @@
 #include <atomic>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "engine/core/scene.hpp"
 #include "engine/core/tick_state.hpp"
 #include "engine/devices/device.hpp"
+#include "engine/run/hot_swap.hpp"
 #include "engine/run/latency_histogram.hpp"
 
 namespace hapscene {
@@ -25,17 +27,32 @@ struct RunOptions {
   Pacing pacing{Pacing::real_time};
   // Set from another thread (e.g. on Ctrl-C) to end the run at the next tick.
   const std::atomic<bool>* stop_requested{nullptr};
+  // Hot reload: scenes offered here replace the running one at a tick boundary.
+  SceneExchange* reload{nullptr};
 };
 
-// Sees every tick after the device write. Must not allocate, lock or do I/O.
+// Sees every tick after the device write: on_tick must not allocate, lock or do I/O.
+// on_start and on_finish run on the loop's thread just before the first tick and after
+// the last one, outside the timed loop.
 class TickObserver {
  public:
   virtual ~TickObserver() = default;
+  virtual void on_start(const TickState& state) { (void)state; }
   virtual void on_tick(const TickState& state) noexcept = 0;
+  virtual void on_finish(const TickState& state) { (void)state; }
+};
+
+// What happened to one script effect during a run.
+struct ScriptReport {
+  std::string name;            // "scripts/bumps.lua"
+  bool disabled{};
+  std::string fault;           // "scripts/bumps.lua:12: ..." when disabled
+  double fault_time_s{};       // run time of the faulting call
+  std::uint64_t skipped_calls{};  // ticks answered with 0 N after the fault
 };
 
 struct RunSummary {
-  std::string scene_name;
+  std::string scene_name;         // the scene running at the end (after any reloads)
   std::uint64_t ticks{};
   double device_time_s{};         // ticks * period
   double wall_time_s{};           // elapsed real time
@@ -46,6 +63,7 @@ struct RunSummary {
   std::uint64_t deadline_misses{};  // ticks that ended after the next tick's deadline
   LatencyHistogram compute_ns;      // read + step + write of each tick
   LatencyHistogram wake_late_ns;    // real time: how late each tick started
+  std::vector<ScriptReport> scripts;  // one per script effect, in scene order
 };
 
 // Runs `scene` on `device` for options.duration_s of device time.

@@ -1,0 +1,74 @@
+// JSON keys of the script effect: where the script is, its parameter overrides and its
+// limits. The script itself is compiled (and run once) here, at load time, so syntax
+// errors, unknown parameters and typos inside force() fail the load.
+#include "engine/effects/script_effect.hpp"
+
+#include <filesystem>
+
+#include "engine/core/errors.hpp"
+#include "engine/load/json_source.hpp"
+#include "engine/load/object_reader.hpp"
+
+namespace hapscene {
+
+inline constexpr std::size_t kMaxScriptBytes = 1u << 20;
+
+ScriptLimits parse_script_limits(ObjectReader& reader) {
+  ScriptLimits limits;
+  limits.instructions_per_call = reader.integer_or("instructions_per_call", 100, 100'000'000,
+                                                   limits.instructions_per_call);
+  limits.memory_bytes = static_cast<std::size_t>(
+      reader.integer_or("memory_bytes", 64 << 10, 1ll << 30, static_cast<long long>(limits.memory_bytes)));
+  limits.allocation_bytes_per_call = static_cast<std::size_t>(reader.integer_or(
+      "allocation_bytes_per_call", 1 << 10, 1ll << 30, static_cast<long long>(limits.allocation_bytes_per_call)));
+  limits.wall_time_per_call_s =
+      reader.quantity_or("wall_time_per_call", Quantity::time_s, limits.wall_time_per_call_s, Bound::non_negative);
+  reader.finish();
+  return limits;
+}
+
+ScriptEffect ScriptEffect::parse(ObjectReader& reader) {
+  // Where the script is: a file relative to the environment, or inline source.
+  const bool has_file = reader.has("file");
+  const bool has_source = reader.has("source");
+  if (has_file == has_source) reader.fail("", "a script needs exactly one of \"file\" and \"source\"");
+  std::string display_name;
+  std::string source;
+  if (has_file) {
+    std::filesystem::path path(reader.string("file"));
+    if (path.is_relative()) path = std::filesystem::path(reader.base_dir()) / path;
+    display_name = path.lexically_normal().string();
+    try {
+      source = read_text_file(display_name, kMaxScriptBytes);
+    } catch (const InputError& error) {
+      reader.fail("file", error.what());
+    }
+    reader.get("source");
+  } else {
+    source = reader.string("source");
+    display_name = reader.file() + "#" + reader.pointer_to("source");
+    reader.get("file");
+  }
+
+  // Parameter overrides and limits.
+  nlohmann::json params = nlohmann::json::object();
+  if (const nlohmann::json* value = reader.get("params")) {
+    if (!value->is_object()) reader.fail("params", "expected an object, got " + json_type_name(*value));
+    params = *value;
+  }
+  ScriptLimits limits;
+  if (const nlohmann::json* value = reader.get("limits")) {
+    ObjectReader limits_reader(*value, reader.pointer_to("limits"), reader.file(), reader.base_dir());
+    limits = parse_script_limits(limits_reader);
+  }
+
+  ScriptEffect effect;
+  if (has_file) effect.file = display_name;
+  effect.program = std::make_shared<const ScriptProgram>(compile_script(
+      display_name, std::move(source), params, reader.file(), reader.pointer_to("params"), limits));
+  effect.needs.velocity = effect.program->needs_velocity;
+  effect.needs.time = effect.program->needs_time;
+  return effect;
+}
+
+}  // namespace hapscene

@@ -1,0 +1,459 @@
+// What a script's names mean: strict globals, the `params` table (resolved the moment the
+// chunk assigns it, so top-level code already sees SI values and overrides), the
+// read-only state table `s`, and the checks run after the chunk has loaded.
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <string_view>
+
+#include "engine/lua/params.hpp"
+#include "engine/lua/script_vm.hpp"
+
+namespace hapscene::detail {
+namespace {
+
+// Registry key of the params table as first assigned.
+const char kParamsKey = 0;
+
+// ---- Suggestions without allocating (they run inside the tick on error paths) -------
+
+// Levenshtein distance of two names up to 48 bytes; longer names are never suggested.
+std::size_t short_distance(std::string_view a, std::string_view b) {
+  constexpr std::size_t kMax = 48;
+  if (a.size() > kMax || b.size() > kMax) return static_cast<std::size_t>(-1);
+  std::size_t row[kMax + 1];
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      const std::size_t substitute = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
+      row[j] = std::min({above + 1, row[j - 1] + 1, substitute});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// The string key of the table at `index` nearest to `name` (ties: the smaller key), or ""
+// when none is close: at most one edit per three letters (one for short names).
+void nearest_key(lua_State* L, int index, std::string_view name, char* out, std::size_t size) {
+  out[0] = '\0';
+  index = lua_absindex(L, index);
+  std::size_t best = std::max<std::size_t>(1, name.size() / 3) + 1;
+  lua_pushnil(L);
+  while (lua_next(L, index) != 0) {
+    if (lua_type(L, -2) == LUA_TSTRING) {
+      std::size_t length = 0;
+      const char* key = lua_tolstring(L, -2, &length);
+      const std::size_t d = short_distance(name, std::string_view(key, length));
+      if (d > 0 && length < size &&
+          (d < best || (d == best && out[0] != '\0' && std::strcmp(key, out) < 0))) {
+        best = d;
+        std::memcpy(out, key, length + 1);
+      }
+    }
+    lua_pop(L, 1);
+  }
+}
+
+// ---- Load errors: stored as text, thrown as InputError once the Lua call returns -----
+
+void set_load_error(ScriptVm* vm, const char* format, ...) __attribute__((format(printf, 2, 3)));
+void set_load_error(ScriptVm* vm, const char* format, ...) {
+  char text[512];
+  std::va_list args;
+  va_start(args, format);
+  std::vsnprintf(text, sizeof text, format, args);
+  va_end(args);
+  try {
+    if (vm->load_error.empty()) vm->load_error = text;
+  } catch (...) {
+    record_fault(vm, "%s", text);
+  }
+}
+
+// Raises any error; the caller of the load step reads vm->load_error first.
+int raise_load_error(lua_State* L) { return raise_tripped(L); }
+
+// ---- params ------------------------------------------------------------------------
+
+// Reads the declared defaults of the table at `index` (0: none declared) and resolves
+// them with the JSON overrides into vm->params. C++ only; never raises a Lua error.
+bool resolve_declared(lua_State* L, int index, const char* declared_at, ScriptVm* vm) noexcept {
+  try {
+    std::vector<DeclaredParam> declared;
+    if (index != 0) {
+      lua_pushnil(L);
+      while (lua_next(L, index) != 0) {
+        DeclaredParam d;
+        if (lua_type(L, -2) == LUA_TSTRING) {
+          d.name = lua_tostring(L, -2);
+        } else if (lua_type(L, -2) == LUA_TNUMBER) {
+          char key[64];
+          std::snprintf(key, sizeof key, "%.14g", lua_tonumber(L, -2));
+          d.key_text = key;
+        } else {
+          d.key_text = luaL_typename(L, -2);
+        }
+        switch (lua_type(L, -1)) {
+          case LUA_TNUMBER:
+            d.type = DeclaredParam::Type::number;
+            d.number = lua_tonumber(L, -1);
+            break;
+          case LUA_TBOOLEAN:
+            d.type = DeclaredParam::Type::boolean;
+            d.boolean = lua_toboolean(L, -1) != 0;
+            break;
+          case LUA_TSTRING:
+            d.type = DeclaredParam::Type::string;
+            d.text = lua_tostring(L, -1);
+            break;
+          default:
+            d.type = DeclaredParam::Type::other;
+            d.text = luaL_typename(L, -1);
+            break;
+        }
+        declared.push_back(std::move(d));
+        lua_pop(L, 1);
+      }
+    }
+    static const nlohmann::json kNoOverrides = nlohmann::json::object();
+    const ParamPlaces places{vm->display_name, declared_at, vm->error_context, vm->pointer_prefix};
+    vm->params = resolve_params(std::move(declared),
+                                vm->params_override ? *vm->params_override : kNoOverrides, places);
+    return true;
+  } catch (const std::exception& e) {
+    set_load_error(vm, "%s", e.what());
+  } catch (...) {
+    set_load_error(vm, "%s: cannot resolve params", vm->display_name.c_str());
+  }
+  return false;
+}
+
+// params.stifness (a typo) is an error naming the nearest parameter.
+int params_index(lua_State* L) {
+  if (lua_type(L, 2) != LUA_TSTRING) return luaL_error(L, "params has no field [%s]", luaL_typename(L, 2));
+  const char* name = lua_tostring(L, 2);
+  char suggestion[64];
+  nearest_key(L, 1, name, suggestion, sizeof suggestion);
+  if (suggestion[0] != '\0') {
+    return luaL_error(L, "params has no field '%s' (did you mean '%s'?)", name, suggestion);
+  }
+  return luaL_error(L, "params has no field '%s'", name);
+}
+
+// New fields of params are errors too: every parameter is declared in the table.
+int params_newindex(lua_State* L) {
+  return luaL_error(L, "params.%s is not declared: declare every parameter in the params table",
+                    lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "?");
+}
+
+// Hides the table's metatable and makes unknown fields errors.
+void seal_params(lua_State* L, int index) {
+  index = lua_absindex(L, index);
+  lua_createtable(L, 0, 3);
+  lua_pushcfunction(L, params_index);
+  lua_setfield(L, -2, "__index");
+  lua_pushcfunction(L, params_newindex);
+  lua_setfield(L, -2, "__newindex");
+  lua_pushboolean(L, 0);
+  lua_setfield(L, -2, "__metatable");
+  lua_setmetatable(L, index);
+}
+
+// Writes vm->params (SI values) into the table at `index`.
+void write_params(lua_State* L, int index, const ScriptVm* vm) {
+  index = lua_absindex(L, index);
+  for (const ScriptParam& p : vm->params) {
+    lua_pushlstring(L, p.name.data(), p.name.size());
+    switch (p.kind) {
+      case ScriptParam::Kind::number: lua_pushnumber(L, p.value_si); break;
+      case ScriptParam::Kind::boolean: lua_pushboolean(L, p.flag ? 1 : 0); break;
+      case ScriptParam::Kind::text: lua_pushlstring(L, p.text.data(), p.text.size()); break;
+    }
+    lua_rawset(L, index);
+  }
+}
+
+// `params = { ... }` at load time (stack: env, "params", table): resolve, write SI
+// values back, seal, and store.
+int assign_params(lua_State* L) {
+  ScriptVm* vm = vm_of(L);
+  if (!lua_istable(L, 3)) {
+    return luaL_error(L, "params must be a table of defaults such as { stiffness = \"100 N/m\" }, "
+                         "got a %s", luaL_typename(L, 3));
+  }
+  if (vm->params_assigned) {
+    return luaL_error(L, "params is declared twice: declare every parameter in one params table");
+  }
+  char where[160];
+  describe_position(L, 1, vm, where, sizeof where);
+  if (!resolve_declared(L, 3, where, vm)) return raise_load_error(L);
+  write_params(L, 3, vm);
+  seal_params(L, 3);
+  lua_pushvalue(L, 3);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &kParamsKey);
+  vm->params_assigned = true;
+  lua_rawset(L, 1);
+  return 0;
+}
+
+// ---- needs ---------------------------------------------------------------------------
+
+// Checks the optional `needs` table (at `index`) and stores it in vm. Never raises.
+bool check_needs(lua_State* L, int index, ScriptVm* vm) noexcept {
+  const char* name = vm->display_name.c_str();
+  if (lua_isnil(L, index)) return true;
+  if (!lua_istable(L, index)) {
+    set_load_error(vm, "%s: needs must be a table such as { velocity = false }, got a %s", name,
+                   luaL_typename(L, index));
+    return false;
+  }
+  // Report the alphabetically first problem, whatever Lua's table order.
+  char bad_key[64] = "";
+  char bad_value_key[64] = "";
+  const char* bad_value_type = nullptr;
+  lua_pushnil(L);
+  while (lua_next(L, index) != 0) {
+    const char* key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : "?";
+    const bool known = std::strcmp(key, "velocity") == 0 || std::strcmp(key, "time") == 0;
+    if (!known) {
+      if (bad_key[0] == '\0' || std::strcmp(key, bad_key) < 0) {
+        std::snprintf(bad_key, sizeof bad_key, "%s", key);
+      }
+    } else if (!lua_isboolean(L, -1)) {
+      if (bad_value_key[0] == '\0' || std::strcmp(key, bad_value_key) < 0) {
+        std::snprintf(bad_value_key, sizeof bad_value_key, "%s", key);
+        bad_value_type = luaL_typename(L, -1);
+      }
+    } else if (std::strcmp(key, "velocity") == 0) {
+      vm->needs_velocity = lua_toboolean(L, -1) != 0;
+    } else {
+      vm->needs_time = lua_toboolean(L, -1) != 0;
+    }
+    lua_pop(L, 1);
+  }
+  if (bad_key[0] != '\0') {
+    const bool near_velocity = short_distance(bad_key, "velocity") <= 3;
+    const bool near_time = short_distance(bad_key, "time") <= 2;
+    set_load_error(vm, "%s: needs.%s: unknown need%s (a script can declare velocity and time)",
+                   name, bad_key,
+                   near_velocity ? " (did you mean \"velocity\"?)"
+                   : near_time   ? " (did you mean \"time\"?)"
+                                 : "");
+    return false;
+  }
+  if (bad_value_key[0] != '\0') {
+    set_load_error(vm, "%s: needs.%s: expected true or false, got a %s", name, bad_value_key,
+                   bad_value_type);
+    return false;
+  }
+  return true;
+}
+
+// ---- s: the read-only state table --------------------------------------------------
+
+// s.xx (a typo), or s.v when the script said it does not need velocity.
+int state_index(lua_State* L) {
+  const ScriptVm* vm = vm_of(L);
+  if (lua_type(L, 2) != LUA_TSTRING) return luaL_error(L, "s has no field [%s]", luaL_typename(L, 2));
+  const char* name = lua_tostring(L, 2);
+  if (!vm->needs_velocity && std::strcmp(name, "v") == 0) {
+    return luaL_error(L, "s.v is not available: the script declares needs.velocity = false");
+  }
+  if (!vm->needs_time && std::strcmp(name, "t") == 0) {
+    return luaL_error(L, "s.t is not available: the script declares needs.time = false");
+  }
+  char suggestion[64];
+  nearest_key(L, 1, name, suggestion, sizeof suggestion);
+  if (suggestion[0] != '\0') {
+    return luaL_error(L, "s has no field '%s' (did you mean 's.%s'?)", name, suggestion);
+  }
+  return luaL_error(L, "s has no field '%s' (s has x, v, t, dt)", name);
+}
+
+int state_newindex(lua_State* L) {
+  return luaL_error(L, "s is read-only (copy the value into a local to change it)");
+}
+
+// Pushes the hidden data table and the proxy `s` that reads through it. The proxy is
+// empty, so every read goes to the data table (whose keys the script cannot reach or
+// remove), and every write to the proxy is an error.
+void push_state_tables(lua_State* L, const ScriptVm* vm) {
+  lua_createtable(L, 0, 4);  // data
+  lua_pushnumber(L, 0.0);
+  lua_setfield(L, -2, "x");
+  if (vm->needs_velocity) {
+    lua_pushnumber(L, 0.0);
+    lua_setfield(L, -2, "v");
+  }
+  if (vm->needs_time) {
+    lua_pushnumber(L, 0.0);
+    lua_setfield(L, -2, "t");
+  }
+  lua_pushnumber(L, 0.0);
+  lua_setfield(L, -2, "dt");
+  lua_createtable(L, 0, 1);
+  lua_pushcfunction(L, state_index);
+  lua_setfield(L, -2, "__index");
+  lua_setmetatable(L, -2);
+
+  lua_createtable(L, 0, 0);  // proxy
+  lua_createtable(L, 0, 3);
+  lua_pushvalue(L, -3);
+  lua_setfield(L, -2, "__index");
+  lua_pushcfunction(L, state_newindex);
+  lua_setfield(L, -2, "__newindex");
+  lua_pushboolean(L, 0);
+  lua_setfield(L, -2, "__metatable");
+  lua_setmetatable(L, -2);
+  lua_insert(L, -2);  // proxy below data
+}
+
+}  // namespace
+
+// ---- Strict globals ------------------------------------------------------------------
+
+// Reading a global that does not exist: an error naming it and the nearest name, or
+// saying that the sandbox leaves it out on purpose.
+int global_index(lua_State* L) {
+  if (lua_type(L, 2) != LUA_TSTRING) return luaL_error(L, "undefined global [%s]", luaL_typename(L, 2));
+  const char* name = lua_tostring(L, 2);
+  for (const char* removed : {"io", "os", "debug", "package", "require", "load", "loadstring",
+                              "dofile", "loadfile", "warn", "module", "setfenv", "getfenv"}) {
+    if (std::strcmp(name, removed) == 0) {
+      return luaL_error(L, "undefined global '%s' (scripts run in a sandbox without it; see "
+                           "scripts/README.md)", name);
+    }
+  }
+  if (std::strcmp(name, "unpack") == 0) {
+    return luaL_error(L, "undefined global 'unpack' (use table.unpack)");
+  }
+  char suggestion[64];
+  nearest_key(L, 1, name, suggestion, sizeof suggestion);
+  if (suggestion[0] != '\0') {
+    return luaL_error(L, "undefined global '%s' (did you mean '%s'?)", name, suggestion);
+  }
+  return luaL_error(L, "undefined global '%s'", name);
+}
+
+// Creating a global: fine while loading (that is how a script declares its state and
+// functions), an error while running (a typo, or per-tick allocation in the global table).
+int global_newindex(lua_State* L) {
+  ScriptVm* vm = vm_of(L);
+  const bool named = lua_type(L, 2) == LUA_TSTRING;
+  if (vm->phase == Phase::loading) {
+    if (named && std::strcmp(lua_tostring(L, 2), "params") == 0) return assign_params(L);
+    lua_rawset(L, 1);
+    return 0;
+  }
+  return luaL_error(L, "cannot create global '%s' while running (declare it at the top level "
+                       "of the script, or use a local)", named ? lua_tostring(L, 2) : "?");
+}
+
+// ---- Strict library tables --------------------------------------------------------------
+
+// string.fnd (a typo) or string.find (left out): an error saying which. Upvalue 1 is the
+// library's name.
+int library_index(lua_State* L) {
+  const char* library = lua_tostring(L, lua_upvalueindex(1));
+  if (lua_type(L, 2) != LUA_TSTRING) {
+    return luaL_error(L, "%s has no field [%s]", library, luaL_typename(L, 2));
+  }
+  const char* name = lua_tostring(L, 2);
+  if (std::strcmp(library, "string") == 0) {
+    for (const char* pattern : {"find", "match", "gmatch", "gsub"}) {
+      if (std::strcmp(name, pattern) == 0) {
+        return luaL_error(L, "string.%s is not available in scripts (a string pattern can run "
+                             "for seconds inside one call, where the budget cannot stop it)", name);
+      }
+    }
+    for (const char* removed : {"dump", "pack", "unpack", "packsize"}) {
+      if (std::strcmp(name, removed) == 0) {
+        return luaL_error(L, "string.%s is not available in scripts", name);
+      }
+    }
+  }
+  char suggestion[64];
+  nearest_key(L, 1, name, suggestion, sizeof suggestion);
+  if (suggestion[0] != '\0') {
+    return luaL_error(L, "%s has no field '%s' (did you mean '%s.%s'?)", library, name, library,
+                      suggestion);
+  }
+  return luaL_error(L, "%s has no field '%s'", library, name);
+}
+
+// ---- After the chunk has run -----------------------------------------------------------
+
+int finish_load(lua_State* L) {
+  ScriptVm* vm = vm_of(L);
+  const char* name = vm->display_name.c_str();
+  lua_settop(L, 0);
+  lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_GLOBALS);  // 1: the script's globals
+  const int env = 1;
+
+  // force (2), required.
+  lua_pushliteral(L, "force");
+  lua_rawget(L, env);
+  if (lua_isnil(L, 2)) {
+    set_load_error(vm, "%s: the script must define a global function force(s) that returns the "
+                       "force in N", name);
+    return raise_load_error(L);
+  }
+  if (!lua_isfunction(L, 2)) {
+    set_load_error(vm, "%s: force must be a function, got a %s", name, luaL_typename(L, 2));
+    return raise_load_error(L);
+  }
+
+  // reset (3), optional.
+  lua_pushliteral(L, "reset");
+  lua_rawget(L, env);
+  if (!lua_isnil(L, 3) && !lua_isfunction(L, 3)) {
+    set_load_error(vm, "%s: reset must be a function, got a %s", name, luaL_typename(L, 3));
+    return raise_load_error(L);
+  }
+
+  // needs, optional.
+  lua_pushliteral(L, "needs");
+  lua_rawget(L, env);
+  if (!check_needs(L, 4, vm)) return raise_load_error(L);
+  lua_settop(L, 3);
+
+  // params: a script without one gets an empty sealed table (and overrides are errors);
+  // one that replaced its table after declaring it is told to use one table.
+  lua_pushliteral(L, "params");
+  lua_rawget(L, env);
+  if (!vm->params_assigned) {
+    if (!resolve_declared(L, 0, name, vm)) return raise_load_error(L);
+    lua_newtable(L);
+    seal_params(L, -1);
+    lua_setfield(L, env, "params");
+  } else {
+    lua_rawgetp(L, LUA_REGISTRYINDEX, &kParamsKey);
+    if (!lua_rawequal(L, -1, -2)) {
+      set_load_error(vm, "%s: params was replaced after it was declared: declare every parameter "
+                         "in one params table", name);
+      return raise_load_error(L);
+    }
+  }
+  lua_settop(L, 3);
+
+  // Where force is defined, for messages about what it returns.
+  lua_Debug ar{};
+  lua_pushvalue(L, 2);
+  lua_getinfo(L, ">S", &ar);
+  vm->force_line = ar.linedefined;
+
+  // Results, in slot order: force, reset, s, data, "x", "v", "t", "dt".
+  push_state_tables(L, vm);
+  lua_pushliteral(L, "x");
+  lua_pushliteral(L, "v");
+  lua_pushliteral(L, "t");
+  lua_pushliteral(L, "dt");
+  return kSlotCount;
+}
+
+}  // namespace hapscene::detail

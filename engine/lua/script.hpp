@@ -1,0 +1,163 @@
+#pragma once
+// Lua script effects. A script is compiled once at load time into an immutable
+// ScriptProgram (source, resolved parameters, declared needs, limits); every run creates
+// its own ScriptInstance from it, which owns one sandboxed lua_State. So a scene can be
+// run twice, reset or hot-reloaded without one run seeing another's script state.
+//
+// Script API (scripts/README.md has the full text with examples):
+//   params = { stiffness = "100 N/m", center = "0 mm" }   -- defaults; JSON overrides them
+//   needs = { velocity = false, time = false }             -- optional: what force() reads
+//   function force(s) return -params.stiffness * (s.x - params.center) end
+//   function reset() end                                    -- optional, run start/restart
+//   log(...) / print(...)                                   -- never block the tick
+//
+// Threads: create(), force_N(), reset() and collect_garbage() are called by one thread
+// (the loop); drain_log() may be called by one other thread at the same time.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/load/units.hpp"
+
+namespace hapscene {
+
+namespace detail {
+struct ScriptVm;
+}
+
+// What a script may use. Every limit is enforced, not advisory; exceeding one disables
+// the script (force 0 N from then on) with a message naming the limit.
+struct ScriptLimits {
+  // VM instructions per force() or reset() call, counted by a hook that keeps firing
+  // after the deadline so pcall cannot swallow it. Runaway loops stop after about
+  // 0.3 ms at this default; a lab spring uses about 10, a texture about 30.
+  std::int64_t instructions_per_call{100'000};
+  // VM instructions for the top-level chunk, run at load time (off the loop), so a
+  // script can precompute tables.
+  std::int64_t instructions_at_load{10'000'000};
+  // Live bytes of the whole Lua state, garbage included. The sandbox itself takes about
+  // 25 KiB; a 100 000-entry lookup table about 1.6 MiB.
+  std::size_t memory_bytes{4u << 20};
+  // Bytes one force() or reset() call may allocate in total. Bounds the work that C
+  // functions (which no hook interrupts) can do per call by allocating.
+  std::size_t allocation_bytes_per_call{256u << 10};
+  // Longest string a script can create. Bounds string comparisons and scans, each of which
+  // is one VM instruction however long the string is.
+  std::size_t string_bytes{4096};
+  // Wall-clock time per force()/reset() call, checked every 128 instructions; 0 = off.
+  // Off by default because it makes faults depend on the machine (simulated runs are
+  // deterministic); a real-time runner should set it to about one tick period.
+  double wall_time_per_call_s{0.0};
+  // log()/print(): messages admitted per second of run time (s.t), and the burst.
+  double log_messages_per_s{10.0};
+  std::size_t log_burst{20};
+};
+
+// The state handed to force(s), in SI units. 2-DOF devices will add y_m and vy_m_per_s
+// (s.y, s.vy) and accept a second return value fy; a 1-D script keeps working unchanged.
+struct ScriptInput {
+  double x_m{};        // s.x, handle position
+  double v_m_per_s{};  // s.v, absent when the script declares needs.velocity = false
+  double t_s{};        // s.t, run time; absent when the script declares needs.time = false
+  double dt_s{};       // s.dt, tick period
+};
+
+// One script parameter after defaults and JSON overrides are applied, in SI.
+struct ScriptParam {
+  enum class Kind { number, boolean, text };
+  std::string name;
+  Kind kind{Kind::number};
+  bool has_unit{};  // the default was a unit string such as "2 mm"
+  Quantity quantity{Quantity::dimensionless};  // meaningful when has_unit
+  double value_si{};  // Kind::number
+  bool flag{};        // Kind::boolean
+  std::string text;   // Kind::text
+  bool overridden{};  // set from the JSON params
+};
+
+// Immutable, compiled at load time. Copyable; instances do not refer back to it.
+struct ScriptProgram {
+  std::string display_name;  // "scripts/bumps.lua": names the chunk in every message
+  std::string source;        // Lua source text (binary chunks are refused)
+  nlohmann::json params_override = nlohmann::json::object();
+  std::string error_context;   // e.g. the JSON file, "environments/lab.json"
+  std::string pointer_prefix;  // e.g. "/effects/2/params"
+  ScriptLimits limits;
+  bool needs_velocity{true};  // false: the engine may skip the velocity estimator
+  bool needs_time{true};
+  bool has_reset{};
+  std::vector<ScriptParam> params;  // sorted by name
+};
+
+// Load time: compiles and validates a script by creating one throwaway instance: syntax
+// (text chunks only), top-level code within its budget, params and their overrides,
+// needs, that force is a function; then calls reset() and force(s) once at
+// x = 0, v = 0, t = 0, dt = 1 ms so typos inside force() are load errors too.
+// Throws InputError:
+//   syntax/runtime: "scripts/bumps.lua:12: message"
+//   overrides:      "<error_context>: <pointer_prefix>/height: message"
+ScriptProgram compile_script(std::string display_name, std::string source,
+                             const nlohmann::json& params_override, std::string error_context,
+                             std::string pointer_prefix, ScriptLimits limits = {});
+
+// Per run: owns one lua_State. create() and destruction allocate; force_N() and reset()
+// never allocate on the C++ side, never throw and never block.
+class ScriptInstance {
+ public:
+  // Throws InputError (only if the program was not made by compile_script, or a limit
+  // differs).
+  static std::unique_ptr<ScriptInstance> create(const ScriptProgram& program);
+  ~ScriptInstance();
+  ScriptInstance(const ScriptInstance&) = delete;
+  ScriptInstance& operator=(const ScriptInstance&) = delete;
+
+  // The script's force in N. Returns 0 once disabled. The first runtime error, limit
+  // overrun, or return value that is not a finite number disables the script and records
+  // fault_message(); later calls do not run the script.
+  double force_N(const ScriptInput& input) noexcept;
+  // Calls the script's reset() if it defines one (same limits as force). Does not
+  // re-enable a disabled script: its state may be half-updated; a new instance (a new
+  // run or a reload) starts clean.
+  void reset() noexcept;
+  // Garbage collection, run by the host outside force() (in the tick's slack): the
+  // collector is stopped inside force(). Returns at once when the heap has not grown
+  // by more than a small slack since the last finished cycle (a non-allocating script
+  // costs nothing); otherwise does up to max_steps incremental steps of about 1 KiB of
+  // collector work each.
+  void collect_garbage(int max_steps = 1) noexcept;
+
+  bool disabled() const noexcept;
+  // "scripts/bumps.lua:12: attempt to perform arithmetic on a nil value (global 'k')";
+  // empty while not disabled. The host reports it once.
+  std::string_view fault_message() const noexcept;
+  // Faults so far: 0, or 1 (the first fault disables the script).
+  std::uint64_t fault_count() const noexcept;
+  // force_N() calls answered with 0 N because the script is disabled.
+  std::uint64_t skipped_calls() const noexcept;
+  // Run time (s.t) of the call that faulted; 0 before any call.
+  double fault_time_s() const noexcept;
+
+  // Messages from log()/print(): a bounded queue (64 messages of up to 240 bytes), rate
+  // limited per ScriptLimits; full or over-rate messages are dropped and counted. Appends
+  // "scripts/x.lua:7: text (t = 0.500 s)" lines, then one line saying how many were
+  // dropped, if any.
+  void drain_log(std::vector<std::string>* out);
+
+  // Telemetry and tests: live bytes of the Lua state, and how many growing allocations
+  // it has made since creation.
+  std::size_t memory_bytes() const noexcept;
+  std::uint64_t allocation_count() const noexcept;
+
+ private:
+  friend ScriptProgram compile_script(std::string, std::string, const nlohmann::json&, std::string,
+                                      std::string, ScriptLimits);
+  explicit ScriptInstance(std::unique_ptr<detail::ScriptVm> vm);
+  std::unique_ptr<detail::ScriptVm> vm_;
+};
+
+}  // namespace hapscene

@@ -1,0 +1,236 @@
+// A script instance: one sandboxed lua_State per run. Creation runs the whole load
+// sequence (sandbox, text-only chunk, top-level code, checks); the calls in the tick
+// (force_N, reset) run under the instruction budget and allocation limits and turn any
+// failure into "disabled, 0 N, one message".
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "engine/core/errors.hpp"
+#include "engine/lua/script_vm.hpp"
+
+namespace hapscene {
+namespace {
+
+using detail::ScriptVm;
+
+// Each incremental GC step does about 2^10 bytes' worth of collector work.
+constexpr int kGcStepSizeLog2 = 10;
+
+// What Lua prints as the chunk name of "@" + display_name (LUA_IDSIZE = 60).
+std::string short_source_of(const std::string& display_name) {
+  constexpr std::size_t kRoom = LUA_IDSIZE - 1;
+  if (display_name.size() <= kRoom) return display_name;
+  return "..." + display_name.substr(display_name.size() - (kRoom - 3));
+}
+
+// A message with the script's place: Lua's own messages start with "short_src:line:";
+// others get "display_name: " in front.
+bool has_place(const ScriptVm& vm, const char* message) {
+  const std::size_t n = vm.short_source.size();
+  return std::strncmp(message, vm.short_source.c_str(), n) == 0 && message[n] == ':';
+}
+
+// After a failed load step: the first of the load error, the tripped limit, or Lua's message.
+[[noreturn]] void throw_load_failure(const ScriptVm& vm, lua_State* L) {
+  if (!vm.load_error.empty()) throw InputError(vm.load_error);
+  if (vm.fault_length > 0) throw InputError(std::string(vm.fault, vm.fault_length));
+  if (lua_type(L, -1) == LUA_TSTRING) {
+    const char* message = lua_tostring(L, -1);
+    if (has_place(vm, message)) throw InputError(message);
+    throw InputError(vm.display_name + ": " + message);
+  }
+  throw InputError(vm.display_name + ": error while loading (error object is a " +
+                   luaL_typename(L, -1) + " value)");
+}
+
+// Records why a call failed, without allocating on the C++ side.
+void record_call_failure(ScriptVm* vm, int status, const char* what) {
+  lua_State* L = vm->L;
+  if (vm->fault_length > 0) return;  // a tripped limit already said why
+  if (status != LUA_OK && lua_type(L, -1) == LUA_TSTRING) {
+    const char* message = lua_tostring(L, -1);
+    if (has_place(*vm, message)) {
+      detail::record_fault(vm, "%s", message);
+    } else {
+      detail::record_fault(vm, "%s: %s", vm->display_name.c_str(), message);
+    }
+    return;
+  }
+  if (status != LUA_OK) {
+    detail::record_fault(vm, "%s: error in %s (error object is a %s value)",
+                         vm->display_name.c_str(), what, luaL_typename(L, -1));
+    return;
+  }
+  detail::record_fault(vm, "%s: the call to %s failed", vm->display_name.c_str(), what);
+}
+
+void disable(ScriptVm* vm) {
+  vm->disabled = true;
+  ++vm->fault_count;
+  vm->fault_time_s = vm->now_s;
+}
+
+// s.<key> = value in the hidden data table. The key exists and is never nil, so this
+// only overwrites a slot: it cannot allocate or raise outside a protected call.
+void set_state(lua_State* L, int key_slot, double value) {
+  lua_pushvalue(L, key_slot);
+  lua_pushnumber(L, value);
+  lua_rawset(L, detail::kSlotData);
+}
+
+}  // namespace
+
+ScriptInstance::ScriptInstance(std::unique_ptr<detail::ScriptVm> vm) : vm_(std::move(vm)) {}
+
+ScriptInstance::~ScriptInstance() {
+  if (vm_ && vm_->L) lua_close(vm_->L);
+}
+
+std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& program) {
+  auto owned = std::make_unique<ScriptVm>();
+  ScriptVm* vm = owned.get();
+  vm->display_name = program.display_name;
+  vm->short_source = short_source_of(program.display_name);
+  vm->limits = program.limits;
+  vm->params_override = &program.params_override;
+  vm->error_context = program.error_context;
+  vm->pointer_prefix = program.pointer_prefix;
+  vm->log.configure(program.limits.log_messages_per_s, program.limits.log_burst);
+
+  // The state, with our allocator; the instance owns it from here (closed on any throw).
+  lua_State* L = lua_newstate(detail::capped_alloc, vm);
+  if (L == nullptr) {
+    throw InputError(program.display_name + ": cannot create a Lua state within the memory limit (" +
+                     std::to_string(program.limits.memory_bytes) + " bytes)");
+  }
+  vm->L = L;
+  *static_cast<ScriptVm**>(lua_getextraspace(L)) = vm;
+  std::unique_ptr<ScriptInstance> instance(new ScriptInstance(std::move(owned)));
+
+  // The collector only runs when collect_garbage() says so.
+  lua_gc(L, LUA_GCSTOP);
+  lua_gc(L, LUA_GCINC, 0, 0, kGcStepSizeLog2);
+
+  // Load: sandbox, chunk (text only, named "@display_name" so messages read
+  // "scripts/bumps.lua:12: ..."), top-level code, then the checks. One budget for all.
+  detail::begin_call(vm, program.limits.instructions_at_load, static_cast<std::size_t>(-1));
+  lua_pushcfunction(L, detail::open_sandbox);
+  if (lua_pcall(L, 0, 0, 0) != LUA_OK) throw_load_failure(*vm, L);
+  const std::string chunk_name = "@" + program.display_name;
+  if (luaL_loadbufferx(L, program.source.data(), program.source.size(), chunk_name.c_str(), "t") !=
+      LUA_OK) {
+    throw_load_failure(*vm, L);
+  }
+  const int status = lua_pcall(L, 0, 0, 0);
+  // A load error may have been caught by a pcall in the script: it still fails the load.
+  if (status != LUA_OK || vm->tripped || !vm->load_error.empty()) throw_load_failure(*vm, L);
+  lua_pushcfunction(L, detail::finish_load);
+  if (lua_pcall(L, 0, detail::kSlotCount, 0) != LUA_OK || vm->tripped) throw_load_failure(*vm, L);
+  detail::end_call(vm);
+
+  // Running from here on: new globals are errors. Start with a clean heap.
+  vm->phase = detail::Phase::running;
+  vm->params_override = nullptr;
+  lua_gc(L, LUA_GCCOLLECT);
+  vm->bytes_after_cycle = vm->bytes;
+  return instance;
+}
+
+double ScriptInstance::force_N(const ScriptInput& input) noexcept {
+  ScriptVm* vm = vm_.get();
+  if (vm->disabled) {
+    ++vm->skipped_calls;
+    return 0.0;
+  }
+  lua_State* L = vm->L;
+  vm->now_s = input.t_s;
+  detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call);
+
+  // s, then force(s) in protected mode.
+  set_state(L, detail::kSlotKeyX, input.x_m);
+  if (vm->needs_velocity) set_state(L, detail::kSlotKeyV, input.v_m_per_s);
+  if (vm->needs_time) set_state(L, detail::kSlotKeyT, input.t_s);
+  if (input.dt_s != vm->last_dt_s) {
+    set_state(L, detail::kSlotKeyDt, input.dt_s);
+    vm->last_dt_s = input.dt_s;
+  }
+  lua_pushvalue(L, detail::kSlotForce);
+  lua_pushvalue(L, detail::kSlotState);
+  const int status = lua_pcall(L, 1, 1, 0);
+  detail::end_call(vm);
+
+  // The result must be a finite number; a tripped limit fails the call even if the
+  // script caught the error and returned.
+  if (status == LUA_OK && !vm->tripped) {
+    if (lua_type(L, -1) == LUA_TNUMBER) {
+      const double force = lua_tonumber(L, -1);
+      lua_settop(L, detail::kSlotCount);
+      if (std::isfinite(force)) return force;
+      detail::record_fault(vm, "%s:%d: force(s) returned %s, expected a finite number (N)",
+                           vm->short_source.c_str(), vm->force_line,
+                           std::isnan(force) ? "nan" : (force > 0 ? "inf" : "-inf"));
+    } else {
+      detail::record_fault(vm, "%s:%d: force(s) returned %s, expected a finite number (N)",
+                           vm->short_source.c_str(), vm->force_line, luaL_typename(L, -1));
+    }
+  } else {
+    record_call_failure(vm, status, "force(s)");
+  }
+  lua_settop(L, detail::kSlotCount);
+  disable(vm);
+  return 0.0;
+}
+
+void ScriptInstance::reset() noexcept {
+  ScriptVm* vm = vm_.get();
+  lua_State* L = vm->L;
+  if (vm->disabled || lua_isnil(L, detail::kSlotReset)) return;
+  detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call);
+  lua_pushvalue(L, detail::kSlotReset);
+  const int status = lua_pcall(L, 0, 0, 0);
+  detail::end_call(vm);
+  if (status != LUA_OK || vm->tripped) {
+    record_call_failure(vm, status, "reset()");
+    disable(vm);
+  }
+  lua_settop(L, detail::kSlotCount);
+}
+
+void ScriptInstance::collect_garbage(int max_steps) noexcept {
+  ScriptVm* vm = vm_.get();
+  // Nothing to do while the heap is within a small slack of its size after the last
+  // cycle: a non-allocating script never pays for the collector.
+  const std::size_t slack = std::min<std::size_t>(vm->limits.memory_bytes / 16, 64u << 10);
+  if (!vm->gc_cycle_in_progress && vm->bytes <= vm->bytes_after_cycle + slack) return;
+  for (int step = 0; step < max_steps; ++step) {
+    if (lua_gc(vm->L, LUA_GCSTEP, 0) != 0) {
+      vm->gc_cycle_in_progress = false;
+      vm->bytes_after_cycle = vm->bytes;
+      return;
+    }
+    vm->gc_cycle_in_progress = true;
+  }
+}
+
+bool ScriptInstance::disabled() const noexcept { return vm_->disabled; }
+
+std::string_view ScriptInstance::fault_message() const noexcept {
+  return std::string_view(vm_->fault, vm_->fault_length);
+}
+
+std::uint64_t ScriptInstance::fault_count() const noexcept { return vm_->fault_count; }
+
+std::uint64_t ScriptInstance::skipped_calls() const noexcept { return vm_->skipped_calls; }
+
+double ScriptInstance::fault_time_s() const noexcept { return vm_->fault_time_s; }
+
+void ScriptInstance::drain_log(std::vector<std::string>* out) {
+  vm_->log.drain(vm_->display_name, out);
+}
+
+std::size_t ScriptInstance::memory_bytes() const noexcept { return vm_->bytes; }
+
+std::uint64_t ScriptInstance::allocation_count() const noexcept { return vm_->allocations; }
+
+}  // namespace hapscene

@@ -1,0 +1,132 @@
+#pragma once
+// Internal: the state one sandboxed lua_State shares with the C functions that guard it
+// (allocator, count hook, sandbox library functions). A pointer to it lives in the
+// state's extra space, so every thread (coroutine) of the state finds it in O(1).
+//
+// Rule for every lua_CFunction and hook in engine/lua: a Lua error is a longjmp, so no
+// C++ object with a destructor may be alive where one can be raised, and no C++
+// exception may leave the function. C++ work that can throw runs in noexcept helpers
+// that store results in this struct, never in locals.
+#include <lua.hpp>
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/lua/log_queue.hpp"
+#include "engine/lua/script.hpp"
+
+namespace hapscene::detail {
+
+// Fixed slots at the bottom of the main thread's stack, set once after loading, so each
+// call pushes its arguments without a lookup.
+inline constexpr int kSlotForce = 1;  // the script's force function
+inline constexpr int kSlotReset = 2;  // reset function, or nil
+inline constexpr int kSlotState = 3;  // `s`: an empty read-only proxy table
+inline constexpr int kSlotData = 4;   // the hidden table `s` reads from
+inline constexpr int kSlotKeyX = 5;   // "x", "v", "t", "dt" as Lua strings
+inline constexpr int kSlotKeyV = 6;
+inline constexpr int kSlotKeyT = 7;
+inline constexpr int kSlotKeyDt = 8;
+inline constexpr int kSlotCount = 8;
+
+// The hook fires every this many instructions (fewer when the budget is smaller).
+inline constexpr std::int64_t kHookPeriod = 128;
+
+enum class Phase { loading, running };
+
+struct ScriptVm {
+  // Set at creation.
+  lua_State* L{};
+  std::string display_name;  // "scripts/bumps.lua"
+  std::string short_source;  // what Lua prints for the chunk (same unless very long)
+  ScriptLimits limits;
+  Phase phase{Phase::loading};
+  bool needs_velocity{true};
+  bool needs_time{true};
+  int force_line{};  // line where force is defined, for messages about its return value
+
+  // Instruction budget of the current call (see budget.cpp).
+  std::int64_t remaining_instructions{};
+  std::int64_t budget_instructions{};
+  std::int64_t hook_period{0};  // 0: no hook installed yet
+  bool check_clock{};
+  std::chrono::steady_clock::time_point deadline{};
+  bool tripped{};  // a limit was exceeded: every instruction raises until the call returns
+
+  // Memory accounting (see allocator.cpp).
+  std::size_t bytes{};              // live bytes, as Lua reports them
+  std::size_t call_bytes{};         // bytes allocated during the current call
+  std::size_t call_limit_bytes{};   // per-call allocation limit of the current call
+  bool in_call{};
+  std::uint64_t allocations{};      // growing allocations since creation
+  const void* retry_block{};        // a refused request Lua may retry after an emergency GC
+  std::size_t retry_size{};
+  bool awaiting_retry{};
+
+  // Fault state: the first fault wins; the message is kept in a fixed buffer so that
+  // recording it inside the tick does not allocate.
+  static constexpr std::size_t kFaultBytes = 400;
+  char fault[kFaultBytes]{};
+  std::size_t fault_length{};
+  bool disabled{};
+  std::uint64_t fault_count{};
+  std::uint64_t skipped_calls{};
+  double fault_time_s{};
+  double now_s{};  // s.t of the current call, for log() and fault_time_s
+  double last_dt_s{};  // s.dt as last written (it rarely changes, so it is written on change)
+
+  // Garbage collection outside the calls.
+  bool gc_cycle_in_progress{};
+  std::size_t bytes_after_cycle{};
+
+  // Loading: parameter resolution (see params.hpp) runs when the chunk assigns `params`.
+  const nlohmann::json* params_override{};
+  std::string error_context;
+  std::string pointer_prefix;
+  bool params_assigned{};
+  std::vector<ScriptParam> params;
+  std::string load_error;  // set by a C function that failed a load check; thrown later
+  std::string scratch;     // message text built by C++ helpers before a Lua error is raised
+
+  LogQueue log;
+  bool log_writing{};  // inside log(), between taking a slot and publishing it
+};
+
+// The ScriptVm of any thread of a sandboxed state.
+inline ScriptVm* vm_of(lua_State* L) { return *static_cast<ScriptVm**>(lua_getextraspace(L)); }
+
+// Budget (budget.cpp).
+// Starts a call with the given instruction budget and allocation limit.
+void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_limit_bytes);
+void end_call(ScriptVm* vm);
+// The count hook installed on every thread.
+void count_hook(lua_State* L, lua_Debug* ar);
+// Charges a C function's work as `instructions`; raises if the budget runs out.
+void charge(lua_State* L, std::int64_t instructions);
+// Records the first fault message (printf-style, truncated to the buffer).
+void record_fault(ScriptVm* vm, const char* format, ...) __attribute__((format(printf, 2, 3)));
+// Marks the state tripped: the hook now fires on every instruction of `L` and of the main
+// thread, and raises each time, so no pcall inside the script can continue past it.
+void trip(ScriptVm* vm, lua_State* L);
+// Raises the error value used for tripped limits (a light userdata, no allocation).
+int raise_tripped(lua_State* L);
+// Writes "short_src:line" of the innermost Lua function at or above `level`, or the
+// script name when there is none. Does not allocate.
+void describe_position(lua_State* L, int level, const ScriptVm* vm, char* out, std::size_t size);
+
+// Allocator (allocator.cpp): the lua_Alloc of every sandboxed state, `ud` is the ScriptVm.
+void* capped_alloc(void* ud, void* block, std::size_t old_size, std::size_t new_size);
+
+// Sandbox (sandbox.cpp).
+// lua_CFunction: opens the allowed libraries and makes the script's global table.
+int open_sandbox(lua_State* L);
+// lua_CFunction __index of the library tables (upvalue 1: the library's name).
+int library_index(lua_State* L);
+// lua_CFunction: after the chunk ran, checks force/reset/needs/params and sets up `s`
+// and the stack slots. Failures are stored in vm->load_error.
+int finish_load(lua_State* L);
+
+}  // namespace hapscene::detail

@@ -1,0 +1,88 @@
+#include "engine/run/hot_swap.hpp"
+
+#include <algorithm>
+
+namespace hapscene {
+
+SceneExchange::~SceneExchange() {
+  delete offered_.exchange(nullptr);
+  delete retired_.exchange(nullptr);
+}
+
+bool SceneExchange::offer(std::unique_ptr<LoadedScene>& next) {
+  LoadedScene* expected = nullptr;
+  if (!offered_.compare_exchange_strong(expected, next.get(), std::memory_order_acq_rel)) return false;
+  next.release();
+  return true;
+}
+
+std::unique_ptr<LoadedScene> SceneExchange::take_retired() {
+  return std::unique_ptr<LoadedScene>(retired_.exchange(nullptr, std::memory_order_acq_rel));
+}
+
+LoadedScene* SceneExchange::take_offer() noexcept {
+  if (offered_.load(std::memory_order_relaxed) == nullptr) return nullptr;
+  LoadedScene* next = offered_.exchange(nullptr, std::memory_order_acq_rel);
+  if (next != nullptr) swaps_.fetch_add(1, std::memory_order_relaxed);
+  return next;
+}
+
+bool SceneExchange::retire(LoadedScene* done) noexcept {
+  LoadedScene* expected = nullptr;
+  return retired_.compare_exchange_strong(expected, done, std::memory_order_acq_rel);
+}
+
+HotSwap::HotSwap(const Scene& initial, SceneExchange* exchange, TickState* state)
+    : exchange_(exchange), scene_(&initial) {
+  if (exchange_ == nullptr) return;
+  // The first scene gets a carrier too (its scripts stay in the state), so every scene
+  // the loop lets go of can be retired the same way.
+  (void)state;
+  initial_ = std::make_unique<LoadedScene>();
+}
+
+HotSwap::~HotSwap() {
+  for (LoadedScene* carrier : {current_, fading_from_, to_retire_}) {
+    if (carrier != initial_.get()) delete carrier;
+  }
+}
+
+// Invariant: the current scene's instances live in state->scripts; a carrier's `scripts`
+// holds the instances of the scene it carries only once that scene is let go of.
+const Crossfade* HotSwap::before_tick(TickState* state) noexcept {
+  if (exchange_ == nullptr) return nullptr;
+
+  // Hand back the scene let go of, once the reload thread has collected the last one.
+  if (to_retire_ != nullptr && exchange_->retire(to_retire_)) to_retire_ = nullptr;
+
+  if (!fading_) {
+    LoadedScene* next = to_retire_ == nullptr ? exchange_->take_offer() : nullptr;
+    if (next == nullptr) return nullptr;
+    // Start fading from the running scene to `next`: swap the instances so the state
+    // holds the new scene's and the old carrier holds the old ones.
+    fading_from_ = current_ != nullptr ? current_ : initial_.get();
+    fade_.from = scene_;
+    std::swap(state->scripts, next->scripts);
+    std::swap(next->scripts, fading_from_->scripts);
+    fade_.from_scripts = &fading_from_->scripts;
+    scene_ = &next->scene;
+    current_ = next;
+    fade_.weight_to = 0.0;
+    const double fade_s = std::max(0.1, scene_->safety.soft_start_s);
+    fade_step_ = scene_->period_s / fade_s;
+    fading_ = true;
+    return &fade_;
+  }
+
+  // Advance the fade; when it is complete, let the old scene go.
+  fade_.weight_to = std::min(1.0, fade_.weight_to + fade_step_);
+  if (fade_.weight_to < 1.0) return &fade_;
+  fading_ = false;
+  // The first scene belongs to the caller; its old instances wait in initial_ until the
+  // run ends. Any later one goes back to the reload thread.
+  if (fading_from_ != initial_.get()) to_retire_ = fading_from_;
+  fading_from_ = nullptr;
+  return nullptr;
+}
+
+}  // namespace hapscene

@@ -1,0 +1,72 @@
+#pragma once
+// Hot reload, the loop's side. A reload thread parses and compiles a changed environment
+// off the loop and offers it (scene plus fresh script instances); the loop takes it at a
+// tick boundary and cross-fades from the old scene's force to the new one's over the
+// new scene's soft-start time, then hands the old one back to be destroyed off the loop.
+// The hand-over is two atomic pointer slots: the loop never allocates, frees or waits.
+#include <atomic>
+#include <memory>
+
+#include "engine/core/scene.hpp"
+#include "engine/core/step.hpp"
+#include "engine/core/tick_state.hpp"
+
+namespace hapscene {
+
+// A compiled scene with its own script instances.
+struct LoadedScene {
+  Scene scene;
+  ScriptList scripts;
+};
+
+// The two slots between the reload thread and the loop.
+class SceneExchange {
+ public:
+  ~SceneExchange();
+
+  // Reload thread: offers a scene; false (and `next` untouched) while an earlier offer
+  // has not been taken yet.
+  bool offer(std::unique_ptr<LoadedScene>& next);
+  // Reload thread: a scene the loop is done with, to destroy here; null when none.
+  std::unique_ptr<LoadedScene> take_retired();
+  // How many offers the loop has taken.
+  std::uint64_t swaps() const noexcept { return swaps_.load(std::memory_order_relaxed); }
+
+  // Loop thread.
+  LoadedScene* take_offer() noexcept;
+  bool retire(LoadedScene* done) noexcept;  // false while the slot is still full
+
+ private:
+  std::atomic<LoadedScene*> offered_{nullptr};
+  std::atomic<LoadedScene*> retired_{nullptr};
+  std::atomic<std::uint64_t> swaps_{0};
+};
+
+// The loop's view: which scene to step this tick, and the cross-fade, if any.
+class HotSwap {
+ public:
+  // Outside the loop. With no exchange, scene() is always `initial`.
+  HotSwap(const Scene& initial, SceneExchange* exchange, TickState* state);
+  // Outside the loop: frees whatever the loop still holds.
+  ~HotSwap();
+  HotSwap(const HotSwap&) = delete;
+  HotSwap& operator=(const HotSwap&) = delete;
+
+  // Before each tick: takes an offered scene or advances the fade. Returns the fade for
+  // step(), or nullptr.
+  const Crossfade* before_tick(TickState* state) noexcept;
+  const Scene& scene() const noexcept { return *scene_; }
+
+ private:
+  SceneExchange* exchange_;
+  const Scene* scene_;
+  std::unique_ptr<LoadedScene> initial_;  // the first scene's carrier once a swap happened
+  LoadedScene* current_{nullptr};         // carrier of scene_ (null: the caller's initial)
+  LoadedScene* fading_from_{nullptr};     // carrier of the scene being faded out
+  LoadedScene* to_retire_{nullptr};       // waiting for a free retired slot
+  Crossfade fade_;
+  double fade_step_{};                    // weight added per tick
+  bool fading_{false};
+};
+
+}  // namespace hapscene
