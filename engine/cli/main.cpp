@@ -54,6 +54,9 @@ int main(int argc, char** argv) {
   try {
     if (command == "run") return hapscene::run_command(args);
     if (command == "probe") return hapscene::probe_command(args);
+    if (command == "validate") return hapscene::validate_command(args);
+    if (command == "plot") return hapscene::plot_command(args);
+    if (command == "test") return hapscene::test_command(args);
     std::cerr << "hapscene: unknown command \"" << command << "\" (try: hapscene --help)\n";
     return hapscene::kExitInvalidInput;
   } catch (const hapscene::InputError& error) {

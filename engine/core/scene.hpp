@@ -7,6 +7,7 @@
 
 #include "engine/core/effect_input.hpp"
 #include "engine/core/safety.hpp"
+#include "engine/core/validate_thresholds.hpp"
 #include "engine/core/velocity.hpp"
 #include "engine/devices/profile.hpp"
 #include "engine/effects/damper.hpp"
@@ -33,6 +34,8 @@ struct Scene {
 
   std::vector<Effect> effects;
   Needs needs;                      // union of the effects' needs: what step() computes
+
+  ValidateThresholds validate;      // the optional "validate" block (the harness only)
 };
 
 // The declared needs of one effect.

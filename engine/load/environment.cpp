@@ -7,6 +7,7 @@
 #include "engine/core/errors.hpp"
 #include "engine/load/json_source.hpp"
 #include "engine/load/object_reader.hpp"
+#include "engine/load/validate_block.hpp"
 
 namespace hapscene {
 namespace {
@@ -163,6 +164,12 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
       scene.needs |= needs_of(effect);
       scene.effects.push_back(effect);
     }
+  }
+
+  // Thresholds for the harness (hapscene validate).
+  if (const nlohmann::json* validate = reader.get("validate")) {
+    ObjectReader validate_reader(*validate, reader.pointer_to("validate"), file);
+    parse_validate_block(validate_reader, &scene.validate);
   }
   reader.finish();
   return scene;
