@@ -1,7 +1,8 @@
 #pragma once
 // Records every tick of a simulated run, with the simulator's true state beside what
 // the host saw. Memory is reserved before the run; a run longer than the reservation
-// stops recording (and says so) rather than allocate in the loop.
+// stops recording (and says so) rather than allocate in the loop. Without a simulated
+// device (a real one), the "true" fields repeat what the host measured.
 #include <cstddef>
 #include <vector>
 
@@ -24,7 +25,7 @@ struct TickRecord {
 
 class Recorder final : public TickObserver {
  public:
-  Recorder(const SimulatedHapkit& device, std::size_t capacity) : device_(device) {
+  Recorder(const SimulatedHapkit* device, std::size_t capacity) : device_(device) {
     records_.reserve(capacity);
   }
 
@@ -33,8 +34,13 @@ class Recorder final : public TickObserver {
       ++dropped_;
       return;
     }
-    records_.push_back({s.t_s, device_.x_m(), device_.v_m_per_s(), s.x_m, s.v_m_per_s,
-                        s.effects_force_N, s.output_N, device_.motor_force_N(), device_.hand_force_N()});
+    if (device_ != nullptr) {
+      records_.push_back({s.t_s, device_->x_m(), device_->v_m_per_s(), s.x_m, s.v_m_per_s,
+                          s.effects_force_N, s.output_N, device_->motor_force_N(), device_->hand_force_N()});
+    } else {
+      records_.push_back({s.t_s, s.x_m, s.v_m_per_s, s.x_m, s.v_m_per_s, s.effects_force_N,
+                          s.output_N, s.output_N, 0.0});
+    }
   }
 
   const std::vector<TickRecord>& records() const { return records_; }
@@ -42,7 +48,7 @@ class Recorder final : public TickObserver {
   std::size_t dropped() const { return dropped_; }
 
  private:
-  const SimulatedHapkit& device_;
+  const SimulatedHapkit* device_;
   std::vector<TickRecord> records_;
   std::size_t dropped_{};
 };

@@ -21,7 +21,7 @@ ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const S
 
   // Run in simulated time, recording every tick into memory reserved up front.
   const auto ticks = static_cast<std::size_t>(std::llround(scenario.duration_s * scene.rate_hz));
-  Recorder recorder(device, ticks + 1);
+  Recorder recorder(&device, ticks + 1);
   RunOptions run_options{.duration_s = scenario.duration_s, .pacing = Pacing::simulated_time};
   const RunSummary summary = run_scene(scene, device, run_options, &recorder);
 
