@@ -1,4 +1,4 @@
-// `hapscene plot ENV [--scenario NAME] [-o FILE.svg]`: the force-displacement curve and
+// `hapscene plot ENV [--scenario NAME] [--output FILE.svg]`: the force-displacement curve and
 // one scenario's time series (default: sweep) as an SVG figure.
 #include <cstdio>
 
@@ -15,8 +15,7 @@ int plot_command(std::vector<std::string> args) {
   Arguments arguments(std::move(args), "hapscene plot");
   const HarnessOptions options = take_harness_options(arguments);
   const std::vector<ScenarioKind> kinds = take_scenarios(arguments);
-  std::optional<std::string> out_path = arguments.take_value("output");
-  if (!out_path) out_path = arguments.take_value("o");
+  const std::optional<std::string> out_path = arguments.take_value("output");
   const std::vector<std::string> files = arguments.positionals();
   if (files.size() != 1) arguments.fail("expected one environment file");
   if (kinds.size() > 1) arguments.fail("--scenario: plot draws one scenario");
