@@ -16,6 +16,11 @@ usage:
   hapscene run ENV [ENV...] [options]     run environments on a device (simulated by default)
   hapscene probe ENV --x START:STOP:STEP [--v V]
                                           print the force-displacement curve as CSV
+  hapscene validate ENV [ENV...] [options]
+                                          check an environment with virtual-hand scenarios
+  hapscene test [SPEC...]                 run environment test specs (*.test.json)
+  hapscene plot ENV [--scenario NAME] [--output FILE.svg]
+                                          draw force-displacement and time series as SVG
   hapscene help | --help                  this text
   hapscene version | --version
 
@@ -23,7 +28,7 @@ run options:
   --device sim          the device (default: sim, a simulated Hapkit from the scene's profile)
   --duration T          device time per environment (default 2 s; units allowed: "500 ms")
   --sim-time            run as fast as possible in simulated time instead of real time
-  --hand MOTION         simulated hand: sweep (default), hold, release, none
+  --hand MOTION         simulated hand: sweep (default), hold, release, shake, none
   --hand-stiffness K    hand grip stiffness (default 200 N/m)
   --hand-damping B      hand damping (default 2 N*s/m)
   --hold X              hold position for --hand hold and release (default 0 m)
@@ -32,9 +37,18 @@ run options:
   --noise COUNTS        sensor noise standard deviation in counts (default: the profile's)
   --seed N              noise seed (default 1)
   --quiet               no live status line
+  --log FILE.csv        per-tick telemetry: t_s,x_m,v_m_per_s,force_N,output_N,duty,direction
+  --plot FILE.svg       the run's figure
+
+validate options:
+  --scenario NAMES      sweep, press, release, hold, shake, free (comma-separated; default all)
+  --hand-stiffness K    --hand-damping B    --hand-mass M    (default 200 N/m, 2 N*s/m, 20 g)
+  --noise COUNTS        --seed N            --start X (free scenario start, default 4 mm)
+  --report FILE.json    --plot FILE.svg     --quiet
 
 Values take SI numbers or strings with units ("10 mm", "2 kHz").
-Exit codes: 0 success, 2 invalid input (file, arguments), 1 anything else.
+Exit codes: 0 success, 2 invalid input (file, arguments), 1 anything else
+(validate and test: 1 when a check or expectation fails).
 )";
 
 }  // namespace
