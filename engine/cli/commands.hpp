@@ -9,5 +9,8 @@ namespace hapscene {
 int run_command(std::vector<std::string> args);
 int probe_command(std::vector<std::string> args);
 int bench_command(std::vector<std::string> args);
+int validate_command(std::vector<std::string> args);
+int plot_command(std::vector<std::string> args);
+int test_command(std::vector<std::string> args);
 
 }  // namespace hapscene

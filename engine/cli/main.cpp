@@ -18,6 +18,11 @@ usage:
                                           print the force-displacement curve as CSV
   hapscene bench [ENV...] [--seconds T] [--passes N]
                                           tick cost against the hand-written lab code
+  hapscene validate ENV [ENV...] [options]
+                                          check an environment with virtual-hand scenarios
+  hapscene test [SPEC...]                 run environment test specs (*.test.json)
+  hapscene plot ENV [--scenario NAME] [--output FILE.svg]
+                                          draw force-displacement and time series as SVG
   hapscene help | --help                  this text
   hapscene version | --version
 
@@ -25,7 +30,7 @@ run options:
   --device sim          the device (default: sim, a simulated Hapkit from the scene's profile)
   --duration T          device time per environment (default 2 s; units allowed: "500 ms")
   --sim-time            run as fast as possible in simulated time instead of real time
-  --hand MOTION         simulated hand: sweep (default), hold, release, none
+  --hand MOTION         simulated hand: sweep (default), hold, release, shake, none
   --hand-stiffness K    hand grip stiffness (default 200 N/m)
   --hand-damping B      hand damping (default 2 N*s/m)
   --hold X              hold position for --hand hold and release (default 0 m)
@@ -35,9 +40,18 @@ run options:
   --seed N              noise seed (default 1)
   --quiet               no live status line
   --no-reload           do not reload the environment when its files change
+  --log FILE.csv        per-tick telemetry: t_s,x_m,v_m_per_s,force_N,output_N,duty,direction
+  --plot FILE.svg       the run's figure
+
+validate options:
+  --scenario NAMES      sweep, press, release, hold, shake, free (comma-separated; default all)
+  --hand-stiffness K    --hand-damping B    --hand-mass M    (default 200 N/m, 2 N*s/m, 20 g)
+  --noise COUNTS        --seed N            --start X (free scenario start, default 4 mm)
+  --report FILE.json    --plot FILE.svg     --quiet
 
 Values take SI numbers or strings with units ("10 mm", "2 kHz").
-Exit codes: 0 success, 2 invalid input (file, arguments), 1 anything else.
+Exit codes: 0 success, 2 invalid input (file, arguments), 1 anything else
+(validate and test: 1 when a check or expectation fails).
 )";
 
 }  // namespace
@@ -58,6 +72,9 @@ int main(int argc, char** argv) {
     if (command == "run") return hapscene::run_command(args);
     if (command == "probe") return hapscene::probe_command(args);
     if (command == "bench") return hapscene::bench_command(args);
+    if (command == "validate") return hapscene::validate_command(args);
+    if (command == "plot") return hapscene::plot_command(args);
+    if (command == "test") return hapscene::test_command(args);
     std::cerr << "hapscene: unknown command \"" << command << "\" (try: hapscene --help)\n";
     return hapscene::kExitInvalidInput;
   } catch (const hapscene::InputError& error) {

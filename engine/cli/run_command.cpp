@@ -3,6 +3,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -12,12 +15,17 @@
 
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
+#include "engine/cli/output_file.hpp"
 #include "engine/core/errors.hpp"
 #include "engine/devices/open_device.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/load/object_reader.hpp"
+#include "engine/harness/figures.hpp"
+#include "engine/harness/recorder.hpp"
 #include "engine/run/live_status.hpp"
 #include "engine/run/reload_watcher.hpp"
+#include "engine/run/observer_list.hpp"
+#include "engine/run/telemetry_log.hpp"
 #include "engine/run/runner.hpp"
 
 namespace hapscene {
@@ -34,6 +42,8 @@ struct RunSettings {
   double noise_counts{-1.0};  // < 0: the profile's
   bool quiet{false};
   bool reload{true};          // watch the files and hot-reload them
+  std::optional<std::string> log_path;   // --log FILE.csv: per-tick telemetry
+  std::optional<std::string> plot_path;  // --plot FILE.svg: the run's time series
 };
 
 RunSettings parse_settings(Arguments& arguments) {
@@ -49,8 +59,8 @@ RunSettings parse_settings(Arguments& arguments) {
   HandConfig& hand = settings.simulation.hand;
   if (const auto motion = arguments.take_value("hand")) {
     const auto* found = std::find(std::begin(kHandMotionNames), std::end(kHandMotionNames), *motion);
-    if (found == std::end(kHandMotionNames)) {
-      arguments.fail("--hand: unknown motion \"" + *motion + "\" (use sweep, hold, release or none)");
+    if (found == std::end(kHandMotionNames) || *found == "path") {
+      arguments.fail("--hand: unknown motion \"" + *motion + "\" (use sweep, hold, release, shake or none)");
     }
     hand.motion = static_cast<HandMotion>(found - std::begin(kHandMotionNames));
   }
@@ -77,6 +87,8 @@ RunSettings parse_settings(Arguments& arguments) {
   }
   settings.quiet = arguments.take_flag("quiet");
   settings.reload = !arguments.take_flag("no-reload");
+  settings.log_path = arguments.take_value("log");
+  settings.plot_path = arguments.take_value("plot");
   return settings;
 }
 
@@ -178,6 +190,9 @@ int run_command(std::vector<std::string> args) {
   RunSettings settings = parse_settings(arguments);
   const std::vector<std::string> files = arguments.positionals();
   if (files.empty()) arguments.fail("expected at least one environment file");
+  if ((settings.log_path || settings.plot_path) && files.size() != 1) {
+    arguments.fail("--log and --plot take one environment file");
+  }
 
   // Load everything and open every device first: a bad file fails before anything moves.
   std::vector<Scene> scenes;
@@ -198,7 +213,27 @@ int run_command(std::vector<std::string> args) {
   const bool show_status = !settings.quiet && isatty(STDERR_FILENO) == 1;
   for (std::size_t i = 0; i < scenes.size() && !g_stop_requested.load(); ++i) {
     const Scene& scene = scenes[i];
+    // Observers: the live status, and (allocated before the run) the log and the trace.
     LiveStatus status;
+    ObserverList observers;
+    observers.add(&status);
+    std::unique_ptr<TelemetryLog> log;
+    // In simulated time the loop outruns any disk: size the ring for the whole run
+    // (up to 2^21 samples) so nothing is dropped; in real time 2^16 samples (65 s at 1 kHz).
+    if (settings.log_path) {
+      const auto ticks = static_cast<std::size_t>(std::llround(settings.options.duration_s * scene.rate_hz));
+      const std::size_t capacity = settings.options.pacing == Pacing::simulated_time
+                                       ? std::clamp<std::size_t>(ticks + 1, kDefaultTelemetryCapacity, 1u << 21)
+                                       : kDefaultTelemetryCapacity;
+      log = std::make_unique<TelemetryLog>(*settings.log_path, capacity);
+    }
+    observers.add(log.get());
+    std::unique_ptr<Recorder> trace;
+    if (settings.plot_path) {
+      const auto ticks = static_cast<std::size_t>(std::llround(settings.options.duration_s * scene.rate_hz));
+      trace = std::make_unique<Recorder>(dynamic_cast<const SimulatedHapkit*>(devices[i].get()), ticks + 1);
+    }
+    observers.add(trace.get());
     RunSummary summary;
     SceneExchange exchange;
     RunOptions options = settings.options;
@@ -212,7 +247,7 @@ int run_command(std::vector<std::string> args) {
               std::fprintf(stderr, "%s%s\n", show_status ? "\r\033[K" : "", message.c_str());
             });
       }
-      summary = run_scene(scene, *devices[i], options, &status);
+      summary = run_scene(scene, *devices[i], options, &observers);
     }
     std::vector<std::string> log_lines;
     status.drain_log(&log_lines);
@@ -222,6 +257,19 @@ int run_command(std::vector<std::string> args) {
     if (exchange.swaps() > 0) {
       std::printf("  reloads          %llu\n", static_cast<unsigned long long>(exchange.swaps()));
     }
+    if (log) {
+      log->finish();
+      std::printf("  telemetry        %llu samples written to %s, %llu dropped (ring full)\n",
+                  static_cast<unsigned long long>(log->written()), settings.log_path->c_str(),
+                  static_cast<unsigned long long>(log->dropped()));
+    }
+    if (trace) {
+      const std::string what = "run, hand " +
+          std::string(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]);
+      write_output_file(*settings.plot_path, run_figure_svg(scene, trace->records(), what));
+      std::printf("  plot             %s\n", settings.plot_path->c_str());
+    }
+    std::fflush(stdout);
   }
   return kExitOk;
 }

@@ -7,6 +7,7 @@
 
 #include "engine/core/effect_input.hpp"
 #include "engine/core/safety.hpp"
+#include "engine/core/validate_thresholds.hpp"
 #include "engine/core/velocity.hpp"
 #include "engine/devices/kinematics.hpp"
 #include "engine/devices/profile.hpp"
@@ -37,6 +38,8 @@ struct Scene {
   std::vector<Effect> effects;
   std::size_t script_count{};       // ScriptEffects among them (instance_index 0..n-1)
   Needs needs;                      // union of the effects' needs: what step() computes
+
+  ValidateThresholds validate;      // the optional "validate" block (the harness only)
 };
 
 // The declared needs of one effect.

@@ -49,6 +49,10 @@ DeviceLimits parse_limits(ObjectReader& reader) {
   limits.soft_start_s = reader.quantity("soft_start", Quantity::time_s, Bound::non_negative);
   limits.soft_start_threshold_N =
       reader.quantity("soft_start_threshold", Quantity::force_N, Bound::non_negative);
+  limits.slip_force_N =
+      reader.quantity_or("slip_force", Quantity::force_N, kDefaultSlipForce_N, Bound::positive);
+  limits.slip_step_N =
+      reader.quantity_or("slip_step", Quantity::force_N, kDefaultSlipStep_N, Bound::positive);
   reader.finish();
   return limits;
 }

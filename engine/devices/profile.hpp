@@ -39,7 +39,17 @@ struct DeviceLimits {
   double workspace_max_m{};
   double soft_start_s{};             // ramp-in duration when a run starts in a force field
   double soft_start_threshold_N{};   // first-tick force above which the ramp is used
+  // Capstan slip risk (checked by the harness, not clamped): a commanded force above
+  // slip_force_N, or a change of more than slip_step_N within 1 ms, may make the cable
+  // slip on the motor pulley. Optional in profiles; defaults below.
+  double slip_force_N{};
+  double slip_step_N{};
 };
+
+// Defaults when a profile gives no slip limits: the Hapkit 3.0's estimates (a firm
+// push is about 5 N; a jolt of 2 N within a millisecond is felt as a click of the cable).
+inline constexpr double kDefaultSlipForce_N = 5.0;
+inline constexpr double kDefaultSlipStep_N = 2.0;
 
 // Physical parameters for the simulated device (not used with real hardware).
 struct PlantModel {

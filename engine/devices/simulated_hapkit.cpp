@@ -77,16 +77,17 @@ void SimulatedHapkit::substep(double h_s) noexcept {
   }
   const double driving_N =
       motor_force_N_ + hand_force_N_ + stop_force_N - plant.viscous_N_s_per_m * v_m_per_s_;
+  const double mass_kg = plant.mass_kg + hand_.added_mass_kg(t_s_);
 
   if (v_m_per_s_ == 0.0) {
     // Stuck: breaks away only when the other forces exceed static friction.
     if (std::abs(driving_N) > plant.coulomb_N) {
       const double net_N = driving_N - std::copysign(plant.coulomb_N, driving_N);
-      v_m_per_s_ = net_N / plant.mass_kg * h_s;
+      v_m_per_s_ = net_N / mass_kg * h_s;
     }
   } else {
     const double net_N = driving_N - std::copysign(plant.coulomb_N, v_m_per_s_);
-    const double v_next = v_m_per_s_ + net_N / plant.mass_kg * h_s;
+    const double v_next = v_m_per_s_ + net_N / mass_kg * h_s;
     v_m_per_s_ = (v_next * v_m_per_s_ < 0.0) ? 0.0 : v_next;
   }
   x_m_ += v_m_per_s_ * h_s;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace hapscene {
 
@@ -18,6 +19,13 @@ double VirtualHand::sweep_phase_m(double t_s) const noexcept {
   return std::fmod(travelled_m, 2.0 * length_m);
 }
 
+// Paths are short (tens of points): a linear scan from the start is cheap enough.
+std::size_t VirtualHand::path_segment(double t_s) const noexcept {
+  std::size_t i = 0;
+  while (i + 1 < config_.path.size() && config_.path[i + 1].t_s <= t_s) ++i;
+  return i;
+}
+
 double VirtualHand::reference_m(double t_s) const noexcept {
   switch (config_.motion) {
     case HandMotion::none: return start_x_m_;
@@ -29,19 +37,55 @@ double VirtualHand::reference_m(double t_s) const noexcept {
       return phase_m <= length_m ? config_.sweep_min_m + phase_m
                                  : config_.sweep_max_m - (phase_m - length_m);
     }
+    case HandMotion::shake:
+      return config_.hold_m + config_.shake_amplitude_m *
+                                  std::sin(2.0 * std::numbers::pi * config_.shake_frequency_Hz * t_s);
+    case HandMotion::path: {
+      if (config_.path.empty()) return start_x_m_;
+      const std::size_t i = path_segment(t_s);
+      const HandWaypoint& a = config_.path[i];
+      if (i + 1 >= config_.path.size() || t_s <= a.t_s) return a.x_m;
+      const HandWaypoint& b = config_.path[i + 1];
+      return a.x_m + (b.x_m - a.x_m) * (t_s - a.t_s) / (b.t_s - a.t_s);
+    }
   }
   return start_x_m_;
 }
 
 double VirtualHand::reference_velocity_m_per_s(double t_s) const noexcept {
-  if (config_.motion != HandMotion::sweep) return 0.0;
-  const double length_m = config_.sweep_max_m - config_.sweep_min_m;
-  return sweep_phase_m(t_s) <= length_m ? config_.speed_m_per_s : -config_.speed_m_per_s;
+  switch (config_.motion) {
+    case HandMotion::sweep: {
+      const double length_m = config_.sweep_max_m - config_.sweep_min_m;
+      return sweep_phase_m(t_s) <= length_m ? config_.speed_m_per_s : -config_.speed_m_per_s;
+    }
+    case HandMotion::shake: {
+      const double w_rad_per_s = 2.0 * std::numbers::pi * config_.shake_frequency_Hz;
+      return config_.shake_amplitude_m * w_rad_per_s * std::cos(w_rad_per_s * t_s);
+    }
+    case HandMotion::path: {
+      if (config_.path.empty()) return 0.0;
+      const std::size_t i = path_segment(t_s);
+      if (i + 1 >= config_.path.size() || t_s < config_.path[i].t_s) return 0.0;
+      const HandWaypoint& a = config_.path[i];
+      const HandWaypoint& b = config_.path[i + 1];
+      return (b.x_m - a.x_m) / (b.t_s - a.t_s);
+    }
+    default: return 0.0;
+  }
+}
+
+bool VirtualHand::gripping(double t_s) const noexcept {
+  switch (config_.motion) {
+    case HandMotion::none: return false;
+    case HandMotion::release: return t_s < config_.release_s;
+    case HandMotion::path:
+      return !config_.path.empty() && config_.path[path_segment(t_s)].grip;
+    default: return true;
+  }
 }
 
 double VirtualHand::force_N(double t_s, double x_m, double v_m_per_s) const noexcept {
-  if (config_.motion == HandMotion::none) return 0.0;
-  if (config_.motion == HandMotion::release && t_s >= config_.release_s) return 0.0;
+  if (!gripping(t_s)) return 0.0;
   return config_.stiffness_N_per_m * (reference_m(t_s) - x_m) +
          config_.damping_N_s_per_m * (reference_velocity_m_per_s(t_s) - v_m_per_s);
 }

@@ -1,25 +1,41 @@
 #pragma once
-// A simple virtual hand for simulated runs: a spring-damper pulling the handle toward a
-// reference motion. "sweep" moves slowly across the workspace and back (pushing into
-// whatever is there), "hold" holds one position, "release" holds it and lets go at
-// release_s (does the spring oscillate?), "none" leaves the handle alone.
+// A simple virtual hand for simulated runs: a spring-damper (with an optional mass that
+// moves with the paddle while the hand grips it) pulling the handle toward a reference
+// motion. "sweep" moves slowly across the workspace and back (pushing into whatever is
+// there), "hold" holds one position, "release" holds it and lets go at release_s (does
+// the spring oscillate?), "shake" oscillates fast and small around hold_m, "path"
+// follows timed waypoints (the harness's press scenario), "none" leaves the handle alone.
 #include <string_view>
+#include <vector>
 
 namespace hapscene {
 
-enum class HandMotion { none, hold, sweep, release };
+enum class HandMotion { none, hold, sweep, release, shake, path };
 
-inline constexpr std::string_view kHandMotionNames[] = {"none", "hold", "sweep", "release"};
+inline constexpr std::string_view kHandMotionNames[] = {"none",    "hold",  "sweep",
+                                                        "release", "shake", "path"};
+
+// One point of a "path" motion: the reference is linear in time between points; the
+// hand grips from this point to the next when `grip` is true, and is off otherwise.
+struct HandWaypoint {
+  double t_s{};
+  double x_m{};
+  bool grip{true};
+};
 
 struct HandConfig {
   HandMotion motion{HandMotion::sweep};
   double stiffness_N_per_m{200.0};  // grip stiffness of a relaxed hand on the paddle
   double damping_N_s_per_m{2.0};
+  double mass_kg{0.0};              // hand mass moving with the paddle while gripping
   double speed_m_per_s{0.08};       // sweep speed
   double sweep_min_m{-0.04};
   double sweep_max_m{0.04};
-  double hold_m{0.0};               // hold and release position
+  double hold_m{0.0};               // hold, release and shake position
   double release_s{0.5};            // release: when the hand lets go
+  double shake_amplitude_m{0.002};  // shake: reference hold_m + A sin(2 pi f t)
+  double shake_frequency_Hz{8.0};
+  std::vector<HandWaypoint> path;   // path: at least one point, times increasing
 };
 
 class VirtualHand {
@@ -31,9 +47,17 @@ class VirtualHand {
   // Where the hand wants the handle at time t, and how fast that point moves.
   double reference_m(double t_s) const noexcept;
   double reference_velocity_m_per_s(double t_s) const noexcept;
+  // Whether the hand touches the paddle at time t.
+  bool gripping(double t_s) const noexcept;
+  // The mass the hand adds to the handle at time t.
+  double added_mass_kg(double t_s) const noexcept {
+    return gripping(t_s) ? config_.mass_kg : 0.0;
+  }
 
  private:
   double sweep_phase_m(double t_s) const noexcept;
+  // Index of the path segment containing t (the last point once past it).
+  std::size_t path_segment(double t_s) const noexcept;
 
   HandConfig config_;
   double start_x_m_;

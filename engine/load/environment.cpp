@@ -8,6 +8,7 @@
 #include "engine/core/errors.hpp"
 #include "engine/load/json_source.hpp"
 #include "engine/load/object_reader.hpp"
+#include "engine/load/validate_block.hpp"
 
 namespace hapscene {
 namespace {
@@ -170,6 +171,12 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
       scene.needs |= needs_of(effect);
       scene.effects.push_back(std::move(effect));
     }
+  }
+
+  // Thresholds for the harness (hapscene validate).
+  if (const nlohmann::json* validate = reader.get("validate")) {
+    ObjectReader validate_reader(*validate, reader.pointer_to("validate"), file);
+    parse_validate_block(validate_reader, &scene.validate);
   }
   reader.finish();
   return scene;

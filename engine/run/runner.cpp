@@ -100,6 +100,8 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
   }
   summary.ticks = state.tick;
   summary.safety = state.safety.counters;
+  summary.script_errors = state.script_errors;
+  summary.script_budget_overruns = state.script_budget_overruns;
   summary.device_time_s = static_cast<double>(state.tick) * scene.period_s;
   summary.wall_time_s = static_cast<double>(monotonic_ns() - start_ns) * 1e-9;
   summary.achieved_rate_hz = real_time && summary.wall_time_s > 0.0

@@ -60,6 +60,8 @@ struct RunSummary {
   double max_abs_requested_N{};   // largest |force| the scene asked for
   double max_abs_output_N{};      // largest |force| commanded after safety
   SafetyCounters safety;
+  std::uint64_t script_errors{};          // from TickState, filled by script effects
+  std::uint64_t script_budget_overruns{};
   std::uint64_t deadline_misses{};  // ticks that ended after the next tick's deadline
   LatencyHistogram compute_ns;      // read + step + write of each tick
   LatencyHistogram wake_late_ns;    // real time: how late each tick started

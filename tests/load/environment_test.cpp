@@ -163,3 +163,50 @@ TEST_CASE("environment: files that are missing, too large or too deep") {
   CHECK(load_error("{\"description\": \"" + std::string(100, '[') + "\", \"effects\": []}") ==
         "(no error)");
 }
+
+TEST_CASE("environment: the validate block sets the harness's thresholds") {
+  const Scene defaults = scene_from(R"({"effects": []})");
+  CHECK(defaults.validate.max_force_N < 0.0);  // derived from the safety limit
+  CHECK(defaults.validate.max_passivity_ratio == 1.0);
+  const Scene scene = scene_from(R"({"validate": {"max_force": "3 N", "max_time_at_limit": 0.2,
+      "max_slew": "1 N/ms", "max_slip_ticks": 5, "max_passivity_ratio": 0.8,
+      "max_residual_amplitude": "0.1 mm", "max_amplitude_growth": 0.5, "max_penetration": "8 mm",
+      "max_force_jitter": "0.05 N", "max_tick_compute": "100 us", "max_script_faults": 2,
+      "stiff_threshold": "300 N/m", "press_force": "2 N", "release_from": "-15 mm"}, "effects": []})");
+  const ValidateThresholds& t = scene.validate;
+  CHECK(t.max_force_N == 3.0);
+  CHECK(t.max_time_at_limit_fraction == 0.2);
+  CHECK(t.max_slew_N_per_s == doctest::Approx(1000.0));
+  CHECK(t.max_slip_ticks == 5);
+  CHECK(t.max_passivity_ratio == 0.8);
+  CHECK(t.max_residual_amplitude_m == doctest::Approx(1e-4));
+  CHECK(t.max_amplitude_growth == 0.5);
+  CHECK(t.max_penetration_m == doctest::Approx(0.008));
+  CHECK(t.max_force_jitter_N == 0.05);
+  CHECK(t.max_tick_compute_s == doctest::Approx(1e-4));
+  CHECK(t.max_script_faults == 2);
+  CHECK(t.stiff_threshold_N_per_m == 300.0);
+  CHECK(t.press_force_N == 2.0);
+  CHECK(t.release_from_m == doctest::Approx(-0.015));
+}
+
+TEST_CASE("environment: validate block errors name the key") {
+  CHECK(load_error(R"({"validate": {"max_force": -1}, "effects": []})") ==
+        "test.json: /validate/max_force: must be > 0, got -1 N");
+  CHECK(load_error(R"({"validate": {"max_time_at_limit": 2}, "effects": []})") ==
+        "test.json: /validate/max_time_at_limit: must be a fraction in [0, 1], got 2");
+  CHECK(load_error(R"({"validate": {"max_slip_ticks": 1.5}, "effects": []})") ==
+        "test.json: /validate/max_slip_ticks: expected a whole number, got number");
+  CHECK(load_error(R"({"validate": {"max_penetration": "3 N"}, "effects": []})") ==
+        "test.json: /validate/max_penetration: expected a length (m), got a force (\"3 N\")");
+  CHECK(load_error(R"({"validate": {"max_forse": 3}, "effects": []})") ==
+        "test.json: /validate/max_forse: unknown key \"max_forse\" (did you mean \"max_force\"?)");
+  CHECK(load_error(R"({"validate": [], "effects": []})") ==
+        "test.json: /validate: expected an object, got array");
+}
+
+TEST_CASE("profile: capstan slip limits default when a profile leaves them out") {
+  const DeviceProfile hapkit3 = load_device_profile("hapkit3", ".");
+  CHECK(hapkit3.limits.slip_force_N == 5.0);
+  CHECK(hapkit3.limits.slip_step_N == 2.0);
+}

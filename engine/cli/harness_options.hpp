@@ -1,0 +1,20 @@
+#pragma once
+// Command-line options shared by `validate`, `plot` and `test`: the virtual hand, the
+// sensor noise, the seed, the free start and the scenario selection.
+#include <vector>
+
+#include "engine/cli/arguments.hpp"
+#include "engine/harness/scenario.hpp"
+
+namespace hapscene {
+
+// Takes --hand-stiffness, --hand-damping, --hand-mass, --noise, --seed, --start.
+HarnessOptions take_harness_options(Arguments& arguments);
+
+// Takes --scenario NAME[,NAME...]; empty when not given (all scenarios).
+std::vector<ScenarioKind> take_scenarios(Arguments& arguments);
+
+// Reads a --seed value.
+std::uint64_t parse_seed(const Arguments& arguments, const std::string& text);
+
+}  // namespace hapscene

@@ -1,0 +1,35 @@
+// `hapscene plot ENV [--scenario NAME] [--output FILE.svg]`: the force-displacement curve and
+// one scenario's time series (default: sweep) as an SVG figure.
+#include <cstdio>
+
+#include "engine/cli/arguments.hpp"
+#include "engine/cli/commands.hpp"
+#include "engine/cli/harness_options.hpp"
+#include "engine/cli/output_file.hpp"
+#include "engine/harness/figures.hpp"
+#include "engine/load/environment.hpp"
+
+namespace hapscene {
+
+int plot_command(std::vector<std::string> args) {
+  Arguments arguments(std::move(args), "hapscene plot");
+  const HarnessOptions options = take_harness_options(arguments);
+  const std::vector<ScenarioKind> kinds = take_scenarios(arguments);
+  const std::optional<std::string> out_path = arguments.take_value("output");
+  const std::vector<std::string> files = arguments.positionals();
+  if (files.size() != 1) arguments.fail("expected one environment file");
+  if (kinds.size() > 1) arguments.fail("--scenario: plot draws one scenario");
+
+  const Scene scene = load_environment_file(files[0]);
+  const ForceField field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);
+  const ScenarioKind kind = kinds.empty() ? ScenarioKind::sweep : kinds[0];
+  const ScenarioResult result = run_scenario(scene, field, build_scenario(kind, scene, field, options), options);
+  const std::string svg = scene_figure_svg(scene, result);
+  // Default output: the environment's name with .svg in the working directory.
+  const std::string path = out_path.value_or(scene.name + ".svg");
+  write_output_file(path, svg);
+  std::printf("wrote %s\n", path.c_str());
+  return 0;
+}
+
+}  // namespace hapscene

@@ -1,0 +1,49 @@
+// `hapscene validate ENV [ENV...]`: runs each environment closed loop on the simulated
+// Hapkit through the virtual-hand scenarios in simulated time, prints a table of
+// verdicts, optionally writes a JSON report and an SVG figure. Exit 0 when every check
+// passes, 1 when any fails, 2 for invalid input.
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "engine/cli/arguments.hpp"
+#include "engine/cli/commands.hpp"
+#include "engine/cli/harness_options.hpp"
+#include "engine/cli/output_file.hpp"
+#include "engine/core/errors.hpp"
+#include "engine/harness/figures.hpp"
+#include "engine/harness/report.hpp"
+#include "engine/load/environment.hpp"
+
+namespace hapscene {
+
+int validate_command(std::vector<std::string> args) {
+  Arguments arguments(std::move(args), "hapscene validate");
+  const HarnessOptions options = take_harness_options(arguments);
+  const std::vector<ScenarioKind> kinds = take_scenarios(arguments);
+  const std::optional<std::string> report_path = arguments.take_value("report");
+  const std::optional<std::string> plot_path = arguments.take_value("plot");
+  const bool quiet = arguments.take_flag("quiet");
+  const std::vector<std::string> files = arguments.positionals();
+  if (files.empty()) arguments.fail("expected at least one environment file");
+  if ((report_path || plot_path) && files.size() != 1) {
+    arguments.fail("--report and --plot take one environment file");
+  }
+
+  // Load everything first: a bad file fails before anything runs.
+  std::vector<Scene> scenes;
+  for (const std::string& file : files) scenes.push_back(load_environment_file(file));
+
+  bool all_pass = true;
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const ValidationReport report = validate_scene(scenes[i], kinds, options);
+    all_pass = all_pass && report.pass;
+    if (!quiet) std::printf("%s%s", i > 0 ? "\n" : "", format_report_table(report).c_str());
+    if (report_path) write_output_file(*report_path, report_to_json(report).dump(2) + "\n");
+    if (plot_path) write_output_file(*plot_path, validation_figure_svg(scenes[i], report));
+  }
+  std::fflush(stdout);
+  return all_pass ? kExitOk : kExitFailure;
+}
+
+}  // namespace hapscene

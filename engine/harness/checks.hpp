@@ -1,0 +1,30 @@
+#pragma once
+// Verdicts: each measurement of a scenario against its threshold (the scene's
+// "validate" block or the defaults).
+#include <string>
+#include <vector>
+
+#include "engine/core/scene.hpp"
+#include "engine/harness/metrics.hpp"
+#include "engine/harness/scenario.hpp"
+
+namespace hapscene {
+
+struct CheckResult {
+  std::string name;        // stable identifier: "max_force", "passivity", ...
+  double value{};          // the measurement, in SI (unit below)
+  double threshold{};      // the value must be <= threshold (< for "slew")
+  std::string unit;        // "N", "N/s", "m", "s", "" (ratio), "ticks"
+  bool pass{};
+  std::string detail;      // where/when, and the numbers behind the value
+};
+
+// The names of every check, in report order.
+inline constexpr const char* kCheckNames[] = {
+    "max_force", "time_at_limit", "slew",   "slip",   "passivity",      "limit_cycle",
+    "growth",    "penetration",   "jitter", "script", "tick_compute"};
+
+std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scenario,
+                                        const ForceField& field, const ScenarioMetrics& metrics);
+
+}  // namespace hapscene

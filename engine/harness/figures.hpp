@@ -1,0 +1,32 @@
+#pragma once
+// The figures hapscene draws: the force-displacement curve of a scene (one curve per
+// velocity when an effect reads velocity), and time series of position, velocity and
+// force for a run, each with the safety limit drawn.
+#include <string>
+#include <vector>
+
+#include "engine/core/scene.hpp"
+#include "engine/harness/recorder.hpp"
+#include "engine/harness/svg_plot.hpp"
+#include "engine/harness/validate.hpp"
+
+namespace hapscene {
+
+// Force (after the static safety rules) against position across the workspace.
+PlotPanel force_displacement_panel(const Scene& scene);
+
+// Three panels: position, velocity and force against time.
+std::vector<PlotPanel> time_series_panels(const Scene& scene, const std::vector<TickRecord>& records,
+                                          const std::string& what);
+
+// `hapscene plot`: the force-displacement curve and one scenario's time series.
+std::string scene_figure_svg(const Scene& scene, const ScenarioResult& scenario);
+
+// `validate --plot`: the curve and the first failing scenario (else the first one run).
+std::string validation_figure_svg(const Scene& scene, const ValidationReport& report);
+
+// `run --plot`: the curve and the run's time series.
+std::string run_figure_svg(const Scene& scene, const std::vector<TickRecord>& records,
+                           const std::string& what);
+
+}  // namespace hapscene

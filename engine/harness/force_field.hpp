@@ -1,0 +1,40 @@
+#pragma once
+// The scene's force field probed open loop (sum_effects_N at rest, no hand, no device):
+// where the stiff regions ("walls") are, for the press scenario and the penetration
+// check, and the potential energy the field stores, for the passivity observer.
+#include <vector>
+
+#include "engine/core/scene.hpp"
+
+namespace hapscene {
+
+// A stretch of the workspace where the field is at least as stiff as the threshold
+// (-dF/dx >= K). An edge strictly inside the workspace can be pressed from outside.
+struct StiffRegion {
+  double low_m{};
+  double high_m{};
+  bool low_is_edge{};   // free space below low_m: press upward into it
+  bool high_is_edge{};  // free space above high_m: press downward into it
+  double stiffness_N_per_m{};  // the largest stiffness found in it
+};
+
+struct ForceField {
+  double min_m{};
+  double step_m{};
+  std::vector<double> force_N;    // what the scene asks for at rest, per grid point
+  std::vector<double> output_N;   // after the static safety rules (clamp, workspace)
+  std::vector<double> potential_J;  // -integral of output_N from min_m: energy stored
+  std::vector<StiffRegion> regions;
+
+  // Linear interpolation of the stored energy at x (clamped to the grid).
+  double potential_at_J(double x_m) const noexcept;
+  // How deep x is inside a stiff region, measured from its nearest pressable edge (0
+  // outside every region or in a region without an edge).
+  double penetration_m(double x_m) const noexcept;
+};
+
+// Probes the scene over its safety workspace every step_m.
+ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m,
+                             double step_m = 20e-6);
+
+}  // namespace hapscene

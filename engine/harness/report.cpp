@@ -1,0 +1,151 @@
+#include "engine/harness/report.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace hapscene {
+namespace {
+
+std::string printf_string(const char* pattern, auto... values) {
+  char text[512];
+  std::snprintf(text, sizeof text, pattern, values...);
+  return text;
+}
+
+std::string padded(std::string text, std::size_t width) {
+  if (text.size() < width) text.append(width - text.size(), ' ');
+  return text;
+}
+
+}  // namespace
+
+std::string format_value(double value, const std::string& unit) {
+  if (!std::isfinite(value)) return value > 0 ? "inf" : "nan";
+  if (unit == "N") return printf_string("%.3f N", value);
+  if (unit == "m") return printf_string("%.3f mm", value * 1e3);
+  if (unit == "s") return printf_string("%.2f us", value * 1e6);
+  if (unit == "N/s") return printf_string("%.3f N/ms", value * 1e-3);
+  if (unit == "ticks" || unit == "faults") return printf_string("%.0f %s", value, unit.c_str());
+  return printf_string("%.3f", value);
+}
+
+std::string format_report_table(const ValidationReport& report) {
+  std::string out = printf_string(
+      "validate %s (%s): %g Hz, passivity bound 2b/T = %.0f N/m, stiffest region %.0f N/m\n",
+      report.scene_name.c_str(), report.source_path.c_str(), report.rate_hz,
+      report.passivity_bound_N_per_m, report.stiffest_region_N_per_m);
+  const HarnessOptions& o = report.options;
+  out += printf_string("hand %g N/m, %g N*s/m, %g g; sensor noise %s, seed %llu\n\n",
+                       o.hand_stiffness_N_per_m, o.hand_damping_N_s_per_m, o.hand_mass_kg * 1e3,
+                       o.noise_counts < 0 ? "from the profile" : printf_string("%g counts", o.noise_counts).c_str(),
+                       static_cast<unsigned long long>(o.seed));
+  out += "scenario  check          value           threshold        verdict  detail\n";
+
+  int failed = 0;
+  int total = 0;
+  std::string failures;
+  for (const ScenarioResult& s : report.scenarios) {
+    out += padded(s.scenario.name, 10) + s.scenario.description + "\n";
+    if (!s.scenario.applicable) {
+      out += padded("", 10) + "(not applicable)\n";
+      continue;
+    }
+    for (const CheckResult& c : s.checks) {
+      ++total;
+      if (!c.pass) {
+        ++failed;
+        failures += (failures.empty() ? "" : ", ") + s.scenario.name + "/" + c.name;
+      }
+      const char* relation = c.name == "slew" ? "< " : "<= ";
+      out += padded("", 10) + padded(c.name, 15) + padded(format_value(c.value, c.unit), 16) +
+             padded(relation + format_value(c.threshold, c.unit), 17) +
+             padded(c.pass ? "pass" : "FAIL", 9) + c.detail + "\n";
+    }
+  }
+  if (failed == 0) {
+    out += printf_string("\nresult: pass (%d checks)\n", total);
+  } else {
+    out += printf_string("\nresult: FAIL (%d of %d checks failed: %s)\n", failed, total, failures.c_str());
+  }
+  return out;
+}
+
+nlohmann::json report_to_json(const ValidationReport& report) {
+  using nlohmann::json;
+  json regions = json::array();
+  for (const StiffRegion& r : report.field.regions) {
+    regions.push_back({{"low_m", r.low_m}, {"high_m", r.high_m}, {"low_is_edge", r.low_is_edge},
+                       {"high_is_edge", r.high_is_edge}, {"stiffness_N_per_m", r.stiffness_N_per_m}});
+  }
+  const HarnessOptions& o = report.options;
+  json out = {
+      {"schema", kReportSchema},
+      {"scene", {{"name", report.scene_name}, {"source", report.source_path}, {"rate_hz", report.rate_hz},
+                 {"passivity_bound_N_per_m", report.passivity_bound_N_per_m},
+                 {"stiffest_region_N_per_m", report.stiffest_region_N_per_m},
+                 {"stiff_regions", regions}}},
+      {"options", {{"hand_stiffness_N_per_m", o.hand_stiffness_N_per_m},
+                   {"hand_damping_N_s_per_m", o.hand_damping_N_s_per_m},
+                   {"hand_mass_kg", o.hand_mass_kg},
+                   {"noise_counts", o.noise_counts < 0 ? json(nullptr) : json(o.noise_counts)},
+                   {"seed", o.seed},
+                   {"free_start_m", o.free_start_m}}},
+      {"pass", report.pass},
+      {"scenarios", json::array()}};
+
+  for (const ScenarioResult& s : report.scenarios) {
+    const ScenarioMetrics& m = s.metrics;
+    json scenario = {{"name", s.scenario.name}, {"description", s.scenario.description},
+                     {"applicable", s.scenario.applicable}, {"duration_s", s.scenario.duration_s},
+                     {"pass", s.pass}};
+    if (s.scenario.applicable) {
+      json metrics = {
+          {"ticks", m.ticks},
+          {"max_requested_N", m.max_requested_N},
+          {"max_output_N", m.max_output_N},
+          {"max_output_x_m", m.max_output_x_m},
+          {"max_output_t_s", m.max_output_t_s},
+          {"time_at_limit_s", m.time_at_limit_s},
+          {"time_at_limit_fraction", m.time_at_limit_fraction},
+          {"max_slew_N_per_s", m.max_slew_N_per_s},
+          {"force_jitter_N", m.force_jitter_N},
+          {"slip_force_ticks", m.slip_force_ticks},
+          {"slip_step_ticks", m.slip_step_ticks},
+          {"max_step_1ms_N", m.max_step_1ms_N},
+          {"passivity", {{"motor_work_J", m.passivity.motor_work_J}, {"stored_J", m.passivity.stored_J},
+                         {"created_J", m.passivity.created_J}, {"dissipated_J", m.passivity.dissipated_J},
+                         {"net_J", m.passivity.net_J}, {"ratio", m.passivity.ratio},
+                         {"grows", m.passivity.grows}}},
+          {"oscillation", nullptr},
+          {"max_penetration_m", m.max_penetration_m},
+          {"max_penetration_x_m", m.max_penetration_x_m},
+          {"script_errors", m.script_errors},
+          {"script_budget_overruns", m.script_budget_overruns},
+          {"tick_compute_s", {{"p50", m.compute_p50_s}, {"p99", m.compute_p99_s}, {"max", m.compute_max_s}}},
+          {"safety", {{"nonfinite_faults", m.safety.nonfinite_faults},
+                      {"outside_workspace_ticks", m.safety.outside_workspace_ticks},
+                      {"soft_start_ticks", m.safety.soft_start_ticks},
+                      {"clamped_ticks", m.safety.clamped_ticks},
+                      {"slew_limited_ticks", m.safety.slew_limited_ticks}}}};
+      if (m.oscillation) {
+        const OscillationMetrics& w = *m.oscillation;
+        metrics["oscillation"] = {{"from_s", w.from_s}, {"half_cycles", w.half_cycles},
+                                  {"frequency_Hz", w.frequency_Hz},
+                                  {"initial_amplitude_m", w.initial_amplitude_m},
+                                  {"residual_amplitude_m", w.residual_amplitude_m},
+                                  {"growth", w.growth}, {"rest_m", w.rest_m}};
+      }
+      scenario["metrics"] = metrics;
+      json checks = json::array();
+      for (const CheckResult& c : s.checks) {
+        checks.push_back({{"name", c.name}, {"value", c.value}, {"threshold", c.threshold},
+                          {"unit", c.unit}, {"pass", c.pass}, {"detail", c.detail}});
+      }
+      scenario["checks"] = checks;
+    }
+    out["scenarios"].push_back(scenario);
+  }
+  return out;
+}
+
+}  // namespace hapscene

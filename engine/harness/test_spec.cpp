@@ -1,0 +1,294 @@
+#include "engine/harness/test_spec.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "engine/core/step.hpp"
+#include "engine/harness/validate.hpp"
+#include "engine/load/environment.hpp"
+#include "engine/load/json_source.hpp"
+#include "engine/load/object_reader.hpp"
+
+namespace hapscene {
+namespace {
+
+std::string printf_string(const char* pattern, auto... values) {
+  char text[512];
+  std::snprintf(text, sizeof text, pattern, values...);
+  return text;
+}
+
+// A spec, parsed and checked before anything runs.
+struct ForceExpectation {
+  std::string pointer;
+  double x_m{}, v_m_per_s{}, force_N{}, tolerance_N{};
+};
+struct ScenarioExpectation {
+  std::string pointer;
+  ScenarioKind kind{};
+  std::optional<int> min_half_cycles, max_half_cycles;
+  std::optional<std::pair<double, double>> frequency_Hz;
+  std::optional<double> max_force_N;
+  std::optional<bool> pass;
+  std::vector<std::string> fail;  // checks that must fail
+};
+struct Spec {
+  std::string environment_path;
+  HarnessOptions options;
+  std::vector<ForceExpectation> forces;
+  std::optional<std::pair<double, double>> zero_outside_m;
+  std::optional<double> never_exceeds_N;
+  std::optional<bool> passes_validate;
+  std::vector<ScenarioExpectation> scenarios;
+};
+
+HarnessOptions parse_options(ObjectReader& r) {
+  HarnessOptions o;
+  o.hand_stiffness_N_per_m = r.quantity_or("hand_stiffness", Quantity::stiffness_N_per_m, o.hand_stiffness_N_per_m, Bound::positive);
+  o.hand_damping_N_s_per_m = r.quantity_or("hand_damping", Quantity::damping_N_s_per_m, o.hand_damping_N_s_per_m, Bound::non_negative);
+  o.hand_mass_kg = r.quantity_or("hand_mass", Quantity::mass_kg, o.hand_mass_kg, Bound::non_negative);
+  o.noise_counts = r.quantity_or("noise", Quantity::dimensionless, o.noise_counts, Bound::non_negative);
+  if (r.has("seed")) o.seed = static_cast<std::uint64_t>(r.integer("seed", 0, 1LL << 53));
+  else r.get("seed");
+  o.free_start_m = r.quantity_or("start", Quantity::length_m, o.free_start_m);
+  r.finish();
+  return o;
+}
+
+std::optional<bool> optional_bool(ObjectReader& r, std::string_view key) {
+  const nlohmann::json* value = r.get(key);
+  if (value == nullptr) return std::nullopt;
+  if (!value->is_boolean()) r.fail(key, "expected true or false, got " + json_type_name(*value));
+  return value->get<bool>();
+}
+
+ScenarioExpectation parse_scenario(ObjectReader& r) {
+  ScenarioExpectation e;
+  e.pointer = r.pointer();
+  const std::string name = r.choice("scenario", {"sweep", "press", "release", "hold", "shake", "free"});
+  e.kind = *scenario_kind_named(name);
+  if (r.has("min_half_cycles")) e.min_half_cycles = static_cast<int>(r.integer("min_half_cycles", 0, 100000));
+  else r.get("min_half_cycles");
+  if (r.has("max_half_cycles")) e.max_half_cycles = static_cast<int>(r.integer("max_half_cycles", 0, 100000));
+  else r.get("max_half_cycles");
+  if (r.has("frequency")) e.frequency_Hz = r.range("frequency", Quantity::frequency_Hz);
+  else r.get("frequency");
+  if (r.has("max_force")) e.max_force_N = r.quantity("max_force", Quantity::force_N, Bound::positive);
+  else r.get("max_force");
+  e.pass = optional_bool(r, "pass");
+  if (const nlohmann::json* fail = r.get("fail")) {
+    if (!fail->is_array()) r.fail("fail", "expected an array of check names, got " + json_type_name(*fail));
+    for (std::size_t i = 0; i < fail->size(); ++i) {
+      const nlohmann::json& item = (*fail)[i];
+      const std::string pointer = json_pointer_append(r.pointer_to("fail"), i);
+      if (!item.is_string()) throw InputError(located_message(r.file(), pointer, "expected a check name"));
+      const std::string check = item.get<std::string>();
+      if (std::find_if(std::begin(kCheckNames), std::end(kCheckNames),
+                       [&](const char* n) { return check == n; }) == std::end(kCheckNames)) {
+        const std::string suggestion = nearest_name(check, kCheckNames);
+        throw InputError(located_message(r.file(), pointer, "unknown check \"" + check + "\"" +
+                                         (suggestion.empty() ? "" : " (did you mean \"" + suggestion + "\"?)")));
+      }
+      e.fail.push_back(check);
+    }
+  }
+  r.finish();
+  return e;
+}
+
+Spec parse_spec(const std::string& path) {
+  const nlohmann::json root = read_json_file(path);
+  ObjectReader r(root, "", path);
+  Spec spec;
+  // The environment: given, or the spec's name without ".test.json", next to it.
+  const std::filesystem::path spec_path(path);
+  std::string name = spec_path.filename().string();
+  name = name.substr(0, name.size() - std::string(".test.json").size()) + ".json";
+  const std::string environment = r.string_or("environment", name);
+  spec.environment_path = (spec_path.parent_path() / environment).lexically_normal().string();
+  r.string_or("description", "");
+
+  if (const nlohmann::json* options = r.get("options")) {
+    ObjectReader o(*options, r.pointer_to("options"), path);
+    spec.options = parse_options(o);
+  }
+  if (const nlohmann::json* forces = r.get("forces")) {
+    if (!forces->is_array()) r.fail("forces", "expected an array, got " + json_type_name(*forces));
+    for (std::size_t i = 0; i < forces->size(); ++i) {
+      ObjectReader f((*forces)[i], json_pointer_append(r.pointer_to("forces"), i), path);
+      ForceExpectation e;
+      e.pointer = f.pointer();
+      e.x_m = f.quantity("x", Quantity::length_m);
+      e.v_m_per_s = f.quantity_or("v", Quantity::velocity_m_per_s, 0.0);
+      e.force_N = f.quantity("force", Quantity::force_N);
+      e.tolerance_N = f.quantity_or("tolerance", Quantity::force_N, 1e-6, Bound::non_negative);
+      f.finish();
+      spec.forces.push_back(e);
+    }
+  }
+  if (r.has("zero_outside")) spec.zero_outside_m = r.range("zero_outside", Quantity::length_m);
+  else r.get("zero_outside");
+  if (r.has("never_exceeds")) spec.never_exceeds_N = r.quantity("never_exceeds", Quantity::force_N, Bound::positive);
+  else r.get("never_exceeds");
+  spec.passes_validate = optional_bool(r, "passes_validate");
+  if (const nlohmann::json* scenarios = r.get("scenarios")) {
+    if (!scenarios->is_array()) r.fail("scenarios", "expected an array, got " + json_type_name(*scenarios));
+    for (std::size_t i = 0; i < scenarios->size(); ++i) {
+      ObjectReader s((*scenarios)[i], json_pointer_append(r.pointer_to("scenarios"), i), path);
+      spec.scenarios.push_back(parse_scenario(s));
+    }
+  }
+  r.finish();
+  return spec;
+}
+
+// The force the device would be commanded at (x, v): effects, then the static rules.
+double static_output_N(const Scene& scene, double x_m, double v_m_per_s, TickState* state) {
+  EffectInput input;
+  input.x_m = x_m;
+  input.v_m_per_s = v_m_per_s;
+  input.dt_s = scene.period_s;
+  SafetyCounters counters;
+  return apply_static_safety(scene.safety, x_m, sum_effects_N(scene, input, state->scripts), &counters);
+}
+
+const ScenarioResult* find_result(const ValidationReport& report, ScenarioKind kind) {
+  for (const ScenarioResult& s : report.scenarios) {
+    if (s.scenario.kind == kind) return &s;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+SpecResult run_test_spec(const std::string& spec_path) {
+  const Spec spec = parse_spec(spec_path);
+  SpecResult result;
+  result.spec_path = spec_path;
+  result.environment_path = spec.environment_path;
+  const Scene scene = load_environment_file(spec.environment_path);
+  TickState state = make_tick_state(scene);
+  const auto add = [&](std::string what, bool pass, std::string message) {
+    result.outcomes.push_back({std::move(what), pass, std::move(message)});
+    result.pass = result.pass && pass;
+  };
+
+  // Forces at given positions and velocities.
+  for (const ForceExpectation& e : spec.forces) {
+    const double got_N = static_output_N(scene, e.x_m, e.v_m_per_s, &state);
+    add(e.pointer, std::abs(got_N - e.force_N) <= e.tolerance_N,
+        printf_string("force at x %g mm, v %g m/s: expected %g N +/- %g N, got %.6g N", e.x_m * 1e3,
+                      e.v_m_per_s, e.force_N, e.tolerance_N, got_N));
+  }
+
+  // Zero outside [a, b]: every 0.1 mm of the workspace, at rest and at +/-0.1 m/s.
+  if (spec.zero_outside_m) {
+    const auto [a_m, b_m] = *spec.zero_outside_m;
+    std::string first_bad;
+    for (double x_m = scene.safety.workspace_min_m; x_m <= scene.safety.workspace_max_m; x_m += 1e-4) {
+      if (x_m >= a_m && x_m <= b_m) continue;
+      for (const double v : {0.0, -0.1, 0.1}) {
+        const double f_N = static_output_N(scene, x_m, v, &state);
+        if (f_N != 0.0 && first_bad.empty()) {
+          first_bad = printf_string("%.6g N at x %.2f mm, v %g m/s", f_N, x_m * 1e3, v);
+        }
+      }
+    }
+    add("/zero_outside", first_bad.empty(),
+        printf_string("force zero outside [%g, %g] mm: ", a_m * 1e3, b_m * 1e3) +
+            (first_bad.empty() ? std::string("yes") : "no, " + first_bad));
+  }
+
+  // Everything that needs closed-loop runs: one validation of all scenarios.
+  const bool needs_runs = spec.never_exceeds_N || spec.passes_validate || !spec.scenarios.empty();
+  if (!needs_runs) return result;
+  const ValidationReport report = validate_scene(scene, {}, spec.options);
+
+  if (spec.never_exceeds_N) {
+    double largest_N = 0.0;
+    std::string where;
+    for (const ScenarioResult& s : report.scenarios) {
+      if (s.scenario.applicable && s.metrics.max_output_N > largest_N) {
+        largest_N = s.metrics.max_output_N;
+        where = s.scenario.name;
+      }
+    }
+    add("/never_exceeds", largest_N <= *spec.never_exceeds_N,
+        printf_string("never exceeds %g N: largest %.4g N", *spec.never_exceeds_N, largest_N) +
+            (where.empty() ? "" : " (" + where + ")"));
+  }
+  if (spec.passes_validate) {
+    std::string failed;
+    for (const ScenarioResult& s : report.scenarios) {
+      for (const CheckResult& c : s.checks) {
+        if (!c.pass) failed += (failed.empty() ? "" : ", ") + s.scenario.name + "/" + c.name;
+      }
+    }
+    add("/passes_validate", report.pass == *spec.passes_validate,
+        std::string(*spec.passes_validate ? "passes validate: " : "fails validate: ") +
+            (failed.empty() ? "every check passed" : "failed " + failed));
+  }
+
+  // Expected behaviour per scenario.
+  for (const ScenarioExpectation& e : spec.scenarios) {
+    const ScenarioResult* s = find_result(report, e.kind);
+    const std::string name(kScenarioNames[static_cast<int>(e.kind)]);
+    if (s == nullptr || !s->scenario.applicable) {
+      add(e.pointer, false, name + ": not applicable to this environment");
+      continue;
+    }
+    const std::optional<OscillationMetrics>& o = s->metrics.oscillation;
+    const int half_cycles = o ? o->half_cycles : 0;
+    if (e.min_half_cycles) {
+      add(e.pointer + "/min_half_cycles", half_cycles >= *e.min_half_cycles,
+          printf_string("%s: at least %d half-cycles, got %d", name.c_str(), *e.min_half_cycles, half_cycles));
+    }
+    if (e.max_half_cycles) {
+      add(e.pointer + "/max_half_cycles", half_cycles <= *e.max_half_cycles,
+          printf_string("%s: at most %d half-cycles, got %d", name.c_str(), *e.max_half_cycles, half_cycles));
+    }
+    if (e.frequency_Hz) {
+      const double f_Hz = o ? o->frequency_Hz : 0.0;
+      add(e.pointer + "/frequency", f_Hz >= e.frequency_Hz->first && f_Hz <= e.frequency_Hz->second,
+          printf_string("%s: frequency in [%g, %g] Hz, got %.3f Hz", name.c_str(), e.frequency_Hz->first,
+                        e.frequency_Hz->second, f_Hz));
+    }
+    if (e.max_force_N) {
+      add(e.pointer + "/max_force", s->metrics.max_output_N <= *e.max_force_N,
+          printf_string("%s: force at most %g N, got %.4g N", name.c_str(), *e.max_force_N, s->metrics.max_output_N));
+    }
+    if (e.pass) {
+      add(e.pointer + "/pass", s->pass == *e.pass,
+          name + (*e.pass ? ": every check passes" : ": some check fails") + (s->pass ? " (all passed)" : " (some failed)"));
+    }
+    for (const std::string& check : e.fail) {
+      const auto found = std::find_if(s->checks.begin(), s->checks.end(),
+                                      [&](const CheckResult& c) { return c.name == check; });
+      const bool failed = found != s->checks.end() && !found->pass;
+      add(e.pointer + "/fail", failed,
+          name + ": check " + check + " fails: " + (found == s->checks.end() ? "not run" : (failed ? "yes, " : "no, ") + found->detail));
+    }
+  }
+  return result;
+}
+
+std::vector<std::string> find_test_specs(const std::vector<std::string>& folders) {
+  std::vector<std::string> specs;
+  for (const std::string& folder : folders) {
+    std::error_code error;
+    if (!std::filesystem::is_directory(folder, error)) continue;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(folder, error)) {
+      const std::string name = entry.path().filename().string();
+      if (entry.is_regular_file() && name.size() > 10 && name.ends_with(".test.json")) {
+        specs.push_back(entry.path().lexically_normal().string());
+      }
+    }
+  }
+  std::sort(specs.begin(), specs.end());
+  return specs;
+}
+
+}  // namespace hapscene

@@ -1,0 +1,62 @@
+#include "engine/harness/validate.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/devices/simulated_hapkit.hpp"
+#include "engine/run/runner.hpp"
+
+namespace hapscene {
+
+ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const Scenario& scenario,
+                            const HarnessOptions& options) {
+  ScenarioResult result;
+  result.scenario = scenario;
+  if (!scenario.applicable) return result;
+
+  // The device: the scene's profile, with the sensor noise the options ask for.
+  DeviceProfile profile = scene.device;
+  if (options.noise_counts >= 0.0) profile.plant.sensor_noise_counts = options.noise_counts;
+  SimulatedHapkit device(profile, scenario.simulation);
+
+  // Run in simulated time, recording every tick into memory reserved up front.
+  const auto ticks = static_cast<std::size_t>(std::llround(scenario.duration_s * scene.rate_hz));
+  Recorder recorder(&device, ticks + 1);
+  RunOptions run_options{.duration_s = scenario.duration_s, .pacing = Pacing::simulated_time};
+  const RunSummary summary = run_scene(scene, device, run_options, &recorder);
+
+  // Measure and judge.
+  result.records = recorder.take();
+  result.metrics = measure_run(scene, field, result.records, device.x_m(), summary, scenario.watch_from_s);
+  result.checks = judge_scenario(scene, scenario, field, result.metrics);
+  result.pass = std::all_of(result.checks.begin(), result.checks.end(),
+                            [](const CheckResult& c) { return c.pass; });
+  return result;
+}
+
+ValidationReport validate_scene(const Scene& scene, const std::vector<ScenarioKind>& kinds,
+                                const HarnessOptions& options) {
+  ValidationReport report;
+  report.scene_name = scene.name;
+  report.source_path = scene.source_path;
+  report.rate_hz = scene.rate_hz;
+  report.passivity_bound_N_per_m = 2.0 * scene.device.plant.viscous_N_s_per_m / scene.period_s;
+  report.options = options;
+  report.field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);
+  for (const StiffRegion& region : report.field.regions) {
+    report.stiffest_region_N_per_m = std::max(report.stiffest_region_N_per_m, region.stiffness_N_per_m);
+  }
+
+  std::vector<ScenarioKind> chosen = kinds;
+  if (chosen.empty()) {
+    for (std::size_t i = 0; i < std::size(kScenarioNames); ++i) chosen.push_back(static_cast<ScenarioKind>(i));
+  }
+  for (const ScenarioKind kind : chosen) {
+    const Scenario scenario = build_scenario(kind, scene, report.field, options);
+    report.scenarios.push_back(run_scenario(scene, report.field, scenario, options));
+    report.pass = report.pass && report.scenarios.back().pass;
+  }
+  return report;
+}
+
+}  // namespace hapscene

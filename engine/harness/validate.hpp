@@ -1,0 +1,43 @@
+#pragma once
+// `hapscene validate` as a library call: probe the force field, build the scenarios,
+// run each closed loop on the simulated Hapkit in simulated time, measure and judge.
+#include <vector>
+
+#include "engine/core/scene.hpp"
+#include "engine/harness/checks.hpp"
+#include "engine/harness/force_field.hpp"
+#include "engine/harness/metrics.hpp"
+#include "engine/harness/recorder.hpp"
+#include "engine/harness/scenario.hpp"
+
+namespace hapscene {
+
+struct ScenarioResult {
+  Scenario scenario;
+  ScenarioMetrics metrics;
+  std::vector<CheckResult> checks;   // empty when the scenario is not applicable
+  std::vector<TickRecord> records;   // every tick, for plots
+  bool pass{true};
+};
+
+struct ValidationReport {
+  std::string scene_name;
+  std::string source_path;
+  double rate_hz{};
+  double passivity_bound_N_per_m{};  // 2 b / T: Colgate's sampled-wall bound for this device
+  double stiffest_region_N_per_m{};  // the stiffest region the probe found (0: none)
+  HarnessOptions options;
+  ForceField field;
+  std::vector<ScenarioResult> scenarios;
+  bool pass{true};
+};
+
+// Runs one scenario (deterministic: the same inputs give bit-identical records).
+ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const Scenario& scenario,
+                            const HarnessOptions& options);
+
+// Runs the given scenarios (all six when `kinds` is empty).
+ValidationReport validate_scene(const Scene& scene, const std::vector<ScenarioKind>& kinds,
+                                const HarnessOptions& options);
+
+}  // namespace hapscene

@@ -1,0 +1,56 @@
+#include "engine/load/validate_block.hpp"
+
+namespace hapscene {
+namespace {
+
+// An optional whole number of ticks (or faults).
+std::uint64_t count_or(ObjectReader& reader, std::string_view key, std::uint64_t fallback) {
+  if (!reader.has(key)) {
+    reader.get(key);
+    return fallback;
+  }
+  return static_cast<std::uint64_t>(reader.integer(key, 0, 1'000'000'000));
+}
+
+// An optional fraction in [0, 1].
+double fraction_or(ObjectReader& reader, std::string_view key, double fallback) {
+  const double value = reader.quantity_or(key, Quantity::dimensionless, fallback, Bound::non_negative);
+  if (value > 1.0) reader.fail(key, "must be a fraction in [0, 1], got " + format_number(value));
+  return value;
+}
+
+}  // namespace
+
+void parse_validate_block(ObjectReader& reader, ValidateThresholds* t) {
+  // Checks.
+  t->max_force_N = reader.quantity_or("max_force", Quantity::force_N, t->max_force_N, Bound::positive);
+  t->max_time_at_limit_fraction =
+      fraction_or(reader, "max_time_at_limit", t->max_time_at_limit_fraction);
+  t->max_slew_N_per_s = reader.quantity_or("max_slew", Quantity::force_rate_N_per_s,
+                                           t->max_slew_N_per_s, Bound::positive);
+  t->max_slip_ticks = count_or(reader, "max_slip_ticks", t->max_slip_ticks);
+  t->max_passivity_ratio = reader.quantity_or("max_passivity_ratio", Quantity::dimensionless,
+                                              t->max_passivity_ratio, Bound::positive);
+  t->max_residual_amplitude_m = reader.quantity_or(
+      "max_residual_amplitude", Quantity::length_m, t->max_residual_amplitude_m, Bound::positive);
+  t->max_amplitude_growth = reader.quantity_or("max_amplitude_growth", Quantity::dimensionless,
+                                               t->max_amplitude_growth, Bound::positive);
+  t->max_penetration_m = reader.quantity_or("max_penetration", Quantity::length_m,
+                                            t->max_penetration_m, Bound::positive);
+  t->max_force_jitter_N = reader.quantity_or("max_force_jitter", Quantity::force_N,
+                                             t->max_force_jitter_N, Bound::positive);
+  t->max_tick_compute_s = reader.quantity_or("max_tick_compute", Quantity::time_s,
+                                             t->max_tick_compute_s, Bound::positive);
+  t->max_script_faults = count_or(reader, "max_script_faults", t->max_script_faults);
+
+  // Scenario construction.
+  t->stiff_threshold_N_per_m = reader.quantity_or("stiff_threshold", Quantity::stiffness_N_per_m,
+                                                  t->stiff_threshold_N_per_m, Bound::positive);
+  t->press_force_N =
+      reader.quantity_or("press_force", Quantity::force_N, t->press_force_N, Bound::positive);
+  t->release_from_m =
+      reader.quantity_or("release_from", Quantity::length_m, t->release_from_m);
+  reader.finish();
+}
+
+}  // namespace hapscene
