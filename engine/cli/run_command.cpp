@@ -28,6 +28,7 @@ extern "C" void on_interrupt(int /*signal*/) { g_stop_requested.store(true); }
 
 struct RunSettings {
   std::string device{"sim"};
+  LinkOptions link;
   RunOptions options;
   SimulationConfig simulation;
   double noise_counts{-1.0};  // < 0: the profile's
@@ -37,6 +38,16 @@ struct RunSettings {
 RunSettings parse_settings(Arguments& arguments) {
   RunSettings settings;
   settings.device = arguments.take_value("device").value_or("sim");
+  if (const auto baud = arguments.take_value("baud")) {
+    try {
+      std::size_t used = 0;
+      const long value = std::stol(*baud, &used);
+      if (used != baud->size() || value <= 0 || value > 100'000'000) throw std::invalid_argument(*baud);
+      settings.link.baud = static_cast<int>(value);
+    } catch (const std::exception&) {
+      arguments.fail("--baud: expected a positive whole number of bits per second, got "" + *baud + """);
+    }
+  }
   settings.options.duration_s =
       arguments.take_quantity("duration", Quantity::time_s).value_or(settings.options.duration_s);
   if (!(settings.options.duration_s > 0.0 && settings.options.duration_s <= 24 * 3600.0)) {
@@ -163,14 +174,17 @@ int run_command(std::vector<std::string> args) {
   if (files.empty()) arguments.fail("expected at least one environment file");
 
   // Load everything and open every device first: a bad file fails before anything moves.
+  // A real board on a serial port is opened once and shared by every environment.
   std::vector<Scene> scenes;
   std::vector<std::unique_ptr<Device>> devices;
+  const bool shared_device = settings.device.starts_with("serial");
   for (const std::string& file : files) {
     scenes.push_back(load_environment_file(file));
+    if (shared_device && !devices.empty()) continue;
     DeviceProfile profile = scenes.back().device;
     if (settings.noise_counts >= 0.0) profile.plant.sensor_noise_counts = settings.noise_counts;
     try {
-      devices.push_back(open_device(settings.device, profile, settings.simulation));
+      devices.push_back(open_device(settings.device, profile, settings.simulation, settings.link));
     } catch (const InputError& error) {
       arguments.fail(error.what());
     }
@@ -181,14 +195,17 @@ int run_command(std::vector<std::string> args) {
   const bool show_status = !settings.quiet && isatty(STDERR_FILENO) == 1;
   for (std::size_t i = 0; i < scenes.size() && !g_stop_requested.load(); ++i) {
     const Scene& scene = scenes[i];
+    Device& device = *devices[shared_device ? 0 : i];
     LiveStatus status;
     RunSummary summary;
     {
       StatusLine line(status, scene.period_s, show_status);
-      summary = run_scene(scene, *devices[i], settings.options, &status);
+      summary = run_scene(scene, device, settings.options, &status);
     }
     if (i > 0) std::printf("\n");
     print_summary(scene, settings, summary);
+    std::fputs(device.report().c_str(), stdout);
+    std::fflush(stdout);
   }
   return kExitOk;
 }

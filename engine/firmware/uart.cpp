@@ -17,10 +17,11 @@ static volatile uint16_t g_rx_overruns;
 
 void uart_init(void) {
   /* Double speed: UBRR = F_CPU / (8 * baud) - 1, exact for 1 Mbaud at 16 MHz. */
+  /* U2X before UBRR: simavr derives its byte timing when UBRR is written. */
   const uint16_t ubrr = (uint16_t)(F_CPU / (8UL * HS_FIRMWARE_BAUD) - 1UL);
+  UCSR0A = _BV(U2X0);
   UBRR0H = (uint8_t)(ubrr >> 8);
   UBRR0L = (uint8_t)ubrr;
-  UCSR0A = _BV(U2X0);
   UCSR0C = _BV(UCSZ01) | _BV(UCSZ00);
   UCSR0B = _BV(RXEN0) | _BV(TXEN0) | _BV(RXCIE0);
 }

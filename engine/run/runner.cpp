@@ -60,6 +60,7 @@ RunSummary run_scene(const Scene& scene, Device& device, const RunOptions& optio
     // Read the device, compute, write the device.
     const std::int64_t begin_ns = monotonic_ns();
     const std::int32_t raw_counts = device.read_counts();
+    if (device.take_restart()) restart_soft_start(&state.safety);  // the link came back
     step(scene, raw_counts, &state);
     device.write(state.command);
     const std::int64_t end_ns = monotonic_ns();
