@@ -45,7 +45,7 @@ RunSettings parse_settings(Arguments& arguments) {
       if (used != baud->size() || value <= 0 || value > 100'000'000) throw std::invalid_argument(*baud);
       settings.link.baud = static_cast<int>(value);
     } catch (const std::exception&) {
-      arguments.fail("--baud: expected a positive whole number of bits per second, got "" + *baud + """);
+      arguments.fail("--baud: expected a positive whole number of bits per second, got \"" + *baud + "\"");
     }
   }
   settings.options.duration_s =
