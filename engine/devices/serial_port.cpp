@@ -1,6 +1,7 @@
 #include "engine/devices/serial_port.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -94,7 +95,12 @@ long SerialPort::read_some(std::uint8_t* data, std::size_t capacity) noexcept {
   const ssize_t n = ::read(fd_, data, capacity);
   if (n > 0) return n;
   if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) return 0;
-  // End of file or an error (EIO, ENXIO): the device went away.
+  if (n == 0) {
+    // With VMIN = VTIME = 0 an empty read returns 0; a hang-up shows in poll().
+    pollfd fd{fd_, POLLIN, 0};
+    if (::poll(&fd, 1, 0) >= 0 && (fd.revents & (POLLHUP | POLLERR | POLLNVAL)) == 0) return 0;
+  }
+  // Hung up or an error (EIO, ENXIO): the device went away.
   close_port();
   return -1;
 }

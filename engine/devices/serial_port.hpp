@@ -1,6 +1,6 @@
 #pragma once
 // A serial port as a ByteLink: termios raw mode, 8N1, no flow control, non-blocking
-// reads and writes (O_NONBLOCK, VMIN = VTIME = 0). A read or write error, or end of file
+// reads and writes (O_NONBLOCK, VMIN = VTIME = 0). A read or write error, or a hang-up
 // (the device was unplugged), reports the link gone; reopen() tries the same path again.
 #include <string>
 
