@@ -33,7 +33,8 @@
 
 /* No valid COMMAND for this long: motor off (counted in sampler ticks). */
 #define HS_COMMAND_TIMEOUT_MS 20u
-#define HS_COMMAND_TIMEOUT_TICKS ((uint16_t)(HS_COMMAND_TIMEOUT_MS * HS_SAMPLE_RATE_HZ / 1000u))
+/* (32-bit arithmetic: int is 16 bits on the AVR, and 20 * 5000 overflows it.) */
+#define HS_COMMAND_TIMEOUT_TICKS ((uint16_t)(HS_COMMAND_TIMEOUT_MS * (uint32_t)HS_SAMPLE_RATE_HZ / 1000u))
 
 /* Highest duty the board applies whatever the host asks (242/255, 95 %). */
 #define HS_DUTY_LIMIT 242u

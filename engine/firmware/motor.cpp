@@ -39,8 +39,9 @@ void motor_drive(uint8_t level, uint8_t direction_high) {
     TCCR0A = _BV(WGM01) | _BV(WGM00);
     PORTD |= _BV(PD5);
   } else {
-    /* Non-inverting fast PWM: high for OCR0B + 1 of 256 timer counts. */
-    OCR0B = (uint8_t)(level - 1);
+    /* Non-inverting fast PWM: high for OCR0B + 1 of 256 timer counts; level/255 of the
+     * period to the nearest count is level + 1 counts from level 128 on. */
+    OCR0B = (uint8_t)(level - 1 + (level >= 128 ? 1 : 0));
     TCCR0A = _BV(COM0B1) | _BV(WGM01) | _BV(WGM00);
   }
   g_motor_on = 1;

@@ -7,8 +7,8 @@
 /* Pins low, PWM disconnected, Timer0 in fast PWM at 62.5 kHz ready for a duty. */
 void motor_init(void);
 
-/* Duty in 1/256 steps: 0 off (pin low), 1..254 -> level/256 of the period, 255 full on.
- * The caller applies the duty limit. */
+/* Duty level of 255: 0 off (pin low), 1..254 -> level/255 of the PWM period to the
+ * nearest of its 256 counts, 255 full on. The caller applies the duty limit. */
 void motor_drive(uint8_t level, uint8_t direction_high);
 
 /* Pin low and PWM disconnected: no torque. */
