@@ -161,6 +161,30 @@ void print_summary(const Scene& scene, const RunSettings& settings, const RunSum
     std::printf("  wake-up jitter   p50 %.2f us  p99 %.2f us  max %.2f us\n",
                 us(summary.wake_late_ns.percentile_ns(0.50)),
                 us(summary.wake_late_ns.percentile_ns(0.99)), us(summary.wake_late_ns.max_ns()));
+    // The jitter histogram: ticks per band of lateness.
+    const LatencyHistogram& late = summary.wake_late_ns;
+    const std::uint64_t edges_ns[] = {10'000, 50'000, 100'000, 500'000, 1'000'000};
+    std::uint64_t below = 0;
+    std::string bands;
+    const char* names[] = {"<10us", "10-50us", "50-100us", "100-500us", "0.5-1ms"};
+    for (std::size_t b = 0; b < 5; ++b) {
+      const std::uint64_t upto = late.count_at_most(edges_ns[b]);
+      bands += std::string(b ? "  " : "") + names[b] + " " + std::to_string(upto - below);
+      below = upto;
+    }
+    bands += "  >1ms " + std::to_string(late.count() - below);
+    std::printf("  jitter bands     %s\n", bands.c_str());
+    std::printf("  scheduling       %s\n", summary.realtime_note.c_str());
+    if (summary.overrun_warnings > 0 || summary.overrun_fault) {
+      std::printf("  overruns         %llu warnings (first at %.3f s), longest streak %u misses\n",
+                  static_cast<unsigned long long>(summary.overrun_warnings),
+                  summary.first_overrun_warning_s, summary.longest_miss_streak);
+    }
+    if (summary.overrun_fault) {
+      std::printf("  FAULT            sustained overrun at %.3f s (%u deadline misses in a row): "
+                  "zero force commanded, run stopped\n",
+                  summary.overrun_fault_s, settings.options.overrun_fault_ticks);
+    }
   }
   std::fflush(stdout);
 }
@@ -193,6 +217,7 @@ int run_command(std::vector<std::string> args) {
   std::signal(SIGINT, on_interrupt);
   settings.options.stop_requested = &g_stop_requested;
   const bool show_status = !settings.quiet && isatty(STDERR_FILENO) == 1;
+  bool faulted = false;  // a run that ended on a fault makes the exit code 1
   for (std::size_t i = 0; i < scenes.size() && !g_stop_requested.load(); ++i) {
     const Scene& scene = scenes[i];
     Device& device = *devices[shared_device ? 0 : i];
@@ -206,8 +231,9 @@ int run_command(std::vector<std::string> args) {
     print_summary(scene, settings, summary);
     std::fputs(device.report().c_str(), stdout);
     std::fflush(stdout);
+    faulted = faulted || summary.overrun_fault;
   }
-  return kExitOk;
+  return faulted ? kExitFailure : kExitOk;
 }
 
 }  // namespace hapscene

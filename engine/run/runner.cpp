@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "engine/core/step.hpp"
+#include "engine/run/realtime.hpp"
 
 namespace hapscene {
 namespace {
@@ -43,7 +44,11 @@ RunSummary run_scene(const Scene& scene, Device& device, const RunOptions& optio
   const bool real_time = options.pacing == Pacing::real_time;
 
   // Wake-ups exactly when asked: the default 50 us timer slack would eat the spin margin.
+  // Real-time scheduling and locked memory when permitted, for the length of the run.
   if (real_time) prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+  const RealtimeGuard realtime(real_time && options.realtime_scheduling);
+  summary.realtime_note = realtime.note();
+  std::uint32_t miss_streak = 0;
 
   const std::int64_t start_ns = monotonic_ns();
   std::int64_t deadline_ns = start_ns;
@@ -78,8 +83,25 @@ RunSummary run_scene(const Scene& scene, Device& device, const RunOptions& optio
       ++summary.deadline_misses;
       const std::int64_t behind_ns = monotonic_ns() - deadline_ns;
       deadline_ns += (behind_ns / period_ns + 1) * period_ns;
+      // Sustained overruns: warn, then fault to zero force and stop.
+      ++miss_streak;
+      if (miss_streak > summary.longest_miss_streak) summary.longest_miss_streak = miss_streak;
+      if (miss_streak == options.overrun_warn_ticks) {
+        ++summary.overrun_warnings;
+        if (summary.first_overrun_warning_s < 0.0) summary.first_overrun_warning_s = state.t_s;
+      }
+      if (miss_streak >= options.overrun_fault_ticks) {
+        summary.overrun_fault = true;
+        summary.overrun_fault_s = state.t_s;
+        break;
+      }
+    } else {
+      miss_streak = 0;
     }
   }
+
+  // The run is over (or faulted): the motor gets zero force.
+  device.write(MotorCommand{});
 
   summary.ticks = state.tick;
   summary.safety = state.safety.counters;
