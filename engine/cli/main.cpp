@@ -27,7 +27,10 @@ usage:
   hapscene version | --version
 
 run options:
-  --device sim          the device (default: sim, a simulated Hapkit from the scene's profile)
+  --device SPEC         sim (default: a simulated Hapkit from the scene's profile),
+                        serial:/dev/ttyACM0 (a Hapkit running the hapscene firmware),
+                        hil (the firmware on a simulated ATmega328P and Hapkit)
+  --baud N              serial speed (default 1000000)
   --duration T          device time per environment (default 2 s; units allowed: "500 ms")
   --sim-time            run as fast as possible in simulated time instead of real time
   --hand MOTION         simulated hand: sweep (default), hold, release, shake, none

@@ -37,6 +37,7 @@ extern "C" void on_interrupt(int /*signal*/) { g_stop_requested.store(true); }
 
 struct RunSettings {
   std::string device{"sim"};
+  LinkOptions link;
   RunOptions options;
   SimulationConfig simulation;
   double noise_counts{-1.0};  // < 0: the profile's
@@ -49,6 +50,16 @@ struct RunSettings {
 RunSettings parse_settings(Arguments& arguments) {
   RunSettings settings;
   settings.device = arguments.take_value("device").value_or("sim");
+  if (const auto baud = arguments.take_value("baud")) {
+    try {
+      std::size_t used = 0;
+      const long value = std::stol(*baud, &used);
+      if (used != baud->size() || value <= 0 || value > 100'000'000) throw std::invalid_argument(*baud);
+      settings.link.baud = static_cast<int>(value);
+    } catch (const std::exception&) {
+      arguments.fail("--baud: expected a positive whole number of bits per second, got \"" + *baud + "\"");
+    }
+  }
   settings.options.duration_s =
       arguments.take_quantity("duration", Quantity::time_s).value_or(settings.options.duration_s);
   if (!(settings.options.duration_s > 0.0 && settings.options.duration_s <= 24 * 3600.0)) {
@@ -179,6 +190,30 @@ void print_summary(const Scene& scene, const RunSettings& settings, const RunSum
     std::printf("  wake-up jitter   p50 %.2f us  p99 %.2f us  max %.2f us\n",
                 us(summary.wake_late_ns.percentile_ns(0.50)),
                 us(summary.wake_late_ns.percentile_ns(0.99)), us(summary.wake_late_ns.max_ns()));
+    // The jitter histogram: ticks per band of lateness.
+    const LatencyHistogram& late = summary.wake_late_ns;
+    const std::uint64_t edges_ns[] = {10'000, 50'000, 100'000, 500'000, 1'000'000};
+    std::uint64_t below = 0;
+    std::string bands;
+    const char* names[] = {"<10us", "10-50us", "50-100us", "100-500us", "0.5-1ms"};
+    for (std::size_t b = 0; b < 5; ++b) {
+      const std::uint64_t upto = late.count_at_most(edges_ns[b]);
+      bands += std::string(b ? "  " : "") + names[b] + " " + std::to_string(upto - below);
+      below = upto;
+    }
+    bands += "  >1ms " + std::to_string(late.count() - below);
+    std::printf("  jitter bands     %s\n", bands.c_str());
+    std::printf("  scheduling       %s\n", summary.realtime_note.c_str());
+    if (summary.overrun_warnings > 0 || summary.overrun_fault) {
+      std::printf("  overruns         %llu warnings (first at %.3f s), longest streak %u misses\n",
+                  static_cast<unsigned long long>(summary.overrun_warnings),
+                  summary.first_overrun_warning_s, summary.longest_miss_streak);
+    }
+    if (summary.overrun_fault) {
+      std::printf("  FAULT            sustained overrun at %.3f s (%u deadline misses in a row): "
+                  "zero force commanded, run stopped\n",
+                  summary.overrun_fault_s, settings.options.overrun_fault_ticks);
+    }
   }
   std::fflush(stdout);
 }
@@ -195,14 +230,17 @@ int run_command(std::vector<std::string> args) {
   }
 
   // Load everything and open every device first: a bad file fails before anything moves.
+  // A real board on a serial port is opened once and shared by every environment.
   std::vector<Scene> scenes;
   std::vector<std::unique_ptr<Device>> devices;
+  const bool shared_device = settings.device.starts_with("serial");
   for (const std::string& file : files) {
     scenes.push_back(load_environment_file(file));
+    if (shared_device && !devices.empty()) continue;
     DeviceProfile profile = scenes.back().device;
     if (settings.noise_counts >= 0.0) profile.plant.sensor_noise_counts = settings.noise_counts;
     try {
-      devices.push_back(open_device(settings.device, profile, settings.simulation));
+      devices.push_back(open_device(settings.device, profile, settings.simulation, settings.link));
     } catch (const InputError& error) {
       arguments.fail(error.what());
     }
@@ -211,8 +249,10 @@ int run_command(std::vector<std::string> args) {
   std::signal(SIGINT, on_interrupt);
   settings.options.stop_requested = &g_stop_requested;
   const bool show_status = !settings.quiet && isatty(STDERR_FILENO) == 1;
+  bool faulted = false;  // a run that ended on a fault makes the exit code 1
   for (std::size_t i = 0; i < scenes.size() && !g_stop_requested.load(); ++i) {
     const Scene& scene = scenes[i];
+    Device& device = *devices[shared_device ? 0 : i];
     // Observers: the live status, and (allocated before the run) the log and the trace.
     LiveStatus status;
     ObserverList observers;
@@ -231,7 +271,7 @@ int run_command(std::vector<std::string> args) {
     std::unique_ptr<Recorder> trace;
     if (settings.plot_path) {
       const auto ticks = static_cast<std::size_t>(std::llround(settings.options.duration_s * scene.rate_hz));
-      trace = std::make_unique<Recorder>(dynamic_cast<const SimulatedHapkit*>(devices[i].get()), ticks + 1);
+      trace = std::make_unique<Recorder>(dynamic_cast<const SimulatedHapkit*>(&device), ticks + 1);
     }
     observers.add(trace.get());
     RunSummary summary;
@@ -247,7 +287,7 @@ int run_command(std::vector<std::string> args) {
               std::fprintf(stderr, "%s%s\n", show_status ? "\r\033[K" : "", message.c_str());
             });
       }
-      summary = run_scene(scene, *devices[i], options, &observers);
+      summary = run_scene(scene, device, options, &observers);
     }
     std::vector<std::string> log_lines;
     status.drain_log(&log_lines);
@@ -269,9 +309,11 @@ int run_command(std::vector<std::string> args) {
       write_output_file(*settings.plot_path, run_figure_svg(scene, trace->records(), what));
       std::printf("  plot             %s\n", settings.plot_path->c_str());
     }
+    std::fputs(device.report().c_str(), stdout);
     std::fflush(stdout);
+    faulted = faulted || summary.overrun_fault;
   }
-  return kExitOk;
+  return faulted ? kExitFailure : kExitOk;
 }
 
 }  // namespace hapscene

@@ -2,6 +2,7 @@
 // What the haptic loop needs of a device: a raw sensor reading and a motor command.
 // Simulated devices also advance their physics by one tick period.
 #include <cstdint>
+#include <string>
 
 #include "engine/devices/kinematics.hpp"
 
@@ -10,12 +11,19 @@ namespace hapscene {
 class Device {
  public:
   virtual ~Device() = default;
-  // The raw sensor reading (ADC counts of the MR sensor), as the board reports it.
+  // The sensor reading in counts of the MR sensor: raw (wrapping) or already unwrapped by
+  // the board; the loop's flip counter leaves a continuous reading as it is.
   virtual std::int32_t read_counts() noexcept = 0;
   // The motor command, held until the next write (sample-and-hold).
   virtual void write(const MotorCommand& command) noexcept = 0;
   // Lets `dt_s` of device time pass. Real devices move on their own and ignore it.
   virtual void advance(double dt_s) noexcept { (void)dt_s; }
+  // True once after the device's link came back (or first came up): the loop ramps
+  // force in again, as at the start of a run.
+  virtual bool take_restart() noexcept { return false; }
+  // Lines for the run summary (link health, latency, board timing); called outside the
+  // loop. Empty for devices with nothing to add.
+  virtual std::string report() const { return {}; }
 };
 
 }  // namespace hapscene

@@ -1,12 +1,50 @@
 #include "engine/devices/open_device.hpp"
 
 #include "engine/core/errors.hpp"
+#include "engine/devices/serial_hapkit.hpp"
+#include "engine/devices/simulated_hapkit.hpp"
+#if HAPSCENE_HAVE_HIL
+#include "engine/devices/hil/hil_hapkit.hpp"
+#endif
 
 namespace hapscene {
 
+bool hil_available() noexcept { return HAPSCENE_HAVE_HIL != 0; }
+
+std::string default_firmware_elf() {
+#ifdef HAPSCENE_FIRMWARE_ELF
+  return HAPSCENE_FIRMWARE_ELF;
+#else
+  return {};
+#endif
+}
+
 std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile& profile,
-                                    const SimulationConfig& simulation) {
+                                    const SimulationConfig& simulation, const LinkOptions& link) {
   if (spec == "sim") return std::make_unique<SimulatedHapkit>(profile, simulation);
+
+  // serial:PATH
+  if (spec.starts_with("serial:") || spec == "serial") {
+    const std::string path = spec.size() > 7 ? spec.substr(7) : std::string();
+    if (path.empty()) throw InputError("--device serial: needs a port path, e.g. serial:/dev/ttyACM0");
+    SerialConfig config;
+    config.path = path;
+    config.baud = link.baud;
+    return std::make_unique<SerialHapkit>(profile, config);
+  }
+
+  // hil or hil:ELF
+  if (spec == "hil" || spec.starts_with("hil:")) {
+#if HAPSCENE_HAVE_HIL
+    HilConfig config;
+    config.simulation = simulation;
+    config.firmware_elf = spec.size() > 4 ? spec.substr(4) : default_firmware_elf();
+    return std::make_unique<HilHapkit>(profile, config);
+#else
+    throw InputError("--device hil: this build has no firmware-in-the-loop (it needs simavr, "
+                     "libsimavr-dev and the AVR toolchain when building; see .ci/install-deps)");
+#endif
+  }
   throw InputError("--device: unknown device \"" + spec + "\" (available: " + kDeviceSpecs + ")");
 }
 

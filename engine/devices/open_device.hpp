@@ -1,20 +1,34 @@
 #pragma once
 // Opens the device named on the command line (`--device SPEC`) for a scene.
-//   sim   the simulated Hapkit built from the scene's device profile
+//   sim          the simulated Hapkit built from the scene's device profile
+//   serial:PATH  a Hapkit running the hapscene firmware on a serial port
+//   hil[:ELF]    the firmware run on a simulated ATmega328P wired to the simulated
+//                Hapkit (firmware-in-the-loop; needs simavr and the AVR toolchain at
+//                build time); ELF defaults to the firmware this build produced
 #include <memory>
 #include <string>
 
 #include "engine/devices/device.hpp"
+#include "engine/devices/hapkit_plant.hpp"
 #include "engine/devices/profile.hpp"
-#include "engine/devices/simulated_hapkit.hpp"
 
 namespace hapscene {
 
 // The device specs `open_device` understands, for messages.
-inline constexpr const char* kDeviceSpecs = "sim";
+inline constexpr const char* kDeviceSpecs = "sim, serial:PATH, hil";
 
-// Throws InputError for an unknown spec or one that cannot be opened.
+struct LinkOptions {
+  int baud{1000000};  // serial only
+};
+
+// Throws InputError for an unknown or malformed spec, or one that cannot be opened;
+// std::runtime_error when a device opens but does not answer.
 std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile& profile,
-                                    const SimulationConfig& simulation);
+                                    const SimulationConfig& simulation,
+                                    const LinkOptions& link = {});
+
+// Whether this build can run `--device hil`, and the firmware it would load.
+bool hil_available() noexcept;
+std::string default_firmware_elf();
 
 }  // namespace hapscene

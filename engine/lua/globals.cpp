@@ -2,6 +2,7 @@
 // chunk assigns it, so top-level code already sees SI values and overrides), the
 // read-only state table `s`, and the checks run after the chunk has loaded.
 #include <algorithm>
+#include <cctype>
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
@@ -80,9 +81,32 @@ int raise_load_error(lua_State* L) { return raise_tripped(L); }
 
 // ---- params ------------------------------------------------------------------------
 
+// The last line at or before `last_line` where `name = ` appears in the source (a table
+// constructor ends at the line of the assignment, so its fields are above it), or 0.
+int declaration_line(const std::string& source, const std::string& name, int last_line) {
+  int line = 1;
+  int found = 0;
+  for (std::size_t i = 0; i < source.size() && line <= last_line; ++i) {
+    if (source[i] == '\n') {
+      ++line;
+      continue;
+    }
+    const bool starts_word =
+        i == 0 || !(std::isalnum(static_cast<unsigned char>(source[i - 1])) || source[i - 1] == '_');
+    if (!starts_word || source.compare(i, name.size(), name) != 0) continue;
+    std::size_t j = i + name.size();
+    while (j < source.size() && (source[j] == ' ' || source[j] == '\t')) ++j;
+    if (j < source.size() && source[j] == '=' && (j + 1 >= source.size() || source[j + 1] != '=')) {
+      found = line;
+    }
+  }
+  return found;
+}
+
 // Reads the declared defaults of the table at `index` (0: none declared) and resolves
 // them with the JSON overrides into vm->params. C++ only; never raises a Lua error.
-bool resolve_declared(lua_State* L, int index, const char* declared_at, ScriptVm* vm) noexcept {
+bool resolve_declared(lua_State* L, int index, const char* declared_at, int assigned_line,
+                      ScriptVm* vm) noexcept {
   try {
     std::vector<DeclaredParam> declared;
     if (index != 0) {
@@ -115,6 +139,10 @@ bool resolve_declared(lua_State* L, int index, const char* declared_at, ScriptVm
             d.type = DeclaredParam::Type::other;
             d.text = luaL_typename(L, -1);
             break;
+        }
+        if (!d.name.empty() && vm->source != nullptr) {
+          const int line = declaration_line(*vm->source, d.name, assigned_line);
+          if (line > 0) d.declared_at = vm->short_source + ":" + std::to_string(line);
         }
         declared.push_back(std::move(d));
         lua_pop(L, 1);
@@ -191,7 +219,9 @@ int assign_params(lua_State* L) {
   }
   char where[160];
   describe_position(L, 1, vm, where, sizeof where);
-  if (!resolve_declared(L, 3, where, vm)) return raise_load_error(L);
+  lua_Debug ar{};
+  const int line = lua_getstack(L, 1, &ar) != 0 && lua_getinfo(L, "l", &ar) != 0 ? ar.currentline : 0;
+  if (!resolve_declared(L, 3, where, line, vm)) return raise_load_error(L);
   write_params(L, 3, vm);
   seal_params(L, 3);
   lua_pushvalue(L, 3);
@@ -427,7 +457,7 @@ int finish_load(lua_State* L) {
   lua_pushliteral(L, "params");
   lua_rawget(L, env);
   if (!vm->params_assigned) {
-    if (!resolve_declared(L, 0, name, vm)) return raise_load_error(L);
+    if (!resolve_declared(L, 0, name, 0, vm)) return raise_load_error(L);
     lua_newtable(L);
     seal_params(L, -1);
     lua_setfield(L, env, "params");

@@ -10,10 +10,10 @@ namespace hapscene {
 namespace {
 
 // "<declared_at>: params.<name>: <message>": a problem in the script's own defaults.
-[[noreturn]] void default_error(const ParamPlaces& places, std::string_view name,
+[[noreturn]] void default_error(const DeclaredParam& d, const ParamPlaces& places,
                                 const std::string& message) {
-  throw InputError(std::string(places.declared_at) + ": params." + std::string(name) + ": " +
-                   message);
+  const std::string_view at = d.declared_at.empty() ? places.declared_at : d.declared_at;
+  throw InputError(std::string(at) + ": params." + d.name + ": " + message);
 }
 
 // "<context>: <prefix>/<key>: <message>": a problem in the JSON overrides.
@@ -41,7 +41,8 @@ bool looks_like_quantity(std::string_view text) {
 // Converts one declared default to a parameter (SI), or throws naming it.
 ScriptParam from_default(const DeclaredParam& d, const ParamPlaces& places) {
   if (d.name.empty()) {
-    throw InputError(std::string(places.declared_at) + ": params[" + d.key_text +
+    const std::string_view at = d.declared_at.empty() ? places.declared_at : d.declared_at;
+    throw InputError(std::string(at) + ": params[" + d.key_text +
                      "]: parameter names must be strings");
   }
   ScriptParam p;
@@ -49,7 +50,7 @@ ScriptParam from_default(const DeclaredParam& d, const ParamPlaces& places) {
   switch (d.type) {
     case DeclaredParam::Type::number:
       if (!std::isfinite(d.number)) {
-        default_error(places, d.name, "must be a finite number, got " + std::to_string(d.number));
+        default_error(d, places, "must be a finite number, got " + std::to_string(d.number));
       }
       p.kind = ScriptParam::Kind::number;
       p.value_si = d.number;
@@ -61,7 +62,7 @@ ScriptParam from_default(const DeclaredParam& d, const ParamPlaces& places) {
     case DeclaredParam::Type::string:
       if (looks_like_quantity(d.text)) {
         const QuantityParse q = parse_quantity(d.text);
-        if (!q.ok) default_error(places, d.name, q.error);
+        if (!q.ok) default_error(d, places, q.error);
         p.kind = ScriptParam::Kind::number;
         p.value_si = q.value_si;
         p.has_unit = q.quantity != Quantity::dimensionless;
@@ -74,7 +75,7 @@ ScriptParam from_default(const DeclaredParam& d, const ParamPlaces& places) {
     case DeclaredParam::Type::other:
       break;
   }
-  default_error(places, d.name,
+  default_error(d, places,
                 "a parameter default must be a number, a boolean or a string, got a " + d.text);
 }
 

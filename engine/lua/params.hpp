@@ -27,6 +27,7 @@ struct DeclaredParam {
   double number{};
   bool boolean{};
   std::string text;        // string value, or the Lua type name for Type::other
+  std::string declared_at; // "scripts/bumps.lua:4" when known, else ParamPlaces::declared_at
 };
 
 // Where the messages point.

@@ -93,6 +93,7 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   vm->display_name = program.display_name;
   vm->short_source = short_source_of(program.display_name);
   vm->limits = program.limits;
+  vm->source = &program.source;
   vm->params_override = &program.params_override;
   vm->error_context = program.error_context;
   vm->pointer_prefix = program.pointer_prefix;
@@ -131,6 +132,7 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
 
   // Running from here on: new globals are errors. Start with a clean heap.
   vm->phase = detail::Phase::running;
+  vm->source = nullptr;
   vm->params_override = nullptr;
   lua_gc(L, LUA_GCCOLLECT);
   vm->bytes_after_cycle = vm->bytes;

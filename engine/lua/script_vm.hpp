@@ -83,6 +83,7 @@ struct ScriptVm {
   std::size_t bytes_after_cycle{};
 
   // Loading: parameter resolution (see params.hpp) runs when the chunk assigns `params`.
+  const std::string* source{};  // the script text, to find where a param is declared
   const nlohmann::json* params_override{};
   std::string error_context;
   std::string pointer_prefix;

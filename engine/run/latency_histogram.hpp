@@ -34,6 +34,14 @@ class LatencyHistogram {
     return max_ns_;
   }
 
+  // How many samples were at most `ns` (to the bucket's resolution: buckets whose upper
+  // edge is <= ns count whole).
+  std::uint64_t count_at_most(std::uint64_t ns) const noexcept {
+    std::uint64_t seen = 0;
+    for (std::size_t i = 0; i < kBuckets && upper_edge(i) <= ns; ++i) seen += buckets_[i];
+    return seen;
+  }
+
  private:
   static constexpr std::size_t kSubBits = 5;
   static constexpr std::size_t kSub = std::size_t{1} << kSubBits;

@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "engine/core/step.hpp"
+#include "engine/run/realtime.hpp"
 
 namespace hapscene {
 namespace {
@@ -45,7 +46,11 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
   const bool real_time = options.pacing == Pacing::real_time;
 
   // Wake-ups exactly when asked: the default 50 us timer slack would eat the spin margin.
+  // Real-time scheduling and locked memory when permitted, for the length of the run.
   if (real_time) prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+  const RealtimeGuard realtime(real_time && options.realtime_scheduling);
+  summary.realtime_note = realtime.note();
+  std::uint32_t miss_streak = 0;
 
   if (observer != nullptr) observer->on_start(state);
   const std::int64_t start_ns = monotonic_ns();
@@ -64,6 +69,7 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
     const std::int64_t begin_ns = monotonic_ns();
     const Crossfade* fade = hot_swap.before_tick(&state);
     const std::int32_t raw_counts = device.read_counts();
+    if (device.take_restart()) restart_soft_start(&state.safety);  // the link came back
     step(hot_swap.scene(), raw_counts, &state, fade);
     device.write(state.command);
     const std::int64_t end_ns = monotonic_ns();
@@ -82,8 +88,25 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
       ++summary.deadline_misses;
       const std::int64_t behind_ns = monotonic_ns() - deadline_ns;
       deadline_ns += (behind_ns / period_ns + 1) * period_ns;
+      // Sustained overruns: warn, then fault to zero force and stop.
+      ++miss_streak;
+      if (miss_streak > summary.longest_miss_streak) summary.longest_miss_streak = miss_streak;
+      if (miss_streak == options.overrun_warn_ticks) {
+        ++summary.overrun_warnings;
+        if (summary.first_overrun_warning_s < 0.0) summary.first_overrun_warning_s = state.t_s;
+      }
+      if (miss_streak >= options.overrun_fault_ticks) {
+        summary.overrun_fault = true;
+        summary.overrun_fault_s = state.t_s;
+        break;
+      }
+    } else {
+      miss_streak = 0;
     }
   }
+
+  // The run is over (or faulted): the motor gets zero force.
+  device.write(MotorCommand{});
 
   if (observer != nullptr) observer->on_finish(state);
 

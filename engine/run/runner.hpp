@@ -29,6 +29,12 @@ struct RunOptions {
   const std::atomic<bool>* stop_requested{nullptr};
   // Hot reload: scenes offered here replace the running one at a tick boundary.
   SceneExchange* reload{nullptr};
+  // Real time: SCHED_FIFO and locked memory when permitted (see RealtimeGuard).
+  bool realtime_scheduling{true};
+  // Sustained overruns: this many deadline misses in a row is a warning, this many a
+  // fault: the device is commanded zero force and the run ends.
+  std::uint32_t overrun_warn_ticks{3};
+  std::uint32_t overrun_fault_ticks{10};
 };
 
 // Sees every tick after the device write: on_tick must not allocate, lock or do I/O.
@@ -66,9 +72,16 @@ struct RunSummary {
   LatencyHistogram compute_ns;      // read + step + write of each tick
   LatencyHistogram wake_late_ns;    // real time: how late each tick started
   std::vector<ScriptReport> scripts;  // one per script effect, in scene order
+  std::string realtime_note;        // real time: the scheduling obtained, or why not
+  std::uint32_t longest_miss_streak{};  // most deadline misses in a row
+  std::uint64_t overrun_warnings{};     // times a streak reached overrun_warn_ticks
+  double first_overrun_warning_s{-1.0}; // device time of the first warning (-1: none)
+  bool overrun_fault{};                 // the run ended on sustained overruns
+  double overrun_fault_s{};             // device time of the fault
 };
 
-// Runs `scene` on `device` for options.duration_s of device time.
+// Runs `scene` on `device` for options.duration_s of device time, then commands zero
+// force.
 RunSummary run_scene(const Scene& scene, Device& device, const RunOptions& options,
                      TickObserver* observer);
 

@@ -108,7 +108,21 @@ TEST_CASE("cli: invalid input exits with 2 and says where") {
 
   const Outcome bad_device = run_hapscene("run environments/wall.json --device usb");
   CHECK(bad_device.exit_code == 2);
-  CHECK(bad_device.err == "error: hapscene run: --device: unknown device \"usb\" (available: sim)\n");
+  CHECK(bad_device.err == "error: hapscene run: --device: unknown device \"usb\" (available: sim, serial:PATH, hil)\n");
+
+  // Device specs and link options.
+  const Outcome no_port = run_hapscene("run environments/wall.json --device serial:/dev/hapscene-none");
+  CHECK(no_port.exit_code == 2);
+  CHECK(no_port.err == "error: hapscene run: --device serial:/dev/hapscene-none: cannot open "
+                       "/dev/hapscene-none: No such file or directory\n");
+  CHECK(run_hapscene("run environments/wall.json --device serial:").err ==
+        "error: hapscene run: --device serial: needs a port path, e.g. serial:/dev/ttyACM0\n");
+  const Outcome bad_baud = run_hapscene("run environments/wall.json --device serial:/dev/null --baud 12345");
+  CHECK(bad_baud.exit_code == 2);
+  CHECK(bad_baud.err.starts_with("error: hapscene run: --baud: 12345 is not a rate the serial port offers (9600, "));
+  CHECK(run_hapscene("run environments/wall.json --baud fast").err ==
+        "error: hapscene run: --baud: expected a positive whole number of bits per second, got \"fast\"\n");
+  CHECK(run_hapscene("run environments/wall.json --device hil:/nonexistent.elf").exit_code == 2);
 
   CHECK(run_hapscene("").exit_code == 2);
   CHECK(run_hapscene("frobnicate").exit_code == 2);

@@ -2,7 +2,9 @@
 // soft start, and bit-for-bit determinism.
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include "engine/devices/simulated_hapkit.hpp"
@@ -187,4 +189,78 @@ TEST_CASE("latency histogram: percentiles within 3 %, exact max") {
   CHECK(static_cast<double>(histogram.percentile_ns(0.5)) == doctest::Approx(5000).epsilon(0.03));
   CHECK(static_cast<double>(histogram.percentile_ns(0.99)) == doctest::Approx(9900).epsilon(0.03));
   CHECK(histogram.percentile_ns(1.0) == 10000);
+}
+
+namespace {
+
+// A simulated Hapkit whose advance() burns real time on chosen ticks, to make the
+// real-time loop overrun on purpose.
+class SlowDevice final : public Device {
+ public:
+  SlowDevice(const Scene& scene, std::function<bool(std::uint64_t)> slow_tick)
+      : inner_(scene.device, SimulationConfig{}), slow_tick_(std::move(slow_tick)) {}
+  std::int32_t read_counts() noexcept override { return inner_.read_counts(); }
+  void write(const MotorCommand& command) noexcept override {
+    last = command;
+    inner_.write(command);
+  }
+  void advance(double dt_s) noexcept override {
+    if (slow_tick_(ticks_++)) {
+      const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(1600);
+      while (std::chrono::steady_clock::now() < until) {
+      }
+    }
+    inner_.advance(dt_s);
+  }
+  MotorCommand last{};
+
+ private:
+  SimulatedHapkit inner_;
+  std::function<bool(std::uint64_t)> slow_tick_;
+  std::uint64_t ticks_{};
+};
+
+}  // namespace
+
+TEST_CASE("run: sustained overruns warn, then fault to zero force and stop") {
+  const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 500}]})");
+  SlowDevice device(scene, [](std::uint64_t tick) { return tick >= 20; });  // slow from tick 20 on
+  RunOptions options{.duration_s = 0.2, .pacing = Pacing::real_time};
+  const RunSummary summary = run_scene(scene, device, options, nullptr);
+  CHECK(summary.overrun_fault);
+  CHECK(summary.overrun_warnings == 1);
+  CHECK(summary.first_overrun_warning_s < summary.overrun_fault_s);
+  CHECK(summary.longest_miss_streak == 10);
+  CHECK(summary.ticks < 40);  // stopped, not run to 200 ticks
+  CHECK(device.last.duty == 0.0);
+  CHECK_FALSE(summary.realtime_note.empty());
+}
+
+TEST_CASE("run: a short burst of overruns warns without a fault") {
+  const Scene scene = scene_from(R"({"effects": []})");
+  SlowDevice device(scene, [](std::uint64_t tick) { return tick >= 10 && tick < 14; });
+  RunOptions options{.duration_s = 0.06, .pacing = Pacing::real_time};
+  const RunSummary summary = run_scene(scene, device, options, nullptr);
+  CHECK_FALSE(summary.overrun_fault);
+  CHECK(summary.overrun_warnings == 1);
+  CHECK(summary.longest_miss_streak >= 3);
+  CHECK(summary.ticks > 40);  // ran on; realigned schedules skip the missed deadlines
+}
+
+TEST_CASE("run: single overruns neither warn nor fault") {
+  const Scene scene = scene_from(R"({"effects": []})");
+  SlowDevice device(scene, [](std::uint64_t tick) { return tick % 10 == 5; });
+  RunOptions options{.duration_s = 0.05, .pacing = Pacing::real_time};
+  const RunSummary summary = run_scene(scene, device, options, nullptr);
+  CHECK(summary.deadline_misses >= 4);
+  CHECK(summary.overrun_warnings == 0);
+  CHECK_FALSE(summary.overrun_fault);
+}
+
+TEST_CASE("latency histogram: counts below an edge") {
+  LatencyHistogram histogram;
+  for (std::uint64_t ns = 1; ns <= 1000; ++ns) histogram.record(ns * 1000);
+  CHECK(histogram.count_at_most(0) == 0);
+  CHECK(histogram.count_at_most(2'000'000) == 1000);
+  CHECK(std::abs(static_cast<double>(histogram.count_at_most(500'000)) - 500.0) <= 500.0 * 0.03 + 1);
 }

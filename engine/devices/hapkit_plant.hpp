@@ -1,0 +1,53 @@
+#pragma once
+// The simulated Hapkit's physics and sensor, driven by a motor force: the handle's
+// effective mass, viscous and Coulomb (stick-slip) friction, hard end stops, an optional
+// virtual hand, and the MR sensor as the board's ADC sees it (quantized to counts,
+// wrapping every sensor period, optionally noisy). Shared by the simulated device (which
+// turns the host's command into the force) and the firmware-in-the-loop device (which
+// measures the force from the simulated board's PWM pin). Deterministic for a given seed.
+#include <cstdint>
+
+#include "engine/devices/noise.hpp"
+#include "engine/devices/profile.hpp"
+#include "engine/devices/virtual_hand.hpp"
+
+namespace hapscene {
+
+struct SimulationConfig {
+  double start_x_m{0.0};
+  HandConfig hand;
+  std::uint64_t noise_seed{1};
+  int substeps_per_tick{10};  // plant integration steps per advance()
+};
+
+class HapkitPlant {
+ public:
+  // Throws InputError when the start position is outside the sensor's home period (the
+  // flip count starts at 0, as on a real Hapkit centred at power-up).
+  HapkitPlant(const DeviceProfile& profile, const SimulationConfig& config);
+
+  // One semi-implicit Euler step of h_s with `motor_force_N` held.
+  void substep(double h_s, double motor_force_N) noexcept;
+
+  // The sensor reading now: nearest count (plus noise), wrapped into one sensor period.
+  std::int32_t sensor_counts() noexcept;
+
+  double x_m() const noexcept { return x_m_; }
+  double v_m_per_s() const noexcept { return v_m_per_s_; }
+  double t_s() const noexcept { return t_s_; }
+  double hand_force_N() const noexcept { return hand_force_N_; }
+  const DeviceProfile& profile() const noexcept { return profile_; }
+  const SimulationConfig& config() const noexcept { return config_; }
+
+ private:
+  DeviceProfile profile_;
+  SimulationConfig config_;
+  VirtualHand hand_;
+  GaussianNoise noise_;
+  double x_m_{};
+  double v_m_per_s_{};
+  double t_s_{};
+  double hand_force_N_{};
+};
+
+}  // namespace hapscene

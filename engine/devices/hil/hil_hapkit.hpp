@@ -1,0 +1,71 @@
+#pragma once
+// Firmware-in-the-loop (`--device hil`): the real firmware on a simulated ATmega328P
+// (simavr), wired to the simulated Hapkit plant, talking to the host engine through the
+// same protocol code as a real board on a serial port.
+//
+// Lock-step in simulated time: advance(dt) runs the AVR for dt worth of cycles in
+// substeps; at each substep the plant's handle angle becomes the MR sensor voltage on
+// ADC2, the CPU runs, and the PWM duty (OC0B) and direction pin (PB0) it leaves become
+// the motor force that moves the plant. The host reads what the board sent over the
+// simulated UART, so it sees the board's latency, quantization and faults.
+// Deterministic: the same inputs give the same run.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "engine/devices/board_link.hpp"
+#include "engine/devices/device.hpp"
+#include "engine/devices/hapkit_plant.hpp"
+#include "engine/devices/hil/simulated_board.hpp"
+#include "engine/devices/hil/wire.hpp"
+
+namespace hapscene {
+
+struct HilConfig {
+  SimulationConfig simulation;
+  std::string firmware_elf;
+  BoardLinkConfig link{.silence_timeout_ns = 50'000'000,
+                       .hello_retry_ns = 5'000'000,
+                       .reopen_retry_ns = 500'000'000,
+                       .stats_period_ns = 100'000'000};
+  double handshake_timeout_s{0.5};  // simulated time
+};
+
+class HilHapkit final : public Device {
+ public:
+  // Loads the firmware (InputError when missing) and runs the handshake in simulated
+  // time with the handle held still (std::runtime_error when the board never answers).
+  HilHapkit(const DeviceProfile& profile, const HilConfig& config);
+
+  std::int32_t read_counts() noexcept override;
+  void write(const MotorCommand& command) noexcept override;
+  void advance(double dt_s) noexcept override;
+  bool take_restart() noexcept override { return link_.take_restart(); }
+  std::string report() const override;
+
+  // The plant and the board pins, for tests.
+  double x_m() const noexcept { return plant_.x_m(); }
+  double t_s() const noexcept { return plant_.t_s(); }
+  double motor_force_N() const noexcept { return motor_force_N_; }
+  double motor_duty() const noexcept { return board_.motor_duty(); }
+  std::uint64_t cycle() const noexcept { return board_.cycle(); }
+  const BoardLink& link() const noexcept { return link_; }
+  BoardLink& mutable_link() noexcept { return link_; }
+  Wire& wire() noexcept { return wire_; }
+  // Pulls the board's reset pin.
+  void reset_board() noexcept { board_.reset(); }
+
+ private:
+  std::int64_t now_ns() const noexcept;
+  // Runs the board for one substep of h_s, then moves the plant with its motor force.
+  void substep(double h_s, bool move_plant) noexcept;
+
+  HapkitPlant plant_;
+  SimulatedBoard board_;
+  Wire wire_;
+  BoardLink link_;
+  double motor_force_N_{};
+  std::uint64_t start_cycle_{};
+};
+
+}  // namespace hapscene

@@ -1,0 +1,62 @@
+#include "engine/devices/serial_hapkit.hpp"
+
+#include <ctime>
+#include <stdexcept>
+#include <thread>
+
+#include "engine/devices/board_report.hpp"
+
+namespace hapscene {
+
+std::int64_t monotonic_now_ns() noexcept {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
+}
+
+namespace {
+
+BoardLinkConfig with_profile(BoardLinkConfig link, const DeviceProfile& profile) {
+  link.span_counts = profile.sensor.span_counts;
+  return link;
+}
+
+}  // namespace
+
+SerialHapkit::SerialHapkit(const DeviceProfile& profile, const SerialConfig& config)
+    : port_(config.path, config.baud, "--device serial:" + config.path),
+      link_(port_, with_profile(config.link, profile)),
+      start_ns_(monotonic_now_ns()) {
+  // The handshake, before the loop starts: HELLO until the board answers.
+  const auto deadline_ns =
+      start_ns_ + static_cast<std::int64_t>(config.handshake_timeout_s * 1e9);
+  while (link_.state() != LinkState::running) {
+    const std::int64_t now_ns = monotonic_now_ns();
+    if (now_ns > deadline_ns) {
+      throw std::runtime_error("--device serial:" + config.path + ": no answer to the handshake within " +
+                               std::to_string(config.handshake_timeout_s) +
+                               " s (is the hapscene firmware flashed, and the baud rate " +
+                               std::to_string(config.baud) + "?)");
+    }
+    link_.send(MotorCommand{}, now_ns);
+    link_.poll(now_ns);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
+SerialHapkit::~SerialHapkit() {
+  if (link_.state() == LinkState::running) link_.send(MotorCommand{}, monotonic_now_ns());
+}
+
+std::int32_t SerialHapkit::read_counts() noexcept {
+  link_.poll(monotonic_now_ns());
+  return link_.counts();
+}
+
+void SerialHapkit::write(const MotorCommand& command) noexcept {
+  link_.send(command, monotonic_now_ns());
+}
+
+std::string SerialHapkit::report() const { return board_report(link_, start_ns_); }
+
+}  // namespace hapscene

@@ -1,0 +1,33 @@
+#pragma once
+// Real-time conditions for the loop's thread, when the system permits them: SCHED_FIFO
+// (so ordinary processes cannot preempt a tick) and locked memory (so no page fault
+// stalls one). Without the privilege (CAP_SYS_NICE / an rtprio limit, CAP_IPC_LOCK / a
+// memlock limit) the loop runs as it is and note() says so in one line. Everything is
+// restored when the guard goes out of scope.
+#include <string>
+
+namespace hapscene {
+
+class RealtimeGuard {
+ public:
+  // `priority` for SCHED_FIFO (1..99). Does nothing when `enabled` is false.
+  RealtimeGuard(bool enabled, int priority = 80);
+  ~RealtimeGuard();
+  RealtimeGuard(const RealtimeGuard&) = delete;
+  RealtimeGuard& operator=(const RealtimeGuard&) = delete;
+
+  bool fifo() const noexcept { return fifo_; }
+  bool memory_locked() const noexcept { return locked_; }
+  // One line for the summary: what was obtained, or why not.
+  const std::string& note() const noexcept { return note_; }
+
+ private:
+  bool enabled_{};
+  bool fifo_{};
+  bool locked_{};
+  int old_policy_{};
+  int old_priority_{};
+  std::string note_;
+};
+
+}  // namespace hapscene

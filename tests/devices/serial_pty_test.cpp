@@ -1,0 +1,138 @@
+// The serial device's termios path, end to end through a pseudo-terminal: the test plays
+// the board on the master side (a FakeBoard in a thread), the device opens the slave as
+// it would open /dev/ttyACM0.
+#include <doctest/doctest.h>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <thread>
+#include <vector>
+
+#include "engine/devices/serial_hapkit.hpp"
+#include "tests/devices/fake_board.hpp"
+#include "tests/support.hpp"
+
+using namespace hapscene;
+
+namespace {
+
+// The board's side of the pseudo-terminal, answering in its own thread.
+class PtyBoard {
+ public:
+  PtyBoard() {
+    master_ = posix_openpt(O_RDWR | O_NOCTTY);
+    REQUIRE(master_ >= 0);
+    REQUIRE(grantpt(master_) == 0);
+    REQUIRE(unlockpt(master_) == 0);
+    path_ = ptsname(master_);
+    thread_ = std::thread([this] { serve(); });
+  }
+  ~PtyBoard() { unplug(); }
+
+  // Closes the master: the device's next read fails as if the cable were pulled.
+  void unplug() {
+    stop_.store(true);
+    if (thread_.joinable()) thread_.join();
+    if (master_ >= 0) close(master_);
+    master_ = -1;
+  }
+
+  const std::string& path() const { return path_; }
+  std::atomic<bool> muted{false};
+  std::atomic<int> commands{0};
+  std::atomic<int> last_duty{-1};
+
+ private:
+  void serve() {
+    test::FakeBoard board;
+    std::vector<std::uint8_t> out;
+    std::uint8_t buffer[256];
+    while (!stop_.load()) {
+      pollfd fd{master_, POLLIN, 0};
+      if (poll(&fd, 1, 1) <= 0) continue;
+      const ssize_t n = read(master_, buffer, sizeof buffer);
+      if (n <= 0) continue;
+      board.muted = muted.load();
+      out.clear();
+      board.receive(buffer, static_cast<std::size_t>(n), &out);
+      commands.store(board.commands);
+      last_duty.store(board.last_command.duty);
+      if (!out.empty()) (void)!write(master_, out.data(), out.size());
+    }
+  }
+
+  int master_{-1};
+  std::string path_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+DeviceProfile hapkit3() { return test::scene_from(R"({"effects": []})").device; }
+
+// Ticks the device in real time for `ticks` ms; returns the longest tick's read + write.
+std::chrono::nanoseconds run_ticks(SerialHapkit* device, int ticks, double duty) {
+  std::chrono::nanoseconds longest{0};
+  for (int i = 0; i < ticks; ++i) {
+    const auto begin = std::chrono::steady_clock::now();
+    device->read_counts();
+    device->write(MotorCommand{duty, true});
+    longest = std::max(longest, std::chrono::steady_clock::now() - begin);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return longest;
+}
+
+}  // namespace
+
+TEST_CASE("serial: a board on a pseudo-terminal handshakes, renders, goes silent and vanishes") {
+  PtyBoard board;
+  SerialConfig config;
+  config.path = board.path();
+  config.handshake_timeout_s = 2.0;
+  SerialHapkit device(hapkit3(), config);
+  CHECK(device.link().state() == LinkState::running);
+  CHECK(device.link().identity().board_kind == HS_BOARD_HAPKIT3);
+
+  // Normal running: the board gets the duty, the host gets the counts and a latency.
+  run_ticks(&device, 100, 0.25);
+  CHECK(board.commands.load() > 50);
+  CHECK(board.last_duty.load() == 64);
+  CHECK(device.read_counts() == 500);
+  CHECK(device.link().round_trip_ns().count() > 50);
+  CHECK(device.link().round_trip_ns().percentile_ns(0.5) < 20'000'000);
+
+  // The board goes quiet: after the silence timeout the link says so and handshakes.
+  board.muted.store(true);
+  run_ticks(&device, 100, 0.25);
+  CHECK(device.link().state() == LinkState::silent);
+  board.muted.store(false);
+  run_ticks(&device, 200, 0.25);
+  CHECK(device.link().state() == LinkState::running);
+  CHECK(device.take_restart());
+
+  // Unplugged: reads fail, the link is "vanished", and no tick blocks meanwhile.
+  board.unplug();
+  const auto longest = run_ticks(&device, 50, 0.25);
+  CHECK(device.link().state() == LinkState::vanished);
+  CHECK(longest < std::chrono::milliseconds(1));
+  const std::string report = device.report();
+  CHECK(report.find("silent") != std::string::npos);
+  CHECK(report.find("vanished") != std::string::npos);
+}
+
+TEST_CASE("serial: a port that does not answer the handshake is an error, not a hang") {
+  PtyBoard board;
+  board.muted.store(true);
+  SerialConfig config;
+  config.path = board.path();
+  config.handshake_timeout_s = 0.2;
+  const auto begin = std::chrono::steady_clock::now();
+  CHECK_THROWS_WITH_AS(SerialHapkit(hapkit3(), config),
+                       doctest::Contains("no answer to the handshake"), std::runtime_error);
+  CHECK(std::chrono::steady_clock::now() - begin < std::chrono::seconds(1));
+}
