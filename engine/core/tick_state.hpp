@@ -36,8 +36,6 @@ struct TickState {
   // Effects stage.
   ScriptList scripts;             // the current scene's script instances, made at start
   double effects_force_N{};       // sum of all effects: what the scene asks for
-  std::uint64_t script_errors{};          // script calls that failed (script effects count)
-  std::uint64_t script_budget_overruns{}; // script calls stopped by their instruction budget
 
   // Safety stage.
   SafetyState safety;

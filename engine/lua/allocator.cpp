@@ -8,8 +8,9 @@
 namespace hapscene::detail {
 namespace {
 
-// Lua allocates a string as one block: a header (24 bytes on 64-bit) plus the text.
-constexpr std::size_t kStringHeaderBytes = 32;
+// Lua 5.4 allocates a string as one block: a 24-byte header (64-bit), the text and a
+// terminating zero.
+constexpr std::size_t kStringHeaderBytes = 24 + 1;
 
 // Records why the allocation was refused, with the script's position when one is known.
 void refuse(ScriptVm* vm, const char* what, std::size_t limit, const char* unit) {
@@ -19,7 +20,7 @@ void refuse(ScriptVm* vm, const char* what, std::size_t limit, const char* unit)
   // A deep stack means runaway recursion: say so, since the symptom is memory.
   lua_Debug deep{};
   const bool recursion = lua_getstack(vm->L, 1000, &deep) != 0;
-  record_fault(vm, "%s: %s (%zu %s)%s", where, what, limit, unit,
+  record_fault(vm, ScriptFault::memory_limit, "%s: %s (%zu %s)%s", where, what, limit, unit,
                recursion ? "; the call stack is over 1000 levels deep (runaway recursion?)" : "");
   trip(vm, vm->L);
 }

@@ -59,11 +59,13 @@ void count_hook(lua_State* L, lua_Debug* ar) {
     // Level 0 inside a hook is the function being run.
     lua_getinfo(L, "Sl", ar);
     if (over_budget) {
-      record_fault(vm, "%s:%d: instruction budget exceeded (%lld %s)", ar->short_src,
+      record_fault(vm, ScriptFault::instruction_budget, "%s:%d: instruction budget exceeded (%lld %s)",
+                   ar->short_src,
                    ar->currentline, static_cast<long long>(vm->budget_instructions),
                    budget_phrase(vm));
     } else {
-      record_fault(vm, "%s:%d: time limit exceeded (%g ms per call)", ar->short_src,
+      record_fault(vm, ScriptFault::time_limit, "%s:%d: time limit exceeded (%g ms per call)",
+                   ar->short_src,
                    ar->currentline, vm->limits.wall_time_per_call_s * 1e3);
     }
     trip(vm, L);
@@ -78,15 +80,17 @@ void charge(lua_State* L, std::int64_t instructions) {
   if (vm->remaining_instructions > 0) return;
   char where[160];
   describe_position(L, 1, vm, where, sizeof where);
-  record_fault(vm, "%s: instruction budget exceeded (%lld %s; this call was charged %lld)", where,
+  record_fault(vm, ScriptFault::instruction_budget,
+               "%s: instruction budget exceeded (%lld %s; this call was charged %lld)", where,
                static_cast<long long>(vm->budget_instructions), budget_phrase(vm),
                static_cast<long long>(instructions));
   trip(vm, L);
   raise_tripped(L);
 }
 
-void record_fault(ScriptVm* vm, const char* format, ...) {
+void record_fault(ScriptVm* vm, ScriptFault kind, const char* format, ...) {
   if (vm->fault_length > 0) return;
+  vm->fault_kind = kind;
   std::va_list args;
   va_start(args, format);
   const int n = std::vsnprintf(vm->fault, ScriptVm::kFaultBytes, format, args);

@@ -72,7 +72,7 @@ void set_load_error(ScriptVm* vm, const char* format, ...) {
   try {
     if (vm->load_error.empty()) vm->load_error = text;
   } catch (...) {
-    record_fault(vm, "%s", text);
+    record_fault(vm, ScriptFault::error, "%s", text);
   }
 }
 

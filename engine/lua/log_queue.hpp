@@ -29,8 +29,9 @@ class LogQueue {
   // Publishes the slot returned by begin_write.
   void commit(double t_s, std::size_t length) noexcept;
 
-  // Consumer side (any one thread): appends "text (t = 0.500 s)" per message, then a
-  // line about dropped messages, each prefixed by nothing (the text carries its place).
+  // Consumer side (any one thread): appends "<text> (t = 0.500 s)" per message (the text
+  // starts with its place, "scripts/x.lua:7: "), then "<script_name>: N log messages
+  // dropped (...)" if any were.
   void drain(std::string_view script_name, std::vector<std::string>* out);
 
  private:

@@ -10,6 +10,7 @@
 // Charged: library functions whose C loops depend on their arguments (table.sort, insert,
 // remove, move, concat, unpack, string.rep, string.byte, utf8 scans) subtract their work
 // from the instruction budget before they run.
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstring>
@@ -63,8 +64,13 @@ int charged_sort(lua_State* L) {
   return call_original(L);
 }
 
-// table.insert(t, pos, v) and table.remove(t, pos) shift up to #t elements.
-int charged_shift(lua_State* L) {
+// table.insert(t, pos, v) and table.remove(t, pos) shift up to #t elements; appending
+// (insert with two arguments, remove with one) is one step.
+int charged_insert(lua_State* L) {
+  if (lua_gettop(L) >= 3) charge(L, span(1, length_of(L, 1)));
+  return call_original(L);
+}
+int charged_remove(lua_State* L) {
   if (lua_gettop(L) >= 2) charge(L, span(1, length_of(L, 1)));
   return call_original(L);
 }
@@ -101,7 +107,8 @@ int checked_rep(lua_State* L) {
     if (total > static_cast<double>(vm->limits.string_bytes)) {
       char where[160];
       describe_position(L, 1, vm, where, sizeof where);
-      record_fault(vm, "%s: string limit exceeded (string.rep would make %.0f bytes; limit %zu)",
+      record_fault(vm, ScriptFault::memory_limit,
+                   "%s: string limit exceeded (string.rep would make %.0f bytes; limit %zu)",
                    where, total, vm->limits.string_bytes);
       trip(vm, L);
       return raise_tripped(L);
@@ -111,11 +118,18 @@ int checked_rep(lua_State* L) {
   return call_original(L);
 }
 
-// string.byte(s, i, j) and utf8.codepoint(s, i, j) push one value per byte.
+// string.byte(s, i, j) and utf8.codepoint(s, i, j) visit bytes i..j (j defaults to i;
+// negative positions count from the end).
 int charged_bytes(lua_State* L) {
-  std::size_t length = 0;
-  luaL_checklstring(L, 1, &length);
-  charge(L, static_cast<std::int64_t>(length));
+  std::size_t size = 0;
+  luaL_checklstring(L, 1, &size);
+  const auto length = static_cast<lua_Integer>(size);
+  const auto absolute = [length](lua_Integer position) {
+    return position < 0 ? length + position + 1 : position;
+  };
+  const lua_Integer first = absolute(luaL_optinteger(L, 2, 1));
+  const lua_Integer last = absolute(luaL_optinteger(L, 3, first));
+  charge(L, std::min<std::int64_t>(span(first, last), length));
   return call_original(L);
 }
 
@@ -323,8 +337,8 @@ int open_sandbox(lua_State* L) {
   copy_library(L, env, LUA_COLIBNAME, luaopen_coroutine, kCoroutineNames);
   lua_getfield(L, env, LUA_TABLIBNAME);
   wrap(L, -1, "sort", charged_sort);
-  wrap(L, -1, "insert", charged_shift);
-  wrap(L, -1, "remove", charged_shift);
+  wrap(L, -1, "insert", charged_insert);
+  wrap(L, -1, "remove", charged_remove);
   wrap(L, -1, "move", charged_move);
   wrap(L, -1, "concat", charged_concat);
   wrap(L, -1, "unpack", charged_unpack);

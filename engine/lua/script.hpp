@@ -12,7 +12,10 @@
 //   log(...) / print(...)                                   -- never block the tick
 //
 // Threads: create(), force_N(), reset() and collect_garbage() are called by one thread
-// (the loop); drain_log() may be called by one other thread at the same time.
+// (the loop; an instance made off the loop may be handed over, e.g. on hot reload);
+// drain_log() may be called by one other thread at the same time. The calling thread
+// needs at least 512 KiB of stack: Lua allows 200 nested C calls (metamethod recursion),
+// which take about 200 KiB before Lua stops them with "C stack overflow".
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -35,13 +38,13 @@ struct ScriptVm;
 struct ScriptLimits {
   // VM instructions per force() or reset() call, counted by a hook that keeps firing
   // after the deadline so pcall cannot swallow it. Runaway loops stop after about
-  // 0.3 ms at this default; a lab spring uses about 10, a texture about 30.
+  // 0.4 ms at this default; the lab spring uses about 5, the texture 10, pong.lua 95.
   std::int64_t instructions_per_call{100'000};
   // VM instructions for the top-level chunk, run at load time (off the loop), so a
   // script can precompute tables.
   std::int64_t instructions_at_load{10'000'000};
   // Live bytes of the whole Lua state, garbage included. The sandbox itself takes about
-  // 25 KiB; a 100 000-entry lookup table about 1.6 MiB.
+  // 21 KiB; a 100 000-entry lookup table about 1.6 MiB.
   std::size_t memory_bytes{4u << 20};
   // Bytes one force() or reset() call may allocate in total. Bounds the work that C
   // functions (which no hook interrupts) can do per call by allocating.
@@ -56,6 +59,16 @@ struct ScriptLimits {
   // log()/print(): messages admitted per second of run time (s.t), and the burst.
   double log_messages_per_s{10.0};
   std::size_t log_burst{20};
+};
+
+// Why a script was disabled.
+enum class ScriptFault {
+  none,
+  error,               // a runtime error (including C stack overflow)
+  bad_return,          // force(s) returned something other than a finite number
+  instruction_budget,  // instructions_per_call (C functions are charged for their work)
+  time_limit,          // wall_time_per_call_s
+  memory_limit,        // memory_bytes, allocation_bytes_per_call or string_bytes
 };
 
 // The state handed to force(s), in SI units. 2-DOF devices will add y_m and vy_m_per_s
@@ -80,9 +93,12 @@ struct ScriptParam {
   bool overridden{};  // set from the JSON params
 };
 
-// Immutable, compiled at load time. Copyable; instances do not refer back to it.
+// Immutable, compiled at load time. Copyable; instances do not refer back to it. The
+// fields from needs_velocity on are what compile_script found.
 struct ScriptProgram {
-  std::string display_name;  // "scripts/bumps.lua": names the chunk in every message
+  // "scripts/bumps.lua": names the chunk in every message (Lua shortens names over 59
+  // characters to "..." and their end).
+  std::string display_name;
   std::string source;        // Lua source text (binary chunks are refused)
   nlohmann::json params_override = nlohmann::json::object();
   std::string error_context;   // e.g. the JSON file, "environments/lab.json"
@@ -101,6 +117,7 @@ struct ScriptProgram {
 // Throws InputError:
 //   syntax/runtime: "scripts/bumps.lua:12: message"
 //   overrides:      "<error_context>: <pointer_prefix>/height: message"
+//   limits:         "<error_context>: script limits: memory_bytes must be at least ..."
 ScriptProgram compile_script(std::string display_name, std::string source,
                              const nlohmann::json& params_override, std::string error_context,
                              std::string pointer_prefix, ScriptLimits limits = {});
@@ -109,8 +126,8 @@ ScriptProgram compile_script(std::string display_name, std::string source,
 // never allocate on the C++ side, never throw and never block.
 class ScriptInstance {
  public:
-  // Throws InputError (only if the program was not made by compile_script, or a limit
-  // differs).
+  // Runs the same load steps as compile_script (not its check call), so it throws
+  // InputError only for a program that compile_script did not make.
   static std::unique_ptr<ScriptInstance> create(const ScriptProgram& program);
   ~ScriptInstance();
   ScriptInstance(const ScriptInstance&) = delete;
@@ -120,9 +137,10 @@ class ScriptInstance {
   // overrun, or return value that is not a finite number disables the script and records
   // fault_message(); later calls do not run the script.
   double force_N(const ScriptInput& input) noexcept;
-  // Calls the script's reset() if it defines one (same limits as force). Does not
-  // re-enable a disabled script: its state may be half-updated; a new instance (a new
-  // run or a reload) starts clean.
+  // Calls the script's reset() if it defines one (same limits as force). The host calls
+  // it when a run starts or restarts; create() does not. Does not re-enable a disabled
+  // script: its state may be half-updated; a new instance (a new run or a reload) starts
+  // clean.
   void reset() noexcept;
   // Garbage collection, run by the host outside force() (in the tick's slack): the
   // collector is stopped inside force(). Returns at once when the heap has not grown
@@ -133,10 +151,12 @@ class ScriptInstance {
 
   bool disabled() const noexcept;
   // "scripts/bumps.lua:12: attempt to perform arithmetic on a nil value (global 'k')";
-  // empty while not disabled. The host reports it once.
+  // empty while not disabled. The host reports it once. (Loop thread, or after the run.)
   std::string_view fault_message() const noexcept;
   // Faults so far: 0, or 1 (the first fault disables the script).
   std::uint64_t fault_count() const noexcept;
+  // What the fault was (ScriptFault::none while not disabled).
+  ScriptFault fault() const noexcept;
   // force_N() calls answered with 0 N because the script is disabled.
   std::uint64_t skipped_calls() const noexcept;
   // Run time (s.t) of the call that faulted; 0 before any call.

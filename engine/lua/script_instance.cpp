@@ -51,18 +51,19 @@ void record_call_failure(ScriptVm* vm, int status, const char* what) {
   if (status != LUA_OK && lua_type(L, -1) == LUA_TSTRING) {
     const char* message = lua_tostring(L, -1);
     if (has_place(*vm, message)) {
-      detail::record_fault(vm, "%s", message);
+      detail::record_fault(vm, ScriptFault::error, "%s", message);
     } else {
-      detail::record_fault(vm, "%s: %s", vm->display_name.c_str(), message);
+      detail::record_fault(vm, ScriptFault::error, "%s: %s", vm->display_name.c_str(), message);
     }
     return;
   }
   if (status != LUA_OK) {
-    detail::record_fault(vm, "%s: error in %s (error object is a %s value)",
+    detail::record_fault(vm, ScriptFault::error, "%s: error in %s (error object is a %s value)",
                          vm->display_name.c_str(), what, luaL_typename(L, -1));
     return;
   }
-  detail::record_fault(vm, "%s: the call to %s failed", vm->display_name.c_str(), what);
+  detail::record_fault(vm, ScriptFault::error, "%s: the call to %s failed", vm->display_name.c_str(),
+                       what);
 }
 
 void disable(ScriptVm* vm) {
@@ -169,11 +170,13 @@ double ScriptInstance::force_N(const ScriptInput& input) noexcept {
       const double force = lua_tonumber(L, -1);
       lua_settop(L, detail::kSlotCount);
       if (std::isfinite(force)) return force;
-      detail::record_fault(vm, "%s:%d: force(s) returned %s, expected a finite number (N)",
+      detail::record_fault(vm, ScriptFault::bad_return,
+                           "%s:%d: force(s) returned %s, expected a finite number (N)",
                            vm->short_source.c_str(), vm->force_line,
                            std::isnan(force) ? "nan" : (force > 0 ? "inf" : "-inf"));
     } else {
-      detail::record_fault(vm, "%s:%d: force(s) returned %s, expected a finite number (N)",
+      detail::record_fault(vm, ScriptFault::bad_return,
+                           "%s:%d: force(s) returned %s, expected a finite number (N)",
                            vm->short_source.c_str(), vm->force_line, luaL_typename(L, -1));
     }
   } else {
@@ -222,6 +225,10 @@ std::string_view ScriptInstance::fault_message() const noexcept {
 }
 
 std::uint64_t ScriptInstance::fault_count() const noexcept { return vm_->fault_count; }
+
+ScriptFault ScriptInstance::fault() const noexcept {
+  return vm_->disabled ? vm_->fault_kind : ScriptFault::none;
+}
 
 std::uint64_t ScriptInstance::skipped_calls() const noexcept { return vm_->skipped_calls; }
 

@@ -16,12 +16,10 @@ void check_limits(const ScriptLimits& limits, const std::string& error_context,
     throw InputError((error_context.empty() ? display_name : error_context) +
                      ": script limits: " + what);
   };
-  if (limits.instructions_per_call < 1000) fail("instructions_per_call must be at least 1000");
-  if (limits.instructions_at_load < limits.instructions_per_call) {
-    fail("instructions_at_load must be at least instructions_per_call");
-  }
-  if (limits.memory_bytes < (256u << 10)) fail("memory_bytes must be at least 262144 (256 KiB)");
-  if (limits.allocation_bytes_per_call < 4096) fail("allocation_bytes_per_call must be at least 4096");
+  if (limits.instructions_per_call < 100) fail("instructions_per_call must be at least 100");
+  if (limits.instructions_at_load < 100) fail("instructions_at_load must be at least 100");
+  if (limits.memory_bytes < (64u << 10)) fail("memory_bytes must be at least 65536 (64 KiB)");
+  if (limits.allocation_bytes_per_call < 1024) fail("allocation_bytes_per_call must be at least 1024");
   if (limits.string_bytes < 256) fail("string_bytes must be at least 256");
   if (!(limits.wall_time_per_call_s >= 0.0)) fail("wall_time_per_call_s must be 0 (off) or positive");
   if (!(limits.log_messages_per_s >= 0.0)) fail("log_messages_per_s must not be negative");

@@ -5,8 +5,8 @@
 //
 // Rule for every lua_CFunction and hook in engine/lua: a Lua error is a longjmp, so no
 // C++ object with a destructor may be alive where one can be raised, and no C++
-// exception may leave the function. C++ work that can throw runs in noexcept helpers
-// that store results in this struct, never in locals.
+// exception may leave the function. C++ work that allocates or throws runs in noexcept
+// helpers that raise no Lua error and leave their results in this struct.
 #include <lua.hpp>
 
 #include <chrono>
@@ -71,6 +71,7 @@ struct ScriptVm {
   static constexpr std::size_t kFaultBytes = 400;
   char fault[kFaultBytes]{};
   std::size_t fault_length{};
+  ScriptFault fault_kind{ScriptFault::none};
   bool disabled{};
   std::uint64_t fault_count{};
   std::uint64_t skipped_calls{};
@@ -90,7 +91,6 @@ struct ScriptVm {
   bool params_assigned{};
   std::vector<ScriptParam> params;
   std::string load_error;  // set by a C function that failed a load check; thrown later
-  std::string scratch;     // message text built by C++ helpers before a Lua error is raised
 
   LogQueue log;
   bool log_writing{};  // inside log(), between taking a slot and publishing it
@@ -108,7 +108,8 @@ void count_hook(lua_State* L, lua_Debug* ar);
 // Charges a C function's work as `instructions`; raises if the budget runs out.
 void charge(lua_State* L, std::int64_t instructions);
 // Records the first fault message (printf-style, truncated to the buffer).
-void record_fault(ScriptVm* vm, const char* format, ...) __attribute__((format(printf, 2, 3)));
+void record_fault(ScriptVm* vm, ScriptFault kind, const char* format, ...)
+    __attribute__((format(printf, 3, 4)));
 // Marks the state tripped: the hook now fires on every instruction of `L` and of the main
 // thread, and raises each time, so no pcall inside the script can continue past it.
 void trip(ScriptVm* vm, lua_State* L);

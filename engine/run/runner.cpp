@@ -117,14 +117,20 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
     if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
       const ScriptInstance& instance = *state.scripts[script_index++];
       summary.scripts.push_back(ScriptReport{script->program->display_name, instance.disabled(),
-                                             std::string(instance.fault_message()),
+                                             instance.fault(), std::string(instance.fault_message()),
                                              instance.fault_time_s(), instance.skipped_calls()});
+      switch (instance.fault()) {
+        case ScriptFault::none: break;
+        case ScriptFault::error:
+        case ScriptFault::bad_return: ++summary.script_errors; break;
+        case ScriptFault::instruction_budget:
+        case ScriptFault::time_limit:
+        case ScriptFault::memory_limit: ++summary.script_budget_overruns; break;
+      }
     }
   }
   summary.ticks = state.tick;
   summary.safety = state.safety.counters;
-  summary.script_errors = state.script_errors;
-  summary.script_budget_overruns = state.script_budget_overruns;
   summary.device_time_s = static_cast<double>(state.tick) * scene.period_s;
   summary.wall_time_s = static_cast<double>(monotonic_ns() - start_ns) * 1e-9;
   summary.achieved_rate_hz = real_time && summary.wall_time_s > 0.0

@@ -52,6 +52,7 @@ class TickObserver {
 struct ScriptReport {
   std::string name;            // "scripts/bumps.lua"
   bool disabled{};
+  ScriptFault fault_kind{ScriptFault::none};
   std::string fault;           // "scripts/bumps.lua:12: ..." when disabled
   double fault_time_s{};       // run time of the faulting call
   std::uint64_t skipped_calls{};  // ticks answered with 0 N after the fault
@@ -66,8 +67,8 @@ struct RunSummary {
   double max_abs_requested_N{};   // largest |force| the scene asked for
   double max_abs_output_N{};      // largest |force| commanded after safety
   SafetyCounters safety;
-  std::uint64_t script_errors{};          // from TickState, filled by script effects
-  std::uint64_t script_budget_overruns{};
+  std::uint64_t script_errors{};          // scripts disabled by an error or a bad return value
+  std::uint64_t script_budget_overruns{}; // scripts disabled by their instruction, time or memory limit
   std::uint64_t deadline_misses{};  // ticks that ended after the next tick's deadline
   LatencyHistogram compute_ns;      // read + step + write of each tick
   LatencyHistogram wake_late_ns;    // real time: how late each tick started

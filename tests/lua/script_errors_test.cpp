@@ -69,9 +69,11 @@ TEST_CASE("errors: a runtime error disables the script, reported once with its l
       "end");
   CHECK(script->force_N(at(0.01, 0.0, 1.0)) == -0.1);
   CHECK(script->fault_message().empty());
+  CHECK(script->fault() == ScriptFault::none);
   CHECK(script->force_N(at(0.03, 0.0, 1.5)) == 0.0);
   CHECK(script->disabled());
   CHECK(script->fault_message() == "t.lua:4: attempt to perform arithmetic on a nil value (local 'gain')");
+  CHECK(script->fault() == ScriptFault::error);
   CHECK(script->fault_count() == 1);
   CHECK(script->fault_time_s() == 1.5);
   // From then on: 0 N, the same single fault.
@@ -97,6 +99,7 @@ TEST_CASE("errors: the return value must be a finite number") {
     CHECK(script->force_N(at(0.01)) == 0.0);
     CHECK(script->disabled());
     CHECK(script->fault_message() == c.message);
+    CHECK(script->fault() == ScriptFault::bad_return);
   }
   // Integers are numbers too.
   auto integer = run_inline("function force(s) return 2 end");

@@ -35,6 +35,7 @@ TEST_CASE("limits: an endless loop is stopped within the call's budget, quickly"
   CHECK(script->disabled());
   CHECK(script->fault_message() ==
         "t.lua:3: instruction budget exceeded (100000 instructions per call)");
+  CHECK(script->fault() == ScriptFault::instruction_budget);
   MESSAGE("a runaway loop was stopped after " << elapsed_s * 1e6 << " us");
   CHECK(elapsed_s < 0.05);  // about 0.3 ms on a laptop; generous for loaded CI machines
 }
@@ -107,6 +108,20 @@ TEST_CASE("limits: C functions are charged for their work") {
         "charged 1000000000)");
 }
 
+TEST_CASE("limits: cheap uses of charged functions stay cheap") {
+  // Appending, reading one byte of a long string, unpacking a few: no large charge.
+  auto script = run_inline(
+      "local t, text = {}, string.rep('x', 4000)\n"
+      "function force(s)\n"
+      "  for i = 1, 2000 do t[#t + 1] = 1; table.insert(t, 2); table.remove(t) end\n"
+      "  local sum = 0\n"
+      "  for i = 1, 1000 do sum = sum + text:byte(i) + select('#', table.unpack(t, 1, 3)) end\n"
+      "  return sum\n"
+      "end");
+  CHECK(script->force_N(at(0.0)) == 1000.0 * (120 + 3));
+  CHECK_FALSE(script->disabled());
+}
+
 TEST_CASE("limits: allocation per call and the memory cap stop memory bombs") {
   auto bomb = run_inline(
       "function force(s)\n"
@@ -115,6 +130,7 @@ TEST_CASE("limits: allocation per call and the memory cap stop memory bombs") {
       "  while true do t[#t + 1] = { 1, 2, 3 } end\n"
       "end");
   CHECK(fault_at_1cm(bomb.get()) == "t.lua:4: allocation limit exceeded (262144 bytes per call)");
+  CHECK(bomb->fault() == ScriptFault::memory_limit);
 
   // With a per-call limit above the cap, the cap stops it; garbage is collected
   // first (an emergency collection), live data is not.
@@ -152,6 +168,8 @@ TEST_CASE("limits: strings are capped, so no single operation walks a huge one")
       "  while true do text = text .. text end\n"
       "end");
   CHECK(fault_at_1cm(doubling.get()) == "t.lua:4: string limit exceeded (4096 bytes per string)");
+  // Exactly at the limit is fine.
+  CHECK(load_error("local a = string.rep('x', 4095) .. 'y'\nfunction force(s) return #a end") == "");
 }
 
 TEST_CASE("limits: runaway recursion is an error, not a crash") {
@@ -195,17 +213,25 @@ TEST_CASE("limits: an optional wall-clock limit per call") {
       "end",
       limits);
   CHECK(fault_at_1cm(script.get()) == "t.lua:3: time limit exceeded (2 ms per call)");
+  CHECK(script->fault() == ScriptFault::time_limit);
 }
 
 TEST_CASE("limits: limits are checked when compiling") {
   ScriptLimits limits;
   limits.memory_bytes = 1000;
   CHECK(load_error("function force(s) return 0 end", {}, limits) ==
-        "environments/lab.json: script limits: memory_bytes must be at least 262144 (256 KiB)");
+        "environments/lab.json: script limits: memory_bytes must be at least 65536 (64 KiB)");
   limits = {};
   limits.instructions_per_call = 10;
   CHECK(load_error("function force(s) return 0 end", {}, limits) ==
-        "environments/lab.json: script limits: instructions_per_call must be at least 1000");
+        "environments/lab.json: script limits: instructions_per_call must be at least 100");
+  // The smallest limits still run a spring.
+  limits.instructions_per_call = 100;
+  limits.memory_bytes = 64u << 10;
+  limits.allocation_bytes_per_call = 1024;
+  auto small = ScriptInstance::create(
+      test::compile_inline("function force(s) return -100 * s.x end", limits));
+  CHECK(small->force_N(at(0.01)) == -1.0);
 }
 
 TEST_CASE("limits: a disabled script stays at 0 N, counts skipped calls, and reset keeps it off") {

@@ -1,5 +1,6 @@
 // log()/print(): never blocks the tick; messages carry their place and run time, are
 // rate limited on run time, and the drops are counted and reported.
+#include <atomic>
 #include <thread>
 
 #include "tests/lua/script_test_support.hpp"
@@ -92,14 +93,16 @@ TEST_CASE("log: another thread may drain while the loop logs") {
   // Every message either arrived whole or was counted as dropped.
   std::size_t messages = 0;
   std::size_t dropped = 0;
+  std::size_t malformed = 0;
   for (const std::string& line : lines) {
     if (line.find("dropped") != std::string::npos) {
       dropped += std::stoul(line.substr(std::string("t.lua: ").size()));
     } else {
-      CHECK(line.find("t.lua:1: ") == 0);
+      malformed += line.rfind("t.lua:1: ", 0) == 0 && line.back() == ')' ? 0 : 1;
       ++messages;
     }
   }
+  CHECK(malformed == 0);
   CHECK(messages + dropped == 20'000);
 }
 
