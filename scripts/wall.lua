@@ -18,7 +18,8 @@ params = {
   transient_gain = "15 N*s/m",    -- A, transient amplitude per m/s of impact speed
   transient_frequency = "150 Hz", -- f
   transient_decay = "15 ms",      -- td, time constant of the decay
-  max_transient = "3 N",          -- Fmax, largest transient amplitude
+  max_transient = "1.5 N",        -- Fmax, largest transient amplitude (keeps the
+                                  -- first-millisecond step under the capstan slip limit)
 }
 
 local xw, K, B = params.position, params.stiffness, params.damping

@@ -177,7 +177,7 @@ TEST_CASE("library: wall.lua is a stiff damped wall with a decaying transient on
   // Approach at 0.1 m/s; the first tick inside is k = 50 (x = 10.05 mm).
   for (int k = 0; k < 50; ++k) CHECK(wall->force_N(at(0.00505 + v * k * 0.001, v, k * 0.001)) == 0.0);
   const double t_impact = 50 * 0.001;
-  const double amplitude = std::min(A * v, 3.0);
+  const double amplitude = std::min(A * v, 1.5);
   for (int k = 50; k < 140; ++k) {
     CAPTURE(k);
     const double t = k * 0.001;
@@ -191,11 +191,11 @@ TEST_CASE("library: wall.lua is a stiff damped wall with a decaying transient on
   // Leaving: only the spring (no damping pulling the hand in), then nothing outside.
   CHECK(wall->force_N(at(0.012, -0.05, 0.2)) == doctest::Approx(-K * 0.002));
   CHECK(wall->force_N(at(0.009, -0.05, 0.25)) == 0.0);
-  // A faster impact gives a larger transient (clamped at 3 N).
+  // A faster impact gives a larger transient (clamped at 1.5 N).
   CHECK(wall->force_N(at(0.0101, 0.5, 0.3)) == doctest::Approx(-K * 0.0001 - B * 0.5));
   const double second = wall->force_N(at(0.0102, 0.5, 0.3 + 0.0015));
   const double expected = -K * 0.0002 - B * 0.5 -
-                          3.0 * std::exp(-0.0015 / td) * std::sin(2 * kPi * f * 0.0015);
+                          1.5 * std::exp(-0.0015 / td) * std::sin(2 * kPi * f * 0.0015);
   CHECK(second == doctest::Approx(expected).epsilon(1e-9));
 
   // Starting inside the wall is not an impact: no transient.
