@@ -161,7 +161,7 @@ TEST_CASE("validate: force limit, time at the limit and penetration, both ways")
 
 TEST_CASE("validate: script faults and tick compute time have thresholds") {
   const ScenarioResult result = run(scene_from(spring(100)), ScenarioKind::hold);
-  CHECK(check(result, "script").pass);  // no script effects yet: 0 faults
+  CHECK(check(result, "script").pass);  // no script faults
   CHECK(check(result, "script").value == 0.0);
   const CheckResult& compute = check(result, "tick_compute");
   CHECK(compute.threshold == doctest::Approx(0.5e-3));  // half the period by default
@@ -171,6 +171,27 @@ TEST_CASE("validate: script faults and tick compute time have thresholds") {
   const ScenarioResult strict =
       run(scene_from(R"({"validate": {"max_tick_compute": "1e-12 s"}, "effects": []})"), ScenarioKind::hold);
   CHECK_FALSE(check(strict, "tick_compute").pass);
+}
+
+TEST_CASE("validate: a script that errors, loops forever or jolts fails for the right reason") {
+  // A runtime error half a second in: the script is disabled and counted as an error.
+  const ScenarioResult erring = run(scene_from(R"({"effects": [{"type": "script", "source":
+    "function force(s) if s.t > 0.5 then local y = nil; return y.z end return -50 * s.x end"}]})"),
+                                    ScenarioKind::hold);
+  CHECK_FALSE(check(erring, "script").pass);
+  CHECK(check(erring, "script").value == 1.0);
+  CHECK(check(erring, "script").detail == "1 errors, 0 budget overruns");
+  // An endless loop after a while: stopped by the instruction budget, counted as an overrun.
+  const ScenarioResult looping = run(scene_from(R"({"effects": [{"type": "script", "source":
+    "function force(s) while s.t > 0.3 do end return 0 end"}]})"),
+                                     ScenarioKind::hold);
+  CHECK(check(looping, "script").detail == "0 errors, 1 budget overruns");
+  // A script that jolts: 4 N switched on and off every 50 ms trips the capstan-slip check.
+  const ScenarioResult jolting = run(scene_from(R"({"effects": [{"type": "script", "source":
+    "function force(s) if math.floor(s.t / 0.05) % 2 == 1 then return 4 end return 0 end"}]})"),
+                                     ScenarioKind::hold);
+  CHECK(check(jolting, "script").pass);
+  CHECK_FALSE(check(jolting, "slip").pass);
 }
 
 TEST_CASE("validate: runs are deterministic to the bit") {
