@@ -114,7 +114,11 @@ std::string_view quantity_name(Quantity quantity) {
 }
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
+  // One row on the stack: no allocation, so script error paths inside the tick may use it.
+  if (a.size() > kMaxSuggestedNameBytes || b.size() > kMaxSuggestedNameBytes) {
+    return static_cast<std::size_t>(-1);
+  }
+  std::size_t row[kMaxSuggestedNameBytes + 1];
   for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i) {
     std::size_t diagonal = row[0];

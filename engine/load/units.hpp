@@ -41,7 +41,11 @@ QuantityParse parse_quantity(std::string_view text);
 // On a unit of another quantity, error reads e.g. "expected a stiffness (N/m), got a length ("10 mm")".
 QuantityParse parse_quantity_as(std::string_view text, Quantity expected);
 
-// Levenshtein distance, for "did you mean" suggestions.
+// Names longer than this are never suggested.
+inline constexpr std::size_t kMaxSuggestedNameBytes = 48;
+
+// Levenshtein distance, for "did you mean" suggestions; the largest size_t when either
+// name is longer than kMaxSuggestedNameBytes. Allocates nothing.
 std::size_t edit_distance(std::string_view a, std::string_view b);
 
 // The candidate closest to `word`, or empty when none is reasonably close.

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <string_view>
 
+#include "engine/load/units.hpp"
 #include "engine/lua/params.hpp"
 #include "engine/lua/script_vm.hpp"
 
@@ -19,24 +20,6 @@ const char kParamsKey = 0;
 
 // ---- Suggestions without allocating (they run inside the tick on error paths) -------
 
-// Levenshtein distance of two names up to 48 bytes; longer names are never suggested.
-std::size_t short_distance(std::string_view a, std::string_view b) {
-  constexpr std::size_t kMax = 48;
-  if (a.size() > kMax || b.size() > kMax) return static_cast<std::size_t>(-1);
-  std::size_t row[kMax + 1];
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      const std::size_t substitute = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
-      row[j] = std::min({above + 1, row[j - 1] + 1, substitute});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
 
 // The string key of the table at `index` nearest to `name` (ties: the smaller key), or ""
 // when none is close: at most one edit per three letters (one for short names).
@@ -49,7 +32,7 @@ void nearest_key(lua_State* L, int index, std::string_view name, char* out, std:
     if (lua_type(L, -2) == LUA_TSTRING) {
       std::size_t length = 0;
       const char* key = lua_tolstring(L, -2, &length);
-      const std::size_t d = short_distance(name, std::string_view(key, length));
+      const std::size_t d = edit_distance(name, std::string_view(key, length));
       if (d > 0 && length < size &&
           (d < best || (d == best && out[0] != '\0' && std::strcmp(key, out) < 0))) {
         best = d;
@@ -267,8 +250,8 @@ bool check_needs(lua_State* L, int index, ScriptVm* vm) noexcept {
     lua_pop(L, 1);
   }
   if (bad_key[0] != '\0') {
-    const bool near_velocity = short_distance(bad_key, "velocity") <= 3;
-    const bool near_time = short_distance(bad_key, "time") <= 2;
+    const bool near_velocity = edit_distance(bad_key, "velocity") <= 3;
+    const bool near_time = edit_distance(bad_key, "time") <= 2;
     set_load_error(vm, "%s: needs.%s: unknown need%s (a script can declare velocity and time)",
                    name, bad_key,
                    near_velocity ? " (did you mean \"velocity\"?)"
