@@ -6,6 +6,7 @@
 
 #include "engine/bench/tick_bench.hpp"
 #include "engine/cli/arguments.hpp"
+#include "engine/cli/bench_modes.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/load/environment.hpp"
 
@@ -46,6 +47,7 @@ void print_row(const char* scene, const char* implementation, const TickCost& co
 
 int bench_command(std::vector<std::string> args) {
   Arguments arguments(std::move(args), "hapscene bench");
+  if (arguments.take_flag("accuracy")) return bench_accuracy(arguments);
   const double seconds = arguments.take_quantity("seconds", Quantity::time_s).value_or(20.0);
   const auto passes_text = arguments.take_value("passes").value_or("10");
   std::vector<std::string> files = arguments.positionals();

@@ -105,68 +105,104 @@ void HapkitPlant::euler_substep(double h_s, double motor_force_N) noexcept {
   x_m_ += v_m_per_s_ * h_s;
 }
 
-// Classical RK4 on the full force model (hand, end stops, viscous), with Coulomb
-// friction's direction fixed for the substep.
-void HapkitPlant::rk4_substep(double h_s, double motor_force_N) noexcept {
-  const PlantModel& plant = profile_.plant;
-  hand_force_N_ = hand_.force_N(t_s_, x_m_, v_m_per_s_);
+double HapkitPlant::driving_force_N(double t_s, double motor_force_N) const noexcept {
   double k = 0.0, c = 0.0, stop_m = 0.0;
-  const double driving_N = motor_force_N + hand_force_N_ + stop_force_N(x_m_, v_m_per_s_, &k, &c, &stop_m) -
-                           plant.viscous_N_s_per_m * v_m_per_s_;
-  const double direction = coulomb_direction(driving_N);
-  if (direction == 0.0) return;  // stuck
-  const double mass_kg = plant.mass_kg + hand_.added_mass_kg(t_s_);
-  const double friction_N = direction * plant.coulomb_N;
-
-  const auto accel = [&](double tau_s, double x_m, double v_m_per_s) noexcept {
-    double ks = 0.0, cs = 0.0, xs = 0.0;
-    const double f_N = motor_force_N + hand_.force_N(t_s_ + tau_s, x_m, v_m_per_s) +
-                       stop_force_N(x_m, v_m_per_s, &ks, &cs, &xs) -
-                       plant.viscous_N_s_per_m * v_m_per_s - friction_N;
-    return f_N / mass_kg;
-  };
-  const double x0 = x_m_, v0 = v_m_per_s_, half = 0.5 * h_s;
-  const double a1 = accel(0.0, x0, v0);
-  const double a2 = accel(half, x0 + half * v0, v0 + half * a1);
-  const double v2 = v0 + half * a1;
-  const double a3 = accel(half, x0 + half * v2, v0 + half * a2);
-  const double v3 = v0 + half * a2;
-  const double a4 = accel(h_s, x0 + h_s * v3, v0 + h_s * a3);
-  const double v4 = v0 + h_s * a3;
-  x_m_ = x0 + h_s / 6.0 * (v0 + 2.0 * v2 + 2.0 * v3 + v4);
-  const double v_next = v0 + h_s / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
-  v_m_per_s_ = (v_next * direction < 0.0) ? 0.0 : v_next;
+  return motor_force_N + hand_.force_N(t_s, x_m_, v_m_per_s_) + stop_force_N(x_m_, v_m_per_s_, &k, &c, &stop_m) -
+         profile_.plant.viscous_N_s_per_m * v_m_per_s_;
 }
 
-// The exact solution of the linear model frozen at the substep's start: viscous damping,
-// the hand's spring-damper toward a reference moving at its current speed, the end stop
-// the handle is in (if any), the held motor force and Coulomb friction's constant force.
+// Coulomb friction for the higher-order integrators: its direction is fixed while the
+// handle moves one way. When the velocity would change sign within the substep, the
+// substep is redone up to the moment it reaches zero (estimated linearly), the handle
+// stops there, and the rest of the substep starts from rest (stuck, or breaking away the
+// other way). `advance(t_s, tau_s, direction)` integrates (x, v) by tau from time t.
+template <typename Advance>
+void HapkitPlant::advance_with_friction(double h_s, double motor_force_N, Advance advance) noexcept {
+  hand_force_N_ = hand_.force_N(t_s_, x_m_, v_m_per_s_);
+  double done_s = 0.0;
+  double breakaway = 0.0;  // direction of a breakaway found within this substep
+  for (int pass = 0; pass < 4 && done_s < h_s; ++pass) {
+    const double t_s = t_s_ + done_s;
+    const double tau_s = h_s - done_s;
+    const double start_N = driving_force_N(t_s, motor_force_N);
+    const double direction = breakaway != 0.0 ? breakaway : coulomb_direction(start_N);
+    breakaway = 0.0;
+    if (direction == 0.0) {
+      // Stuck: stays so unless the other forces exceed static friction by the end of the
+      // substep; then it breaks away when they reach it (estimated linearly).
+      const double end_N = driving_force_N(t_s + tau_s, motor_force_N);
+      if (!(std::abs(end_N) > profile_.plant.coulomb_N)) return;
+      const double level_N = std::copysign(profile_.plant.coulomb_N, end_N);
+      done_s += std::clamp((level_N - start_N) / (end_N - start_N), 0.0, 1.0) * tau_s;
+      breakaway = end_N > 0.0 ? 1.0 : -1.0;
+      continue;
+    }
+    const double x0 = x_m_, v0 = v_m_per_s_;
+    advance(t_s, tau_s, direction);
+    if (v_m_per_s_ * direction >= 0.0 || profile_.plant.coulomb_N == 0.0) return;
+    // Reversed: stop where the velocity crosses zero.
+    const double to_zero_s = v0 != 0.0 ? tau_s * v0 / (v0 - v_m_per_s_) : 0.0;
+    x_m_ = x0;
+    v_m_per_s_ = v0;
+    if (to_zero_s > 0.0) advance(t_s, to_zero_s, direction);
+    v_m_per_s_ = 0.0;
+    done_s += to_zero_s;
+  }
+}
+
+// Classical RK4 on the full force model (hand, end stops, viscous), with Coulomb
+// friction's direction fixed while the handle moves one way.
+void HapkitPlant::rk4_substep(double h_s, double motor_force_N) noexcept {
+  const PlantModel& plant = profile_.plant;
+  advance_with_friction(h_s, motor_force_N, [&](double t_s, double tau_s, double direction) noexcept {
+    const double mass_kg = plant.mass_kg + hand_.added_mass_kg(t_s);
+    const double friction_N = direction * plant.coulomb_N;
+    const auto accel = [&](double dt_s, double x_m, double v_m_per_s) noexcept {
+      double ks = 0.0, cs = 0.0, xs = 0.0;
+      const double f_N = motor_force_N + hand_.force_N(t_s + dt_s, x_m, v_m_per_s) +
+                         stop_force_N(x_m, v_m_per_s, &ks, &cs, &xs) -
+                         plant.viscous_N_s_per_m * v_m_per_s - friction_N;
+      return f_N / mass_kg;
+    };
+    const double x0 = x_m_, v0 = v_m_per_s_, half = 0.5 * tau_s;
+    const double a1 = accel(0.0, x0, v0);
+    const double v2 = v0 + half * a1;
+    const double a2 = accel(half, x0 + half * v0, v2);
+    const double v3 = v0 + half * a2;
+    const double a3 = accel(half, x0 + half * v2, v3);
+    const double v4 = v0 + tau_s * a3;
+    const double a4 = accel(tau_s, x0 + tau_s * v3, v4);
+    x_m_ = x0 + tau_s / 6.0 * (v0 + 2.0 * v2 + 2.0 * v3 + v4);
+    v_m_per_s_ = v0 + tau_s / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
+  });
+}
+
+// The exact solution of the linear model frozen at the start: viscous damping, the
+// hand's spring-damper toward a reference moving at constant speed over the step, the end stop the
+// handle is in (if any), the held motor force and Coulomb friction's constant force.
 void HapkitPlant::exact_substep(double h_s, double motor_force_N) noexcept {
   const PlantModel& plant = profile_.plant;
-  hand_force_N_ = hand_.force_N(t_s_, x_m_, v_m_per_s_);
-  double stop_k = 0.0, stop_c = 0.0, stop_m = 0.0;
-  const double driving_N = motor_force_N + hand_force_N_ +
-                           stop_force_N(x_m_, v_m_per_s_, &stop_k, &stop_c, &stop_m) -
-                           plant.viscous_N_s_per_m * v_m_per_s_;
-  const double direction = coulomb_direction(driving_N);
-  if (direction == 0.0) return;  // stuck
-
-  LinearModel model;
-  model.mass_kg = plant.mass_kg + hand_.added_mass_kg(t_s_);
-  model.damping_N_s_per_m = plant.viscous_N_s_per_m + stop_c;
-  model.stiffness_N_per_m = stop_k;
-  model.force_N = motor_force_N - direction * plant.coulomb_N + stop_k * stop_m;
-  if (hand_.gripping(t_s_)) {
-    const HandConfig& hand = config_.hand;
-    const double ref_m = hand_.reference_m(t_s_);
-    const double ref_v = hand_.reference_velocity_m_per_s(t_s_);
-    model.stiffness_N_per_m += hand.stiffness_N_per_m;
-    model.damping_N_s_per_m += hand.damping_N_s_per_m;
-    model.force_N += hand.stiffness_N_per_m * ref_m + hand.damping_N_s_per_m * ref_v;
-    model.force_rate_N_per_s = hand.stiffness_N_per_m * ref_v;
-  }
-  exact_linear_step(model, h_s, &x_m_, &v_m_per_s_);
-  if (v_m_per_s_ * direction < 0.0) v_m_per_s_ = 0.0;
+  advance_with_friction(h_s, motor_force_N, [&](double t_s, double tau_s, double direction) noexcept {
+    double stop_k = 0.0, stop_c = 0.0, stop_m = 0.0;
+    stop_force_N(x_m_, v_m_per_s_, &stop_k, &stop_c, &stop_m);
+    LinearModel model;
+    model.mass_kg = plant.mass_kg + hand_.added_mass_kg(t_s);
+    model.damping_N_s_per_m = plant.viscous_N_s_per_m + stop_c;
+    model.stiffness_N_per_m = stop_k;
+    model.force_N = motor_force_N - direction * plant.coulomb_N + stop_k * stop_m;
+    if (hand_.gripping(t_s)) {
+      const HandConfig& hand = config_.hand;
+      // The reference as a ramp through its values at both ends of the step, so a corner
+      // of the hand's path inside the step costs a second-order error, not a first-order one.
+      const double ref_m = hand_.reference_m(t_s);
+      const double ref_v = (hand_.reference_m(t_s + tau_s) - ref_m) / tau_s;
+      model.stiffness_N_per_m += hand.stiffness_N_per_m;
+      model.damping_N_s_per_m += hand.damping_N_s_per_m;
+      model.force_N += hand.stiffness_N_per_m * ref_m + hand.damping_N_s_per_m * ref_v;
+      model.force_rate_N_per_s = hand.stiffness_N_per_m * ref_v;
+    }
+    exact_linear_step(model, tau_s, &x_m_, &v_m_per_s_);
+  });
 }
 
 }  // namespace hapscene

@@ -20,8 +20,8 @@ struct SimulationConfig {
   std::uint64_t noise_seed{1};
   // How the plant is integrated over each tick (see plant_integrators.hpp and the README's
   // "Measurements": chosen from the accuracy bench's Pareto front).
-  PlantIntegrator integrator{PlantIntegrator::semi_implicit_euler};
-  int substeps_per_tick{10};  // plant integration steps per advance()
+  PlantIntegrator integrator{PlantIntegrator::exact};
+  int substeps_per_tick{2};  // plant integration steps per advance()
 };
 
 class HapkitPlant {
@@ -52,6 +52,10 @@ class HapkitPlant {
                       double* stop_m) const noexcept;
   // Coulomb friction's sign for this substep (0: stuck, the handle stays put).
   double coulomb_direction(double driving_N) const noexcept;
+  // Everything but Coulomb friction on the handle at its current state, at time t.
+  double driving_force_N(double t_s, double motor_force_N) const noexcept;
+  template <typename Advance>
+  void advance_with_friction(double h_s, double motor_force_N, Advance advance) noexcept;
   void euler_substep(double h_s, double motor_force_N) noexcept;
   void rk4_substep(double h_s, double motor_force_N) noexcept;
   void exact_substep(double h_s, double motor_force_N) noexcept;
