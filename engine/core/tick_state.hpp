@@ -38,6 +38,7 @@ struct TickState {
   double effects_force_N{};       // sum of all effects: what the scene asks for
   std::uint64_t script_errors{};          // script calls that failed (script effects count)
   std::uint64_t script_budget_overruns{}; // script calls stopped by their instruction budget
+  std::uint64_t script_calls{};           // calls into script effects (one per script per tick)
 
   // Safety stage.
   SafetyState safety;
