@@ -77,7 +77,12 @@ void HapkitPlant::substep(double h_s, double motor_force_N) noexcept {
     case PlantIntegrator::rk4: rk4_substep(h_s, motor_force_N); break;
     case PlantIntegrator::exact: exact_substep(h_s, motor_force_N); break;
   }
-  t_s_ += h_s;
+  // Compensated sum: after 10^9 substeps the clock is still right to the last bit or so
+  // (a plain sum drifts by milliseconds, and the hand's motion with it).
+  const double add_s = h_s - t_carry_s_;
+  const double sum_s = t_s_ + add_s;
+  t_carry_s_ = (sum_s - t_s_) - add_s;
+  t_s_ = sum_s;
 }
 
 // Semi-implicit Euler with stick-slip Coulomb friction: a handle at rest stays at rest

@@ -67,6 +67,7 @@ class HapkitPlant {
   double x_m_{};
   double v_m_per_s_{};
   double t_s_{};
+  double t_carry_s_{};  // rounding error of t_s_ carried to the next step (Kahan)
   double hand_force_N_{};
   double stop_damping_N_s_per_m_{};
   std::int32_t last_counts_{};

@@ -116,6 +116,11 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
   for (const Effect& effect : hot_swap.scene().effects) {
     if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
       const ScriptInstance& instance = *state.scripts[script_index++];
+      // Its fault, counted: a budget or time overrun, or any other error.
+      const std::string_view fault = instance.fault_message();
+      const bool overrun = fault.find("budget exceeded") != std::string_view::npos ||
+                           fault.find("time limit exceeded") != std::string_view::npos;
+      (overrun ? state.script_budget_overruns : state.script_errors) += instance.fault_count();
       summary.scripts.push_back(ScriptReport{script->program->display_name, instance.disabled(),
                                              std::string(instance.fault_message()),
                                              instance.fault_time_s(), instance.skipped_calls()});
