@@ -253,7 +253,9 @@ std::vector<AccuracyResult> run_accuracy_sweep(const DeviceProfile& profile,
 
   // The wall's truth: a 100 kHz loop with 1 us RK4 steps, computed once.
   Trajectory wall_truth;
-  fine_simulate(wall_profile, AccuracyScenario::wall, kReferenceRate_Hz, &wall_truth);
+  const bool any_wall = std::any_of(cases.begin(), cases.end(),
+                                    [](const AccuracyCase& c) { return c.scenario == AccuracyScenario::wall; });
+  if (any_wall) fine_simulate(wall_profile, AccuracyScenario::wall, kReferenceRate_Hz, &wall_truth);
 
   std::vector<AccuracyResult> results;
   Trajectory run, fine;
