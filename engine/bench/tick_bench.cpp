@@ -25,12 +25,20 @@ class RecordingDevice final : public Device {
 };
 
 template <typename Tick>
-TickCost time_passes(const std::vector<std::int32_t>& counts, int passes, TickTimer* timer, Tick tick) {
+TickCost time_passes(const std::vector<std::int32_t>& counts, int passes, TickTimer* timer,
+                     InstructionCounter* counter, Tick tick) {
   const std::size_t n = counts.size();
   // One untimed pass warms caches and branch predictors.
   for (std::size_t i = 0; i < n; ++i) tick(counts[i]);
-  return timer->time(n * static_cast<std::size_t>(passes),
-                     [&](std::size_t i) { tick(counts[i % n]); });
+  TickCost cost = timer->time(n * static_cast<std::size_t>(passes),
+                              [&](std::size_t i) { tick(counts[i % n]); });
+  // Instructions: one more pass between the counter's start and stop.
+  if (counter != nullptr && counter->available() && n > 0) {
+    counter->start();
+    for (std::size_t i = 0; i < n; ++i) tick(counts[i]);
+    cost.instructions_per_tick = static_cast<double>(counter->stop()) / static_cast<double>(n);
+  }
+  return cost;
 }
 
 }  // namespace
@@ -51,20 +59,24 @@ std::vector<std::int32_t> record_sensor_counts(const Scene& scene, double durati
 }
 
 TickCost bench_scene(const Scene& scene, const std::vector<std::int32_t>& counts, int passes,
-                     TickTimer* timer) {
+                     TickTimer* timer, InstructionCounter* counter, double* script_calls_per_tick) {
   TickState state = make_tick_state(scene);
-  return time_passes(counts, passes, timer,
-                     [&](std::int32_t raw) { step(scene, raw, &state); });
+  const TickCost cost = time_passes(counts, passes, timer, counter,
+                                    [&](std::int32_t raw) { step(scene, raw, &state); });
+  if (script_calls_per_tick != nullptr) {
+    *script_calls_per_tick = static_cast<double>(state.script_calls) / static_cast<double>(state.tick);
+  }
+  return cost;
 }
 
 bool bench_lab_baseline(const Scene& scene, const std::vector<std::int32_t>& counts, int passes,
-                        TickTimer* timer, TickCost* cost) {
+                        TickTimer* timer, TickCost* cost, InstructionCounter* counter) {
   LabBaselineKind kind{};
   LabBaselineConstants constants;
   if (!lab_baseline_for(scene, &kind, &constants)) return false;
   LabBaselineState state;
   const auto run = [&](auto tick_function) {
-    return time_passes(counts, passes, timer,
+    return time_passes(counts, passes, timer, counter,
                        [&](std::int32_t raw) { tick_function(constants, raw, &state); });
   };
   switch (kind) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/bench/instruction_counter.hpp"
 #include "engine/bench/tick_timer.hpp"
 #include "engine/core/scene.hpp"
 
@@ -15,13 +16,16 @@ namespace hapscene {
 // realistic inputs, sensor wraps included.
 std::vector<std::int32_t> record_sensor_counts(const Scene& scene, double duration_s);
 
-// The engine's step() over `counts`, `passes` times, each tick timed.
+// The engine's step() over `counts`, `passes` times, each tick timed; with an available
+// `counter`, one more pass counts instructions per tick. `script_calls` (optional) gets
+// the script calls per tick of that run.
 TickCost bench_scene(const Scene& scene, const std::vector<std::int32_t>& counts, int passes,
-                     TickTimer* timer);
+                     TickTimer* timer, InstructionCounter* counter = nullptr,
+                     double* script_calls_per_tick = nullptr);
 
 // The hand-written baseline over the same counts; false when the scene is not a single lab
 // effect (then there is no baseline to compare with).
 bool bench_lab_baseline(const Scene& scene, const std::vector<std::int32_t>& counts, int passes,
-                        TickTimer* timer, TickCost* cost);
+                        TickTimer* timer, TickCost* cost, InstructionCounter* counter = nullptr);
 
 }  // namespace hapscene

@@ -21,6 +21,7 @@ struct TickCost {
   double p99_ns{};
   double p999_ns{};
   double max_ns{};
+  double instructions_per_tick{-1.0};  // < 0: not counted (no performance counters)
 };
 
 class TickTimer {

@@ -2,10 +2,14 @@
 // hand-written Hapkit lab baseline, and a table of what each part of a scene costs, all
 // measured in one run so the ratios compare like with like.
 #include <cstdio>
+#include <optional>
 #include <string>
 
+#include "engine/bench/instruction_counter.hpp"
+#include "engine/bench/lua_equivalent.hpp"
 #include "engine/bench/tick_bench.hpp"
 #include "engine/cli/arguments.hpp"
+#include "engine/cli/bench_modes.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/load/environment.hpp"
 
@@ -33,21 +37,49 @@ constexpr const char* kPartScenes[][2] = {
       {"type": "texture", "width": 0.004, "damping": 0.1}, {"type": "wall", "position": 0.02, "stiffness": 100, "solid": "above"},
       {"type": "wall", "position": -0.02, "stiffness": 100, "solid": "below"}, {"type": "wall", "position": 0.03, "stiffness": 100, "solid": "above"},
       {"type": "wall", "position": -0.03, "stiffness": 100, "solid": "below"}]})"},
+    {"spring as a Lua script (scripts/spring.lua)", R"({"effects": [{"type": "script", "file": "scripts/spring.lua"}]})"},
+    {"one Lua script + 10 built-in effects", R"({"effects": [{"type": "script", "file": "scripts/spring.lua",
+      "params": {"stiffness": 10}}, {"type": "spring", "stiffness": 10}, {"type": "spring", "stiffness": 10},
+      {"type": "damper", "damping": 0.1}, {"type": "damper", "damping": 0.1}, {"type": "texture", "width": 0.005, "damping": 0.1},
+      {"type": "texture", "width": 0.004, "damping": 0.1}, {"type": "wall", "position": 0.02, "stiffness": 100, "solid": "above"},
+      {"type": "wall", "position": -0.02, "stiffness": 100, "solid": "below"}, {"type": "wall", "position": 0.03, "stiffness": 100, "solid": "above"},
+      {"type": "wall", "position": -0.03, "stiffness": 100, "solid": "below"}]})"},
 };
 
-void print_row(const char* scene, const char* implementation, const TickCost& cost, double baseline_ns) {
-  std::printf("%-28s %-22s %8.1f %8.1f %8.1f %9.1f", scene, implementation, cost.median_ns, cost.p99_ns,
+constexpr double kBuiltinGoalRatio = 1.5;     // built-in effects against the hand-written code
+constexpr double kLuaGoal_ns = 150.0;         // Lua scripts, median per tick
+constexpr double kTailGoalRatio = 5.0;        // p99.9 against the median (no GC spikes)
+
+void print_header() {
+  std::printf("%-10s %-18s %8s %8s %8s %9s %7s %8s %11s\n", "environment", "implementation", "median", "p99",
+              "p99.9", "max", "ratio", "instr", "p99.9/med");
+}
+
+// One row; returns whether p99.9 is within the tail goal.
+bool print_row(const std::string& scene, const char* implementation, const TickCost& cost, double baseline_ns) {
+  std::printf("%-10s %-18s %8.1f %8.1f %8.1f %9.1f", scene.c_str(), implementation, cost.median_ns, cost.p99_ns,
               cost.p999_ns, cost.max_ns);
-  if (baseline_ns > 0.0) std::printf("  %6.2fx", cost.median_ns / baseline_ns);
-  std::printf("\n");
+  if (baseline_ns > 0.0) std::printf(" %6.2fx", cost.median_ns / baseline_ns);
+  else std::printf(" %7s", "-");
+  if (cost.instructions_per_tick >= 0.0) std::printf(" %8.0f", cost.instructions_per_tick);
+  else std::printf(" %8s", "-");
+  const double tail = cost.median_ns > 0.0 ? cost.p999_ns / cost.median_ns : 0.0;
+  const bool ok = tail <= kTailGoalRatio;
+  std::printf(" %6.2f %-4s\n", tail, ok ? "ok" : "OVER");
+  return ok;
 }
 
 }  // namespace
 
 int bench_command(std::vector<std::string> args) {
   Arguments arguments(std::move(args), "hapscene bench");
+  if (arguments.take_flag("accuracy")) return bench_accuracy(arguments);
+  if (arguments.take_flag("stress")) return bench_stress(arguments);
+  if (arguments.take_flag("soak")) return bench_soak(arguments);
+  if (arguments.take_flag("callgrind")) return bench_callgrind(arguments);
   const double seconds = arguments.take_quantity("seconds", Quantity::time_s).value_or(20.0);
   const auto passes_text = arguments.take_value("passes").value_or("10");
+  const std::string scripts_dir = arguments.take_value("scripts").value_or("scripts");
   std::vector<std::string> files = arguments.positionals();
   int passes = 0;
   try {
@@ -59,34 +91,75 @@ int bench_command(std::vector<std::string> args) {
   if (!(seconds > 0.0 && seconds <= 600.0)) arguments.fail("--seconds: must be > 0 s and at most 600 s");
   if (files.empty()) files.assign(std::begin(kLabEnvironments), std::end(kLabEnvironments));
 
+  // Every scene, and its Lua twin, loaded before anything is timed.
   std::vector<Scene> scenes;
-  for (const std::string& file : files) scenes.push_back(load_environment_file(file));
+  std::vector<std::optional<Scene>> lua_scenes;
+  for (const std::string& file : files) {
+    scenes.push_back(load_environment_file(file));
+    lua_scenes.push_back(lua_equivalent(scenes.back(), scripts_dir));
+  }
 
   TickTimer timer;
+  InstructionCounter counter;
   std::printf("tick compute in ns (read counts -> motor command, no I/O); %g s of recorded sensor "
-              "readings x %d passes per row; ratios against the hand-written lab code, same run\n\n",
-              seconds, passes);
-  std::printf("%-28s %-22s %8s %8s %8s %9s  %7s\n", "environment", "implementation", "median", "p99",
-              "p99.9", "max", "ratio");
-  for (const Scene& scene : scenes) {
+              "readings x %d passes per row; ratios against the hand-written lab code, same run\n", seconds, passes);
+  if (counter.available()) {
+    std::printf("instr: instructions per tick from the CPU's counters (one more pass)\n\n");
+  } else {
+    std::printf("instr: not available here (%s); count them with valgrind: hapscene bench --callgrind "
+                "(see README, Measurements)\n\n", counter.reason().c_str());
+  }
+  print_header();
+  bool tails_ok = true;
+  std::vector<std::string> goals;
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const Scene& scene = scenes[i];
     const std::vector<std::int32_t> counts = record_sensor_counts(scene, seconds);
     TickCost baseline;
     double baseline_ns = 0.0;
-    if (bench_lab_baseline(scene, counts, passes, &timer, &baseline)) {
+    if (bench_lab_baseline(scene, counts, passes, &timer, &baseline, &counter)) {
       baseline_ns = baseline.median_ns;
-      print_row(scene.name.c_str(), "hand-written C++", baseline, baseline_ns);
+      tails_ok = print_row(scene.name, "hand-written C++", baseline, baseline_ns) && tails_ok;
     }
-    print_row(scene.name.c_str(), "built-in (JSON)", bench_scene(scene, counts, passes, &timer), baseline_ns);
+    const TickCost builtin = bench_scene(scene, counts, passes, &timer, &counter);
+    tails_ok = print_row(scene.name, "built-in (JSON)", builtin, baseline_ns) && tails_ok;
+    char goal[200];
+    if (baseline_ns > 0.0) {
+      const double ratio = builtin.median_ns / baseline_ns;
+      std::snprintf(goal, sizeof goal, "%s: built-in %.2fx the hand-written code (goal <= %.1fx): %s", scene.name.c_str(),
+                    ratio, kBuiltinGoalRatio, ratio <= kBuiltinGoalRatio ? "met" : "NOT met");
+      goals.push_back(goal);
+    }
+    if (lua_scenes[i]) {
+      const TickCost lua = bench_scene(*lua_scenes[i], counts, passes, &timer, &counter);
+      tails_ok = print_row(scene.name, "Lua script", lua, baseline_ns) && tails_ok;
+      std::snprintf(goal, sizeof goal, "%s: Lua median %.1f ns (goal < %.0f ns): %s", scene.name.c_str(), lua.median_ns,
+                    kLuaGoal_ns, lua.median_ns < kLuaGoal_ns ? "met" : "NOT met");
+      goals.push_back(goal);
+    }
   }
+  std::printf("\ngoals\n");
+  for (const std::string& goal : goals) std::printf("  %s\n", goal.c_str());
+  std::printf("  every row: p99.9 <= %.0fx its median (no GC spikes): %s\n", kTailGoalRatio,
+              tails_ok ? "met" : "NOT met (see p99.9/med)");
 
   std::printf("\nwhat each part of a scene costs (median ns per tick; the same sensor readings)\n\n");
   const std::vector<std::int32_t> counts = record_sensor_counts(
       load_environment_text(R"({"effects": [{"type": "wall", "position": 0.01, "stiffness": 500,
         "solid": "above"}]})", "bench"), seconds);
   for (const auto& [label, json] : kPartScenes) {
-    const Scene scene = load_environment_text(json, "bench");
-    const TickCost cost = bench_scene(scene, counts, passes, &timer);
-    std::printf("%-44s %8.1f\n", label, cost.median_ns);
+    std::string text = json;
+    for (std::size_t at = text.find("scripts/"); at != std::string::npos; at = text.find("scripts/", at + scripts_dir.size() + 1)) {
+      text.replace(at, 7, scripts_dir);
+    }
+    const Scene scene = load_environment_text(text, "bench", ".");
+    double script_calls = 0.0;
+    const TickCost cost = bench_scene(scene, counts, passes, &timer, nullptr, &script_calls);
+    std::printf("%-52s %8.1f", label, cost.median_ns);
+    if (scene.script_count > 0) {
+      std::printf("   %zu script effect(s), %.3f Lua calls per tick", scene.script_count, script_calls);
+    }
+    std::printf("\n");
   }
   return 0;
 }

@@ -18,6 +18,11 @@ usage:
                                           print the force-displacement curve as CSV
   hapscene bench [ENV...] [--seconds T] [--passes N]
                                           tick cost against the hand-written lab code
+  hapscene bench --accuracy [--svg FILE]  simulator run time against error
+  hapscene bench --stress                 stiffness and damping sweeps
+  hapscene bench --soak [--ticks N]       100 million ticks per lab environment
+  hapscene bench --callgrind ENV [--impl builtin|lua|baseline] [--ticks N]
+                                          untimed ticks for valgrind --tool=callgrind
   hapscene validate ENV [ENV...] [options]
                                           check an environment with virtual-hand scenarios
   hapscene test [SPEC...]                 run environment test specs (*.test.json)

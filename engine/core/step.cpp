@@ -34,13 +34,15 @@ TickState make_tick_state(const Scene& scene) {
   return state;
 }
 
-double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts) noexcept {
+double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts,
+                     std::uint64_t* script_calls) noexcept {
   double force_N = 0.0;
   for (const Effect& effect : scene.effects) {
     force_N += std::visit(
         [&](const auto& e) noexcept {
           if constexpr (std::is_same_v<std::decay_t<decltype(e)>, ScriptEffect>) {
             const ScriptInput script_input{input.x_m, input.v_m_per_s, input.t_s, input.dt_s};
+            if (script_calls != nullptr) ++*script_calls;
             return scripts[e.instance_index]->force_N(script_input);
           } else {
             return e.force_N(input);
@@ -76,9 +78,9 @@ void step(const Scene& scene, std::int32_t raw_counts, TickState* state,
   input.v_m_per_s = state->v_m_per_s;
   input.t_s = needs.time ? state->t_s : 0.0;
   input.dt_s = scene.period_s;
-  state->effects_force_N = sum_effects_N(scene, input, state->scripts);
+  state->effects_force_N = sum_effects_N(scene, input, state->scripts, &state->script_calls);
   if (fade != nullptr) {
-    const double from_N = sum_effects_N(*fade->from, input, *fade->from_scripts);
+    const double from_N = sum_effects_N(*fade->from, input, *fade->from_scripts, &state->script_calls);
     state->effects_force_N = (1.0 - fade->weight_to) * from_N + fade->weight_to * state->effects_force_N;
   }
 

@@ -23,8 +23,9 @@ void step(const Scene& scene, std::int32_t raw_counts, TickState* state,
           const Crossfade* fade = nullptr) noexcept;
 
 // The effects stage alone: the sum of every effect's force for one input, with the
-// scene's script instances.
-double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts) noexcept;
+// scene's script instances; adds the number of script calls made to *script_calls.
+double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts,
+                     std::uint64_t* script_calls = nullptr) noexcept;
 
 // Housekeeping for the tick's slack, after the command is written: a little garbage
 // collection for each script (their collectors are stopped while they compute force).

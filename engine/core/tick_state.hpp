@@ -36,6 +36,7 @@ struct TickState {
   // Effects stage.
   ScriptList scripts;             // the current scene's script instances, made at start
   double effects_force_N{};       // sum of all effects: what the scene asks for
+  std::uint64_t script_calls{};           // calls into script effects (one per script per tick)
 
   // Safety stage.
   SafetyState safety;

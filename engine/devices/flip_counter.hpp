@@ -16,16 +16,23 @@ struct FlipCounter {
   int32_t flips = 0;
   bool started = false;
 
-  // Feeds one raw sample; returns the unwrapped count.
+  // Feeds one raw sample; returns the unwrapped count. Garbage readings (any int32) give
+  // garbage positions but never overflow: the jump and the result wrap as unsigned
+  // arithmetic does, and the flip count saturates.
   int32_t update(int32_t raw_counts) {
     if (started) {
-      const int32_t jump = raw_counts - previous_raw;
-      if (jump > threshold_counts) --flips;        // wrapped downwards past the bottom
-      else if (jump < -threshold_counts) ++flips;  // wrapped upwards past the top
+      const int32_t jump = static_cast<int32_t>(static_cast<uint32_t>(raw_counts) -
+                                                static_cast<uint32_t>(previous_raw));
+      if (jump > threshold_counts) {
+        if (flips > -2147483647) --flips;  // wrapped downwards past the bottom
+      } else if (jump < -threshold_counts) {
+        if (flips < 2147483647) ++flips;   // wrapped upwards past the top
+      }
     }
     started = true;
     previous_raw = raw_counts;
-    return raw_counts + flips * span_counts;
+    return static_cast<int32_t>(static_cast<uint32_t>(raw_counts) +
+                                static_cast<uint32_t>(flips) * static_cast<uint32_t>(span_counts));
   }
 };
 

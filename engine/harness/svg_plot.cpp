@@ -124,6 +124,14 @@ std::string render_panel(const PlotPanel& panel, double top_px, double width_px,
     std::vector<double> xs;
     std::vector<double> ys;
     decimate_min_max(s.x, s.y, 1500, &xs, &ys);
+    if (s.markers) {
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        if (!std::isfinite(xs[i]) || !std::isfinite(ys[i])) continue;
+        out += "<circle cx=\"" + number(px(xs[i])) + "\" cy=\"" + number(py(ys[i])) + "\" r=\"3\" fill=\"" +
+               s.color + "\"/>\n";
+      }
+      continue;
+    }
     out += "<polyline fill=\"none\" stroke=\"" + s.color + "\" stroke-width=\"1.6\"" +
            (s.dashed ? " stroke-dasharray=\"5 3\"" : "") + " points=\"";
     for (std::size_t i = 0; i < xs.size(); ++i) {

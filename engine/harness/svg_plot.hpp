@@ -13,6 +13,7 @@ struct PlotSeries {
   std::vector<double> x;
   std::vector<double> y;
   bool dashed{false};
+  bool markers{false};        // points as dots, no line (scatter plots)
 };
 
 struct PlotLine {

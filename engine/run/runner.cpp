@@ -119,6 +119,7 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
       summary.scripts.push_back(ScriptReport{script->program->display_name, instance.disabled(),
                                              instance.fault(), std::string(instance.fault_message()),
                                              instance.fault_time_s(), instance.skipped_calls()});
+      // Its fault, counted by kind: a limit overrun, or an error / bad return value.
       switch (instance.fault()) {
         case ScriptFault::none: break;
         case ScriptFault::error:

@@ -106,3 +106,41 @@ TEST_CASE("environment: the velocity block selects the estimator") {
         "test.json: /velocity/estimator: \"kalman\" is not one of \"hapkit2019\", \"hapkit2013\", "
         "\"difference\", \"lowpass\"");
 }
+
+TEST_CASE("step: a spring written in Lua that declares no velocity runs no estimator either") {
+  const Scene scene = scene_from(R"({"effects": [{"type": "script", "file": "../scripts/spring.lua"}]})");
+  REQUIRE_FALSE(scene.needs.velocity);
+  TickState state = make_tick_state(scene);
+  for (int i = 0; i < 100; ++i) step(scene, counts_at(scene, 0.00004 * i), &state);
+  CHECK_FALSE(state.velocity_state.started);
+  CHECK(state.v_m_per_s == 0.0);
+}
+
+TEST_CASE("step: one script and ten built-ins make exactly one Lua call per tick") {
+  // The script counts its own calls and returns the count in uN; the built-ins are placed
+  // so that they push nothing at x = 0 (springs of zero stiffness, walls far away, v = 0).
+  const Scene scene = scene_from(R"({"effects": [
+    {"type": "script", "source": "local n = 0\nfunction force(s) n = n + 1 return n * 1e-6 end"},
+    {"type": "spring", "stiffness": 0}, {"type": "spring", "stiffness": 0},
+    {"type": "damper", "damping": 0.1}, {"type": "damper", "damping": 0.1},
+    {"type": "texture", "width": 0.005, "damping": 0.1}, {"type": "texture", "width": 0.004, "damping": 0.1},
+    {"type": "wall", "position": 0.02, "stiffness": 100, "solid": "above"},
+    {"type": "wall", "position": -0.02, "stiffness": 100, "solid": "below"},
+    {"type": "wall", "position": 0.03, "stiffness": 100, "solid": "above"},
+    {"type": "wall", "position": -0.03, "stiffness": 100, "solid": "below"}]})");
+  REQUIRE(scene.effects.size() == 11);
+  TickState state = make_tick_state(scene);
+  const std::int32_t at_rest = counts_at(scene, 0.0);
+  for (int i = 0; i < 1000; ++i) step(scene, at_rest, &state);
+  CHECK(state.script_calls == 1000);                                       // the engine's count
+  CHECK(state.effects_force_N == doctest::Approx(1000 * 1e-6).epsilon(1e-9));  // the script's own
+}
+
+TEST_CASE("step: disabled effects are not in the compiled scene at all") {
+  const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 100},
+    {"type": "damper", "damping": 1, "enabled": false},
+    {"type": "script", "source": "function force(s) return 0 end", "enabled": false}]})");
+  CHECK(scene.effects.size() == 1);
+  CHECK(scene.script_count == 0);
+  CHECK_FALSE(scene.needs.velocity);
+}

@@ -1,5 +1,6 @@
 #include "engine/devices/hil/hil_hapkit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -50,7 +51,9 @@ std::int32_t HilHapkit::read_counts() noexcept {
 void HilHapkit::write(const MotorCommand& command) noexcept { link_.send(command, now_ns()); }
 
 void HilHapkit::advance(double dt_s) noexcept {
-  const int substeps = plant_.config().substeps_per_tick;
+  // The CPU and the plant meet at least every tenth of a tick (the board samples at 5 kHz),
+  // however few steps the plant's integrator needs.
+  const int substeps = std::max(10, plant_.config().substeps_per_tick);
   const double h_s = dt_s / substeps;
   for (int i = 0; i < substeps; ++i) substep(h_s, /*move_plant=*/true);
 }

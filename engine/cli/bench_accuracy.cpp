@@ -1,0 +1,135 @@
+// `hapscene bench --accuracy [--svg FILE] [--rate HZ]`: run time against error of the
+// simulated Hapkit for each loop rate, plant integrator and substep count, with each
+// scenario's Pareto front marked (table and SVG).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "engine/bench/accuracy.hpp"
+#include "engine/cli/bench_modes.hpp"
+#include "engine/cli/output_file.hpp"
+#include "engine/devices/profile.hpp"
+#include "engine/harness/svg_plot.hpp"
+
+namespace hapscene {
+namespace {
+
+const char* scenario_name(AccuracyScenario s) { return s == AccuracyScenario::release ? "release" : "wall"; }
+
+std::string percent(double fraction) {
+  if (!std::isfinite(fraction)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%+.2f%%", 100.0 * fraction);
+  return text;
+}
+
+void print_results(const std::vector<AccuracyResult>& results) {
+  std::printf("%-8s %7s %-6s %3s %10s %12s %11s %9s %9s %13s %s\n", "scenario", "rate_Hz", "integ", "sub",
+              "ms_per_s", "pos_rms_um", "force_rms_mN", "freq_err", "decay_err", "integ_rms_um", "fronts");
+  for (const AccuracyResult& r : results) {
+    std::printf("%-8s %7.0f %-6s %3d %10.3f %12.4g %11.4g %9s %9s %13.4g %s%s\n", scenario_name(r.which.scenario),
+                r.which.rate_hz, std::string(kPlantIntegratorNames[static_cast<int>(r.which.integrator)]).c_str(),
+                r.which.substeps, r.run_time_s_per_s * 1e3, r.finite ? r.position_rms_m * 1e6 : NAN,
+                r.finite ? r.force_rms_N * 1e3 : NAN, percent(r.frequency_error).c_str(),
+                percent(r.decay_error).c_str(), r.integration_rms_m * 1e6, r.front_truth ? "T" : "", r.front_integration ? "I" : "");
+  }
+}
+
+// One panel: log10 error against log10 run time, one colour per integrator, the Pareto
+// front as a dashed line. `rate_hz` 0: every loop rate; `integration`: the error against
+// the fine integrator at the same rate, else against the truth.
+PlotPanel accuracy_panel(const std::vector<AccuracyResult>& results, AccuracyScenario scenario,
+                         double rate_hz, bool integration) {
+  const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c"};
+  PlotPanel panel;
+  char title[160];
+  if (integration) {
+    std::snprintf(title, sizeof title, "%s at %g Hz: integration error (against 1 us RK4 at the same rate), 1..20 substeps",
+                  scenario_name(scenario), rate_hz);
+  } else {
+    std::snprintf(title, sizeof title, "%s, 250 Hz .. 20 kHz: error against the %s", scenario_name(scenario),
+                  scenario == AccuracyScenario::release ? "analytic oscillator" : "100 kHz reference");
+  }
+  panel.title = title;
+  panel.x_label = "log10 run time (ms of CPU per simulated s)";
+  panel.y_label = "log10 position RMS (um)";
+  const auto selected = [&](const AccuracyResult& r) {
+    return r.which.scenario == scenario && r.finite && (rate_hz == 0.0 || r.which.rate_hz == rate_hz);
+  };
+  const auto error_um = [&](const AccuracyResult& r) {
+    return std::log10(std::max(1e-6, (integration ? r.integration_rms_m : r.position_rms_m) * 1e6));
+  };
+  for (int i = 0; i < 3; ++i) {
+    PlotSeries s;
+    s.label = std::string(kPlantIntegratorNames[i]);
+    s.color = colors[i];
+    s.markers = true;
+    for (const AccuracyResult& r : results) {
+      if (!selected(r) || static_cast<int>(r.which.integrator) != i) continue;
+      s.x.push_back(std::log10(r.run_time_s_per_s * 1e3));
+      s.y.push_back(error_um(r));
+    }
+    panel.series.push_back(std::move(s));
+  }
+  PlotSeries front;
+  front.label = "Pareto front";
+  front.color = "#333";
+  front.dashed = true;
+  std::vector<std::pair<double, double>> points;
+  for (const AccuracyResult& r : results) {
+    if (selected(r) && (integration ? r.front_integration : r.front_truth)) {
+      points.push_back({std::log10(r.run_time_s_per_s * 1e3), error_um(r)});
+    }
+  }
+  std::sort(points.begin(), points.end());
+  for (const auto& [x, y] : points) front.x.push_back(x), front.y.push_back(y);
+  panel.series.push_back(std::move(front));
+  return panel;
+}
+
+std::string accuracy_svg(const std::vector<AccuracyResult>& results) {
+  std::vector<PlotPanel> panels;
+  for (const AccuracyScenario scenario : {AccuracyScenario::release, AccuracyScenario::wall}) {
+    panels.push_back(accuracy_panel(results, scenario, 0.0, false));
+    panels.push_back(accuracy_panel(results, scenario, 1000.0, true));
+  }
+  return render_svg("hapscene bench --accuracy: run time against error", panels, 900, 360);
+}
+
+}  // namespace
+
+int bench_accuracy(Arguments& arguments) {
+  const std::optional<std::string> svg = arguments.take_value("svg");
+  const std::optional<double> only_rate = arguments.take_quantity("rate", Quantity::frequency_Hz);
+  const std::vector<std::string> rest = arguments.positionals();
+  if (!rest.empty()) arguments.fail("--accuracy takes no environment files");
+
+  const DeviceProfile profile = load_device_profile("hapkit3", ".");
+  const AccuracySetup setup = accuracy_setup(profile);
+  std::vector<AccuracyCase> cases = default_accuracy_cases();
+  if (only_rate) std::erase_if(cases, [&](const AccuracyCase& c) { return c.rate_hz != *only_rate; });
+  if (cases.empty()) arguments.fail("--rate: not one of 250, 500, 1000, 2000, 5000, 10000, 20000 Hz");
+
+  std::printf("run time against error of the simulated Hapkit (profile hapkit3: m %g kg, b %g N*s/m)\n",
+              setup.mass_kg, setup.viscous_N_s_per_m);
+  std::printf("release: %g N/m spring from %g mm, no Coulomb friction; analytic %.4f Hz, decay %.4f 1/s\n",
+              setup.spring_N_per_m, setup.start_m * 1e3, setup.analytic_frequency_Hz, setup.analytic_decay_per_s);
+  std::printf("wall: %g N/m at %g mm, hand %g N/m %g N*s/m at %g mm/s in and out, Coulomb on; truth = 100 kHz "
+              "loop, RK4 at 1 us\n",
+              setup.wall_N_per_m, setup.wall_m * 1e3, setup.hand_N_per_m, setup.hand_N_s_per_m,
+              setup.speed_m_per_s * 1e3);
+  std::printf("force rendered from the true position and held one tick (ideal sensor and motor); ms_per_s = "
+              "CPU ms per simulated second (best of repeats); integ_rms = position RMS against the same loop "
+              "rate with 1 us RK4 steps; fronts: T = on the scenario's Pareto front of run time against pos_rms, "
+              "I = on the front of run time against integ_rms at this loop rate\n\n");
+  std::vector<AccuracyResult> results = run_accuracy_sweep(profile, cases);
+  print_results(results);
+  if (svg) {
+    write_output_file(*svg, accuracy_svg(results));
+    std::printf("\nwrote %s\n", svg->c_str());
+  }
+  return 0;
+}
+
+}  // namespace hapscene

@@ -1,0 +1,71 @@
+// `hapscene bench --callgrind ENV [--impl builtin|lua|baseline] [--ticks N]`: runs N ticks
+// of one implementation over recorded sensor readings, untimed, so that
+//   valgrind --tool=callgrind hapscene bench --callgrind ...
+// counts instructions where the CPU's counters are not available. Instructions per tick
+// are the difference of two tick counts divided by the difference of the counts (the
+// set-up cancels): tests/bench/callgrind_per_tick.sh does that for every lab environment.
+#include <cstdio>
+#include <string>
+
+#include "engine/bench/lab_baseline.hpp"
+#include "engine/bench/lua_equivalent.hpp"
+#include "engine/bench/tick_bench.hpp"
+#include "engine/cli/bench_modes.hpp"
+#include "engine/core/step.hpp"
+#include "engine/load/environment.hpp"
+
+namespace hapscene {
+
+int bench_callgrind(Arguments& arguments) {
+  const std::string impl = arguments.take_value("impl").value_or("builtin");
+  const std::string ticks_text = arguments.take_value("ticks").value_or("100000");
+  const std::string scripts_dir = arguments.take_value("scripts").value_or("scripts");
+  const std::vector<std::string> files = arguments.positionals();
+  if (files.size() != 1) arguments.fail("--callgrind: give exactly one environment file");
+  long long ticks = 0;
+  try {
+    ticks = std::stoll(ticks_text);
+  } catch (const std::exception&) {
+    arguments.fail("--ticks: expected a whole number, got \"" + ticks_text + "\"");
+  }
+  if (ticks < 0 || ticks > 1'000'000'000) arguments.fail("--ticks: must be in [0, 1e9]");
+  if (impl != "builtin" && impl != "lua" && impl != "baseline") {
+    arguments.fail("--impl: \"" + impl + "\" is not one of \"builtin\", \"lua\", \"baseline\"");
+  }
+
+  // The same inputs for every implementation: 1 s of readings of the closed loop.
+  const Scene scene = load_environment_file(files[0]);
+  const std::vector<std::int32_t> counts = record_sensor_counts(scene, 1.0);
+  const auto n = static_cast<long long>(counts.size());
+  double checksum = 0.0;
+  if (impl == "baseline") {
+    LabBaselineKind kind{};
+    LabBaselineConstants constants;
+    if (!lab_baseline_for(scene, &kind, &constants)) arguments.fail(files[0] + ": not a single lab effect");
+    LabBaselineState state;
+    void (*tick)(const LabBaselineConstants&, std::int32_t, LabBaselineState*) =
+        kind == LabBaselineKind::spring ? lab_spring_tick
+        : kind == LabBaselineKind::wall ? lab_wall_tick
+        : kind == LabBaselineKind::damper ? lab_damper_tick : lab_texture_tick;
+    for (long long i = 0; i < ticks; ++i) {
+      tick(constants, counts[static_cast<std::size_t>(i % n)], &state);
+      checksum += state.duty;
+    }
+  } else {
+    std::optional<Scene> lua;
+    if (impl == "lua") {
+      lua = lua_equivalent(scene, scripts_dir);
+      if (!lua) arguments.fail(files[0] + ": not a single lab effect");
+    }
+    const Scene& run = lua ? *lua : scene;
+    TickState state = make_tick_state(run);
+    for (long long i = 0; i < ticks; ++i) {
+      step(run, counts[static_cast<std::size_t>(i % n)], &state);
+      checksum += state.command.duty;
+    }
+  }
+  std::printf("callgrind mode: %s, %s, %lld ticks, checksum %.17g\n", scene.name.c_str(), impl.c_str(), ticks, checksum);
+  return 0;
+}
+
+}  // namespace hapscene
