@@ -10,26 +10,6 @@ void finalise_safety(double period_s, SafetyConfig* config) noexcept {
   config->ramp_step_per_tick = config->soft_start_s > 0.0 ? period_s / config->soft_start_s : 1.0;
 }
 
-double apply_static_safety(const SafetyConfig& config, double x_m, double force_N,
-                           SafetyCounters* counters) noexcept {
-  // 1. Non-finite force: a fault, rendered as nothing.
-  if (!std::isfinite(force_N)) {
-    ++counters->nonfinite_faults;
-    return 0.0;
-  }
-  // 2. Outside the workspace: render nothing.
-  if (!(x_m >= config.workspace_min_m && x_m <= config.workspace_max_m)) {
-    ++counters->outside_workspace_ticks;
-    return 0.0;
-  }
-  // 4. Clamp to the force limit.
-  if (std::abs(force_N) > config.max_force_N) {
-    ++counters->clamped_ticks;
-    return std::copysign(config.max_force_N, force_N);
-  }
-  return force_N;
-}
-
 double apply_safety(const SafetyConfig& config, double x_m, double force_N,
                     SafetyState* state) noexcept {
   double output_N = apply_static_safety(config, x_m, force_N, &state->counters);

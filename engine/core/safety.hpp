@@ -8,6 +8,7 @@
 //      field stronger than the threshold, force ramps in linearly over soft_start_s;
 //   4. clamp to max_force_N (the lower of the device's and the environment's);
 //   5. slew limit: the output changes by at most slew_limit_N_per_s * T per tick.
+#include <cmath>
 #include <cstdint>
 
 namespace hapscene {
@@ -44,8 +45,26 @@ struct SafetyState {
 };
 
 // Rules 1, 2 and 4: what a static probe shows as the output for a requested force.
-double apply_static_safety(const SafetyConfig& config, double x_m, double force_N,
-                           SafetyCounters* counters) noexcept;
+// (Inline: it runs every tick.)
+inline double apply_static_safety(const SafetyConfig& config, double x_m, double force_N,
+                                  SafetyCounters* counters) noexcept {
+  // 1. Non-finite force: a fault, rendered as nothing.
+  if (!std::isfinite(force_N)) {
+    ++counters->nonfinite_faults;
+    return 0.0;
+  }
+  // 2. Outside the workspace: render nothing.
+  if (!(x_m >= config.workspace_min_m && x_m <= config.workspace_max_m)) {
+    ++counters->outside_workspace_ticks;
+    return 0.0;
+  }
+  // 4. Clamp to the force limit.
+  if (std::abs(force_N) > config.max_force_N) {
+    ++counters->clamped_ticks;
+    return std::copysign(config.max_force_N, force_N);
+  }
+  return force_N;
+}
 
 // All five rules, for one tick of a run.
 double apply_safety(const SafetyConfig& config, double x_m, double force_N,
