@@ -163,17 +163,7 @@ int params_newindex(lua_State* L) {
 }
 
 // Hides the table's metatable and makes unknown fields errors.
-void seal_params(lua_State* L, int index) {
-  index = lua_absindex(L, index);
-  lua_createtable(L, 0, 3);
-  lua_pushcfunction(L, params_index);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, params_newindex);
-  lua_setfield(L, -2, "__newindex");
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
-  lua_setmetatable(L, index);
-}
+void seal_params(lua_State* L, int index) { set_guard_metatable(L, index, params_index, params_newindex); }
 
 // Writes vm->params (SI values) into the table at `index`.
 void write_params(lua_State* L, int index, const ScriptVm* vm) {
@@ -467,6 +457,18 @@ int finish_load(lua_State* L) {
   lua_pushliteral(L, "t");
   lua_pushliteral(L, "dt");
   return kSlotCount;
+}
+
+void set_guard_metatable(lua_State* L, int index, lua_CFunction on_index, lua_CFunction on_newindex) {
+  index = lua_absindex(L, index);
+  lua_createtable(L, 0, 3);
+  lua_pushcfunction(L, on_index);
+  lua_setfield(L, -2, "__index");
+  lua_pushcfunction(L, on_newindex);
+  lua_setfield(L, -2, "__newindex");
+  lua_pushboolean(L, 0);
+  lua_setfield(L, -2, "__metatable");
+  lua_setmetatable(L, index);
 }
 
 }  // namespace hapscene::detail

@@ -362,14 +362,7 @@ int open_sandbox(lua_State* L) {
 
   // Strict globals: reading an undefined one is an error; so is creating one while
   // running (see globals.cpp). The metatable is hidden.
-  lua_createtable(L, 0, 3);
-  lua_pushcfunction(L, global_index);
-  lua_setfield(L, -2, "__index");
-  lua_pushcfunction(L, global_newindex);
-  lua_setfield(L, -2, "__newindex");
-  lua_pushboolean(L, 0);
-  lua_setfield(L, -2, "__metatable");
-  lua_setmetatable(L, env);
+  set_guard_metatable(L, env, global_index, global_newindex);
 
   // The sandbox table becomes the global table, so the chunk's _ENV is the sandbox.
   lua_pushvalue(L, env);

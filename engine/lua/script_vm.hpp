@@ -125,6 +125,9 @@ void* capped_alloc(void* ud, void* block, std::size_t old_size, std::size_t new_
 // Sandbox (sandbox.cpp).
 // lua_CFunction: opens the allowed libraries and makes the script's global table.
 int open_sandbox(lua_State* L);
+// Gives the table at `index` a hidden metatable (getmetatable answers false) whose
+// __index and __newindex are the given functions: for strict globals and sealed params.
+void set_guard_metatable(lua_State* L, int index, lua_CFunction on_index, lua_CFunction on_newindex);
 // lua_CFunction __index of the library tables (upvalue 1: the library's name).
 int library_index(lua_State* L);
 // lua_CFunction: after the chunk ran, checks force/reset/needs/params and sets up `s`
