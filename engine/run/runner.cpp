@@ -55,6 +55,7 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
   if (observer != nullptr) observer->on_start(state);
   const std::int64_t start_ns = monotonic_ns();
   std::int64_t deadline_ns = start_ns;
+  std::int64_t last_begin_ns = start_ns;  // start of the latest tick, for the loop rate
   for (std::uint64_t tick = 0; tick < total_ticks; ++tick) {
     if (options.stop_requested != nullptr && options.stop_requested->load(std::memory_order_relaxed)) {
       break;
@@ -67,6 +68,7 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
 
     // Read the device, compute, write the device.
     const std::int64_t begin_ns = monotonic_ns();
+    last_begin_ns = begin_ns;
     const Crossfade* fade = hot_swap.before_tick(&state);
     const std::int32_t raw_counts = device.read_counts();
     if (device.take_restart()) restart_soft_start(&state.safety);  // the link came back
@@ -134,8 +136,10 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
   summary.safety = state.safety.counters;
   summary.device_time_s = static_cast<double>(state.tick) * scene.period_s;
   summary.wall_time_s = static_cast<double>(monotonic_ns() - start_ns) * 1e-9;
-  summary.achieved_rate_hz = real_time && summary.wall_time_s > 0.0
-                                 ? static_cast<double>(summary.ticks) / summary.wall_time_s
+  // The rate the ticks achieved: intervals between the first and the last tick's start.
+  const double ticks_span_s = static_cast<double>(last_begin_ns - start_ns) * 1e-9;
+  summary.achieved_rate_hz = real_time && summary.ticks > 1 && ticks_span_s > 0.0
+                                 ? static_cast<double>(summary.ticks - 1) / ticks_span_s
                                  : scene.rate_hz;
   return summary;
 }

@@ -63,7 +63,7 @@ struct RunSummary {
   std::uint64_t ticks{};
   double device_time_s{};         // ticks * period
   double wall_time_s{};           // elapsed real time
-  double achieved_rate_hz{};      // ticks / wall time (real time) or the scene rate (simulated)
+  double achieved_rate_hz{};      // real time: tick intervals per second between the first and last tick; simulated: the scene rate
   double max_abs_requested_N{};   // largest |force| the scene asked for
   double max_abs_output_N{};      // largest |force| commanded after safety
   SafetyCounters safety;
