@@ -35,6 +35,12 @@ struct BoardLinkConfig {
   std::int32_t span_counts{922};              // sensor period, to realign after a reset
 };
 
+// `link` with the sensor period of `profile` (for realigning the position after a reset).
+inline BoardLinkConfig link_config_for(BoardLinkConfig link, const DeviceProfile& profile) {
+  link.span_counts = profile.sensor.span_counts;
+  return link;
+}
+
 enum class LinkState { handshaking, running, silent, vanished };
 
 enum class LinkEventKind { connected, silent, vanished, reopened, board_reset, refused_version };

@@ -1,31 +1,16 @@
 #include "engine/devices/serial_hapkit.hpp"
 
-#include <ctime>
 #include <stdexcept>
 #include <thread>
 
+#include "engine/core/clock.hpp"
 #include "engine/devices/board_report.hpp"
 
 namespace hapscene {
 
-std::int64_t monotonic_now_ns() noexcept {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
-
-namespace {
-
-BoardLinkConfig with_profile(BoardLinkConfig link, const DeviceProfile& profile) {
-  link.span_counts = profile.sensor.span_counts;
-  return link;
-}
-
-}  // namespace
-
 SerialHapkit::SerialHapkit(const DeviceProfile& profile, const SerialConfig& config)
     : port_(config.path, config.baud, "--device serial:" + config.path),
-      link_(port_, with_profile(config.link, profile)),
+      link_(port_, link_config_for(config.link, profile)),
       start_ns_(monotonic_now_ns()) {
   // The handshake, before the loop starts: HELLO until the board answers.
   const auto deadline_ns =

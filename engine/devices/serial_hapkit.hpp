@@ -43,7 +43,4 @@ class SerialHapkit final : public Device {
   std::int64_t start_ns_{};
 };
 
-// CLOCK_MONOTONIC in nanoseconds.
-std::int64_t monotonic_now_ns() noexcept;
-
 }  // namespace hapscene

@@ -5,30 +5,25 @@
 #include <cmath>
 #include <ctime>
 
+#include "engine/core/clock.hpp"
 #include "engine/core/step.hpp"
 #include "engine/run/realtime.hpp"
 
 namespace hapscene {
 namespace {
 
-std::int64_t monotonic_ns() noexcept {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
-
 // Sleeps until shortly before `deadline_ns` on an absolute clock, then spins to it.
 void wait_until(std::int64_t deadline_ns) noexcept {
   constexpr std::int64_t kSpin_ns = 50'000;
   const std::int64_t sleep_until_ns = deadline_ns - kSpin_ns;
-  if (monotonic_ns() < sleep_until_ns) {
+  if (monotonic_now_ns() < sleep_until_ns) {
     timespec until{};
     until.tv_sec = static_cast<time_t>(sleep_until_ns / 1'000'000'000);
     until.tv_nsec = static_cast<long>(sleep_until_ns % 1'000'000'000);
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) != 0) {
     }
   }
-  while (monotonic_ns() < deadline_ns) {
+  while (monotonic_now_ns() < deadline_ns) {
   }
 }
 
@@ -53,7 +48,7 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
   std::uint32_t miss_streak = 0;
 
   if (observer != nullptr) observer->on_start(state);
-  const std::int64_t start_ns = monotonic_ns();
+  const std::int64_t start_ns = monotonic_now_ns();
   std::int64_t deadline_ns = start_ns;
   std::int64_t last_begin_ns = start_ns;  // start of the latest tick, for the loop rate
   for (std::uint64_t tick = 0; tick < total_ticks; ++tick) {
@@ -63,18 +58,18 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
     // Pace: wait for this tick's absolute deadline.
     if (real_time) {
       wait_until(deadline_ns);
-      summary.wake_late_ns.record(static_cast<std::uint64_t>(monotonic_ns() - deadline_ns));
+      summary.wake_late_ns.record(static_cast<std::uint64_t>(monotonic_now_ns() - deadline_ns));
     }
 
     // Read the device, compute, write the device.
-    const std::int64_t begin_ns = monotonic_ns();
+    const std::int64_t begin_ns = monotonic_now_ns();
     last_begin_ns = begin_ns;
     const Crossfade* fade = hot_swap.before_tick(&state);
     const std::int32_t raw_counts = device.read_counts();
     if (device.take_restart()) restart_soft_start(&state.safety);  // the link came back
     step(hot_swap.scene(), raw_counts, &state, fade);
     device.write(state.command);
-    const std::int64_t end_ns = monotonic_ns();
+    const std::int64_t end_ns = monotonic_now_ns();
     summary.compute_ns.record(static_cast<std::uint64_t>(end_ns - begin_ns));
     collect_script_garbage(&state);  // in the slack, after the command is out
 
@@ -85,10 +80,10 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
     device.advance(scene.period_s);
 
     deadline_ns += period_ns;
-    if (real_time && monotonic_ns() > deadline_ns) {
+    if (real_time && monotonic_now_ns() > deadline_ns) {
       // Overran into the next tick: count it and realign rather than burst to catch up.
       ++summary.deadline_misses;
-      const std::int64_t behind_ns = monotonic_ns() - deadline_ns;
+      const std::int64_t behind_ns = monotonic_now_ns() - deadline_ns;
       deadline_ns += (behind_ns / period_ns + 1) * period_ns;
       // Sustained overruns: warn, then fault to zero force and stop.
       ++miss_streak;
@@ -135,7 +130,7 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
   summary.ticks = state.tick;
   summary.safety = state.safety.counters;
   summary.device_time_s = static_cast<double>(state.tick) * scene.period_s;
-  summary.wall_time_s = static_cast<double>(monotonic_ns() - start_ns) * 1e-9;
+  summary.wall_time_s = static_cast<double>(monotonic_now_ns() - start_ns) * 1e-9;
   // The rate the ticks achieved: intervals between the first and the last tick's start.
   const double ticks_span_s = static_cast<double>(last_begin_ns - start_ns) * 1e-9;
   summary.achieved_rate_hz = real_time && summary.ticks > 1 && ticks_span_s > 0.0

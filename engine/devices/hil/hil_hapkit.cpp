@@ -8,20 +8,11 @@
 #include "engine/devices/kinematics.hpp"
 
 namespace hapscene {
-namespace {
-
-BoardLinkConfig with_profile(BoardLinkConfig link, const DeviceProfile& profile) {
-  link.span_counts = profile.sensor.span_counts;
-  return link;
-}
-
-}  // namespace
-
 HilHapkit::HilHapkit(const DeviceProfile& profile, const HilConfig& config)
     : plant_(profile, config.simulation),
       board_(config.firmware_elf),
       wire_(board_),
-      link_(wire_, with_profile(config.link, profile)) {
+      link_(wire_, link_config_for(config.link, profile)) {
   // Power-up with the handle still: HELLO until the board answers.
   board_.set_sensor_counts(plant_.sensor_counts());
   const double h_s = 1e-4;
