@@ -1,5 +1,7 @@
 #include "engine/bench/tick_bench.hpp"
 
+#include <algorithm>
+
 #include "engine/bench/lab_baseline.hpp"
 #include "engine/core/step.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
@@ -24,21 +26,66 @@ class RecordingDevice final : public Device {
   std::vector<std::int32_t>* counts_;
 };
 
+// A TickLoop around a callable taking one reading: the callable is inlined into each
+// timing loop, so the only per-tick overhead is the call the implementation itself makes.
 template <typename Tick>
-TickCost time_passes(const std::vector<std::int32_t>& counts, int passes, TickTimer* timer,
-                     InstructionCounter* counter, Tick tick) {
-  const std::size_t n = counts.size();
-  // One untimed pass warms caches and branch predictors.
-  for (std::size_t i = 0; i < n; ++i) tick(counts[i]);
-  TickCost cost = timer->time(n * static_cast<std::size_t>(passes),
-                              [&](std::size_t i) { tick(counts[i % n]); });
-  // Instructions: one more pass between the counter's start and stop.
-  if (counter != nullptr && counter->available() && n > 0) {
-    counter->start();
-    for (std::size_t i = 0; i < n; ++i) tick(counts[i]);
-    cost.instructions_per_tick = static_cast<double>(counter->stop()) / static_cast<double>(n);
+class TickLoopOf : public TickLoop {
+ public:
+  explicit TickLoopOf(Tick tick) : tick_(std::move(tick)) {}
+
+  double time_pass(TickTimer& timer, const std::vector<std::int32_t>& counts) override {
+    return timer.batch_median_ns(counts.size(), [&](std::size_t i) { tick_(counts[i]); });
   }
-  return cost;
+  void time_tail(TickTimer& timer, const std::vector<std::int32_t>& counts, int passes,
+                 TickCost* cost) override {
+    const std::size_t n = counts.size();
+    timer.time_tail(n * static_cast<std::size_t>(passes), [&](std::size_t i) { tick_(counts[i % n]); }, cost);
+  }
+  double instructions_per_tick(InstructionCounter& counter, const std::vector<std::int32_t>& counts) override {
+    if (counts.empty()) return -1.0;
+    counter.start();
+    for (const std::int32_t raw : counts) tick_(raw);
+    return static_cast<double>(counter.stop()) / static_cast<double>(counts.size());
+  }
+
+ protected:
+  Tick tick_;
+};
+
+// The engine: step() with the loop's own state.
+struct SceneTick {
+  const Scene* scene;
+  TickState state;
+  void operator()(std::int32_t raw) { step(*scene, raw, &state); }
+};
+
+class SceneTickLoop final : public TickLoopOf<SceneTick> {
+ public:
+  explicit SceneTickLoop(const Scene& scene) : TickLoopOf(SceneTick{&scene, make_tick_state(scene)}) {}
+  double script_calls_per_tick() const override {
+    const TickState& state = tick_.state;
+    return state.tick == 0 ? 0.0 : static_cast<double>(state.script_calls) / static_cast<double>(state.tick);
+  }
+};
+
+// The hand-written sketch for one lab effect (a direct call, as step() is).
+template <void (*Function)(const LabBaselineConstants&, std::int32_t, LabBaselineState*)>
+struct BaselineTick {
+  LabBaselineConstants constants;
+  LabBaselineState state;
+  void operator()(std::int32_t raw) { Function(constants, raw, &state); }
+};
+
+template <auto Function>
+std::unique_ptr<TickLoop> baseline_loop(const LabBaselineConstants& constants) {
+  return std::make_unique<TickLoopOf<BaselineTick<Function>>>(BaselineTick<Function>{constants, {}});
+}
+
+double median_of(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
 }
 
 }  // namespace
@@ -58,34 +105,55 @@ std::vector<std::int32_t> record_sensor_counts(const Scene& scene, double durati
   return counts;
 }
 
-TickCost bench_scene(const Scene& scene, const std::vector<std::int32_t>& counts, int passes,
-                     TickTimer* timer, InstructionCounter* counter, double* script_calls_per_tick) {
-  TickState state = make_tick_state(scene);
-  const TickCost cost = time_passes(counts, passes, timer, counter,
-                                    [&](std::int32_t raw) { step(scene, raw, &state); });
-  if (script_calls_per_tick != nullptr) {
-    *script_calls_per_tick = static_cast<double>(state.script_calls) / static_cast<double>(state.tick);
-  }
-  return cost;
+std::unique_ptr<TickLoop> scene_tick_loop(const Scene& scene) {
+  return std::make_unique<SceneTickLoop>(scene);
 }
 
-bool bench_lab_baseline(const Scene& scene, const std::vector<std::int32_t>& counts, int passes,
-                        TickTimer* timer, TickCost* cost, InstructionCounter* counter) {
+std::unique_ptr<TickLoop> lab_baseline_tick_loop(const Scene& scene) {
   LabBaselineKind kind{};
   LabBaselineConstants constants;
-  if (!lab_baseline_for(scene, &kind, &constants)) return false;
-  LabBaselineState state;
-  const auto run = [&](auto tick_function) {
-    return time_passes(counts, passes, timer, counter,
-                       [&](std::int32_t raw) { tick_function(constants, raw, &state); });
-  };
+  if (!lab_baseline_for(scene, &kind, &constants)) return nullptr;
   switch (kind) {
-    case LabBaselineKind::spring: *cost = run(lab_spring_tick); break;
-    case LabBaselineKind::wall: *cost = run(lab_wall_tick); break;
-    case LabBaselineKind::damper: *cost = run(lab_damper_tick); break;
-    case LabBaselineKind::texture: *cost = run(lab_texture_tick); break;
+    case LabBaselineKind::spring: return baseline_loop<lab_spring_tick>(constants);
+    case LabBaselineKind::wall: return baseline_loop<lab_wall_tick>(constants);
+    case LabBaselineKind::damper: return baseline_loop<lab_damper_tick>(constants);
+    case LabBaselineKind::texture: return baseline_loop<lab_texture_tick>(constants);
   }
-  return true;
+  return nullptr;
+}
+
+std::vector<TickCost> compare_tick_loops(const std::vector<TickLoop*>& loops,
+                                         const std::vector<std::int32_t>& counts, int passes,
+                                         TickTimer* timer, InstructionCounter* counter) {
+  const std::size_t k = loops.size();
+  std::vector<TickCost> costs(k);
+  if (k == 0) return costs;
+  // One untimed pass each warms caches and branch predictors.
+  for (TickLoop* loop : loops) loop->time_pass(*timer, counts);
+
+  // Rounds: every loop once, starting with a different one each round.
+  std::vector<std::vector<double>> round_ns(k);
+  std::vector<std::vector<double>> round_ratio(k);
+  std::vector<double> this_round(k);
+  for (int round = 0; round < passes; ++round) {
+    for (std::size_t j = 0; j < k; ++j) {
+      const std::size_t which = (static_cast<std::size_t>(round) + j) % k;
+      this_round[which] = loops[which]->time_pass(*timer, counts);
+    }
+    for (std::size_t j = 0; j < k; ++j) {
+      round_ns[j].push_back(this_round[j]);
+      if (this_round[0] > 0.0) round_ratio[j].push_back(this_round[j] / this_round[0]);
+    }
+  }
+  for (std::size_t j = 0; j < k; ++j) {
+    costs[j].median_ns = median_of(round_ns[j]);
+    costs[j].ratio = round_ratio[j].empty() ? -1.0 : median_of(round_ratio[j]);
+    loops[j]->time_tail(*timer, counts, passes, &costs[j]);
+    if (counter != nullptr && counter->available()) {
+      costs[j].instructions_per_tick = loops[j]->instructions_per_tick(*counter, counts);
+    }
+  }
+  return costs;
 }
 
 }  // namespace hapscene

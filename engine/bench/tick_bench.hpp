@@ -2,7 +2,13 @@
 // `hapscene bench`: the per-tick compute of the loop (sensor pipeline, effects, safety,
 // motor command; no I/O) for a scene, next to the hand-written Hapkit lab baseline, on
 // the same recorded sensor readings in the same run.
+//
+// Implementations are compared in interleaved rounds: each round times one pass of every
+// implementation back to back (in a rotating order), so a slow stretch of a shared machine
+// hits all of them alike. A median is the median over rounds of each round's median; a
+// ratio is the median over rounds of the per-round ratio to the reference.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,16 +22,34 @@ namespace hapscene {
 // realistic inputs, sensor wraps included.
 std::vector<std::int32_t> record_sensor_counts(const Scene& scene, double duration_s);
 
-// The engine's step() over `counts`, `passes` times, each tick timed; with an available
-// `counter`, one more pass counts instructions per tick. `script_calls` (optional) gets
-// the script calls per tick of that run.
-TickCost bench_scene(const Scene& scene, const std::vector<std::int32_t>& counts, int passes,
-                     TickTimer* timer, InstructionCounter* counter = nullptr,
-                     double* script_calls_per_tick = nullptr);
+// One implementation of the tick, fed recorded readings.
+class TickLoop {
+ public:
+  virtual ~TickLoop() = default;
+  // One pass over `counts` in timed batches: the median batch's ns per tick.
+  virtual double time_pass(TickTimer& timer, const std::vector<std::int32_t>& counts) = 0;
+  // `passes` passes with each tick timed alone: the tail fields of `cost`.
+  virtual void time_tail(TickTimer& timer, const std::vector<std::int32_t>& counts, int passes,
+                         TickCost* cost) = 0;
+  // One pass between the counter's start and stop: instructions per tick.
+  virtual double instructions_per_tick(InstructionCounter& counter,
+                                       const std::vector<std::int32_t>& counts) = 0;
+  // Script calls per tick so far (0 for a scene without scripts and for the baseline).
+  virtual double script_calls_per_tick() const { return 0.0; }
+};
 
-// The hand-written baseline over the same counts; false when the scene is not a single lab
-// effect (then there is no baseline to compare with).
-bool bench_lab_baseline(const Scene& scene, const std::vector<std::int32_t>& counts, int passes,
-                        TickTimer* timer, TickCost* cost, InstructionCounter* counter = nullptr);
+// The engine's step() on `scene` (which must outlive the loop), with its own TickState.
+std::unique_ptr<TickLoop> scene_tick_loop(const Scene& scene);
+
+// The hand-written baseline for `scene`; null when the scene is not a single lab effect
+// (then there is nothing to compare with).
+std::unique_ptr<TickLoop> lab_baseline_tick_loop(const Scene& scene);
+
+// Times every loop over `counts` in `passes` interleaved rounds (one untimed pass each
+// first), then each one's tail; ratios are against loops[0]. With an available `counter`,
+// one more pass each counts instructions.
+std::vector<TickCost> compare_tick_loops(const std::vector<TickLoop*>& loops,
+                                         const std::vector<std::int32_t>& counts, int passes,
+                                         TickTimer* timer, InstructionCounter* counter = nullptr);
 
 }  // namespace hapscene

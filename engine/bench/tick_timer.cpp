@@ -21,22 +21,18 @@ TickTimer::TickTimer() {
   overhead_ticks_ = static_cast<double>(samples_[samples_.size() / 2]);
 }
 
-TickCost TickTimer::summarise() {
+void TickTimer::summarise_tail(TickCost* cost) {
+  cost->ticks = samples_.size();
+  if (samples_.empty()) return;
   std::sort(samples_.begin(), samples_.end());
   const auto at = [&](double fraction) {
     const auto index = static_cast<std::size_t>(fraction * static_cast<double>(samples_.size() - 1));
     const double ticks = static_cast<double>(samples_[index]) - overhead_ticks_;
     return std::max(0.0, ticks) * ns_per_tick_;
   };
-  TickCost cost;
-  cost.ticks = samples_.size();
-  if (samples_.empty()) return cost;
-  std::sort(batch_ns_.begin(), batch_ns_.end());
-  cost.median_ns = batch_ns_.empty() ? at(0.5) : batch_ns_[batch_ns_.size() / 2];
-  cost.p99_ns = at(0.99);
-  cost.p999_ns = at(0.999);
-  cost.max_ns = at(1.0);
-  return cost;
+  cost->p99_ns = at(0.99);
+  cost->p999_ns = at(0.999);
+  cost->max_ns = at(1.0);
 }
 
 }  // namespace hapscene

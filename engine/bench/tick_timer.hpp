@@ -1,9 +1,9 @@
 #pragma once
 // Timing ticks with the time-stamp counter, converted to ns with a frequency calibrated
-// against the steady clock. Two passes: the median comes from batches of 64 ticks timed
-// as a whole (a counter read costs about as much as a short tick, and is coarse on some
-// virtual machines); the tail (p99, p99.9, max) from each tick timed alone, minus the
-// cost of the counter reads measured around an empty call.
+// against the steady clock. The median comes from batches of 64 ticks timed as a whole (a
+// counter read costs about as much as a short tick, and is coarse on some virtual
+// machines); the tail (p99, p99.9, max) from each tick timed alone, minus the cost of the
+// counter reads measured around an empty call.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -21,6 +21,7 @@ struct TickCost {
   double p99_ns{};
   double p999_ns{};
   double max_ns{};
+  double ratio{-1.0};                  // median against the reference of its comparison (< 0: none)
   double instructions_per_tick{-1.0};  // < 0: not counted (no performance counters)
 };
 
@@ -30,10 +31,9 @@ class TickTimer {
 
   static constexpr std::size_t kBatch = 64;
 
-  // Times `tick(i)` for i in [0, count) twice (batched, then alone); `tick` must accept
-  // being called again with the same i.
+  // Times `tick(i)` for i in [0, count) in batches: the median batch's ns per tick.
   template <typename Tick>
-  TickCost time(std::size_t count, Tick&& tick) {
+  double batch_median_ns(std::size_t count, Tick&& tick) {
     batch_ns_.clear();
     for (std::size_t first = 0; first + kBatch <= count; first += kBatch) {
       const std::uint64_t begin = now_ticks();
@@ -41,8 +41,18 @@ class TickTimer {
       const std::uint64_t end = now_ticks();
       batch_ns_.push_back(static_cast<double>(end - begin) * ns_per_tick_ / kBatch);
     }
+    if (batch_ns_.empty()) return 0.0;
+    const auto middle = batch_ns_.begin() + static_cast<std::ptrdiff_t>(batch_ns_.size() / 2);
+    std::nth_element(batch_ns_.begin(), middle, batch_ns_.end());
+    return *middle;
+  }
+
+  // Times `tick(i)` for i in [0, count) one tick at a time: fills the tail fields of a
+  // cost (ticks, p99, p99.9, max); `tick` must accept being called again with the same i.
+  template <typename Tick>
+  void time_tail(std::size_t count, Tick&& tick, TickCost* cost) {
     time_each(count, tick);
-    return summarise();
+    summarise_tail(cost);
   }
 
   double ns_per_timer_tick() const { return ns_per_tick_; }
@@ -71,7 +81,7 @@ class TickTimer {
     }
   }
 
-  TickCost summarise();
+  void summarise_tail(TickCost* cost);
 
   std::vector<double> batch_ns_;
   std::vector<std::uint64_t> samples_;

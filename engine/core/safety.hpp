@@ -8,6 +8,7 @@
 //      field stronger than the threshold, force ramps in linearly over soft_start_s;
 //   4. clamp to max_force_N (the lower of the device's and the environment's);
 //   5. slew limit: the output changes by at most slew_limit_N_per_s * T per tick.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -66,9 +67,31 @@ inline double apply_static_safety(const SafetyConfig& config, double x_m, double
   return force_N;
 }
 
-// All five rules, for one tick of a run.
-double apply_safety(const SafetyConfig& config, double x_m, double force_N,
-                    SafetyState* state) noexcept;
+// All five rules, for one tick of a run. (Inline: it runs every tick.)
+inline double apply_safety(const SafetyConfig& config, double x_m, double force_N,
+                           SafetyState* state) noexcept {
+  double output_N = apply_static_safety(config, x_m, force_N, &state->counters);
+
+  // 3. Soft start: decided on the first tick from the force the scene asks for there.
+  if (!state->started) [[unlikely]] {
+    state->started = true;
+    state->ramp_gain = std::abs(output_N) > config.soft_start_threshold_N ? 0.0 : 1.0;
+  }
+  if (state->ramp_gain < 1.0) [[unlikely]] {
+    output_N *= state->ramp_gain;
+    state->ramp_gain = std::min(1.0, state->ramp_gain + config.ramp_step_per_tick);
+    ++state->counters.soft_start_ticks;
+  }
+
+  // 5. Slew limit against the previous output.
+  const double step_N = output_N - state->previous_output_N;
+  if (std::abs(step_N) > config.max_step_N) {
+    output_N = state->previous_output_N + std::copysign(config.max_step_N, step_N);
+    ++state->counters.slew_limited_ticks;
+  }
+  state->previous_output_N = output_N;
+  return output_N;
+}
 
 // Makes the next tick decide again whether to ramp force in (after a scene swap).
 void restart_soft_start(SafetyState* state) noexcept;

@@ -5,6 +5,7 @@
 #include <variant>
 #include <vector>
 
+#include "engine/core/effect_bank.hpp"
 #include "engine/core/effect_input.hpp"
 #include "engine/core/safety.hpp"
 #include "engine/core/validate_thresholds.hpp"
@@ -35,7 +36,8 @@ struct Scene {
   SafetyConfig safety;              // device limits lowered by the environment's
   VelocityEstimatorConfig velocity;
 
-  std::vector<Effect> effects;
+  std::vector<Effect> effects;       // as written in the file
+  EffectBank bank;                  // the built-in ones among them, grouped for the tick
   std::size_t script_count{};       // ScriptEffects among them (instance_index 0..n-1)
   Needs needs;                      // union of the effects' needs: what step() computes
 
@@ -44,5 +46,8 @@ struct Scene {
 
 // The declared needs of one effect.
 Needs needs_of(const Effect& effect) noexcept;
+
+// Appends `effect` to the scene: its list, its bank (or its script count) and its needs.
+void add_effect(Scene* scene, Effect effect);
 
 }  // namespace hapscene

@@ -167,9 +167,7 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
     Effect effect;
     const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
     if (parse_effect((*effects)[i], pointer, file, base_dir, &effect)) {
-      if (auto* script = std::get_if<ScriptEffect>(&effect)) script->instance_index = scene.script_count++;
-      scene.needs |= needs_of(effect);
-      scene.effects.push_back(std::move(effect));
+      add_effect(&scene, std::move(effect));
     }
   }
 
