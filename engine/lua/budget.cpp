@@ -2,6 +2,12 @@
 // since it last fired; at the deadline the state "trips": the hook is switched to fire on
 // every instruction and raises each time, so a script that catches the error with pcall
 // (or in a coroutine) fails again on its next instruction, until the call returns.
+//
+// A count hook makes Lua check every instruction, which costs more than a short force()
+// itself. So a function that cannot loop (bytecode.hpp) runs under a call hook instead:
+// its own code is charged its length up front, and the first Lua function it calls
+// (directly, through a metamethod, pcall, a C function or a coroutine) switches every
+// thread to counting for the rest of the call.
 #include <cstdarg>
 #include <cstdio>
 
@@ -24,15 +30,25 @@ const char* budget_phrase(const ScriptVm* vm) {
 
 }  // namespace
 
-void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_limit_bytes) {
+void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_limit_bytes,
+                std::int64_t straight_line_instructions) {
   vm->budget_instructions = instructions;
   vm->remaining_instructions = instructions;
-  // The hook is installed once per phase; between calls its count carries over, so a
-  // call's budget is exact to within one hook period.
-  const std::int64_t period = instructions < kHookPeriod ? instructions : kHookPeriod;
-  if (period != vm->hook_period || vm->tripped) {
-    vm->hook_period = period;
-    lua_sethook(vm->L, count_hook, LUA_MASKCOUNT, static_cast<int>(period));
+  if (straight_line_instructions > 0 && straight_line_instructions < instructions && !vm->tripped) {
+    // The function's own code runs uncounted, charged its length up front; the call hook
+    // switches to counting as soon as it calls a Lua function.
+    vm->remaining_instructions -= straight_line_instructions;
+    vm->entered_function = false;
+    if (!vm->hook_on_calls) {
+      vm->hook_on_calls = true;
+      vm->hook_period = 0;
+      lua_sethook(vm->L, call_hook, LUA_MASKCALL, 0);
+    }
+  } else {
+    // The hook is installed once per phase; between calls its count carries over, so a
+    // call's budget is exact to within one hook period.
+    const std::int64_t period = instructions < kHookPeriod ? instructions : kHookPeriod;
+    if (period != vm->hook_period || vm->tripped) start_counting(vm, vm->L, period);
   }
   vm->tripped = false;
   vm->in_call = true;
@@ -47,12 +63,39 @@ void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_
   }
 }
 
+void start_counting(ScriptVm* vm, lua_State* L, std::int64_t period) {
+  vm->hook_on_calls = false;
+  vm->hook_period = period;
+  lua_sethook(L, count_hook, LUA_MASKCOUNT, static_cast<int>(period));
+  if (L != vm->L) lua_sethook(vm->L, count_hook, LUA_MASKCOUNT, static_cast<int>(period));
+}
+
+void call_hook(lua_State* L, lua_Debug* ar) {
+  ScriptVm* vm = vm_of(L);
+  // The first call of a call is the straight-line function itself.
+  if (!vm->entered_function) {
+    vm->entered_function = true;
+    return;
+  }
+  // C functions are bounded (the costly ones charge their work); they may call Lua
+  // functions, which come through here.
+  lua_getinfo(L, "f", ar);
+  const bool c_function = lua_iscfunction(L, -1) != 0;
+  lua_pop(L, 1);
+  if (c_function) return;
+  // A Lua function may loop: count from its first instruction on, on this thread and
+  // the main one, until the call ends.
+  const std::int64_t budget = vm->budget_instructions;
+  start_counting(vm, L, budget < kHookPeriod ? budget : kHookPeriod);
+}
+
 void end_call(ScriptVm* vm) { vm->in_call = false; }
 
 void count_hook(lua_State* L, lua_Debug* ar) {
   ScriptVm* vm = vm_of(L);
   if (!vm->tripped) {
-    vm->remaining_instructions -= vm->hook_period;
+    // This thread's own period: a coroutine keeps the hook it had when it was counting.
+    vm->remaining_instructions -= lua_gethookcount(L);
     const bool over_budget = vm->remaining_instructions <= 0;
     const bool over_time = !over_budget && past_deadline(vm);
     if (!over_budget && !over_time) return;
@@ -103,8 +146,7 @@ void record_fault(ScriptVm* vm, ScriptFault kind, const char* format, ...) {
 
 void trip(ScriptVm* vm, lua_State* L) {
   vm->tripped = true;
-  lua_sethook(L, count_hook, LUA_MASKCOUNT, 1);
-  if (L != vm->L) lua_sethook(vm->L, count_hook, LUA_MASKCOUNT, 1);
+  start_counting(vm, L, 1);
 }
 
 int raise_tripped(lua_State* L) {

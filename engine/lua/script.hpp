@@ -172,6 +172,9 @@ class ScriptInstance {
   // it has made since creation.
   std::size_t memory_bytes() const noexcept;
   std::uint64_t allocation_count() const noexcept;
+  // The length in VM instructions of force() when its own code cannot loop (it then runs
+  // without the per-instruction count hook, charged that length per call), else 0.
+  std::int64_t force_straight_line_instructions() const noexcept;
 
  private:
   friend ScriptProgram compile_script(std::string, std::string, const nlohmann::json&, std::string,

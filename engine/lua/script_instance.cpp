@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "engine/core/errors.hpp"
+#include "engine/lua/bytecode.hpp"
 #include "engine/lua/script_vm.hpp"
 
 namespace hapscene {
@@ -132,6 +133,7 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   detail::end_call(vm);
 
   // Running from here on: new globals are errors. Start with a clean heap.
+  vm->force_straight_line = detail::straight_line_length(L, detail::kSlotForce);
   vm->phase = detail::Phase::running;
   vm->source = nullptr;
   vm->params_override = nullptr;
@@ -148,7 +150,8 @@ double ScriptInstance::force_N(const ScriptInput& input) noexcept {
   }
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
-  detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call);
+  detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
+                     vm->force_straight_line);
 
   // s, then force(s) in protected mode.
   set_state(L, detail::kSlotKeyX, input.x_m);
@@ -219,6 +222,10 @@ void ScriptInstance::collect_garbage(int max_steps) noexcept {
 }
 
 bool ScriptInstance::disabled() const noexcept { return vm_->disabled; }
+
+std::int64_t ScriptInstance::force_straight_line_instructions() const noexcept {
+  return vm_->force_straight_line;
+}
 
 std::string_view ScriptInstance::fault_message() const noexcept {
   return std::string_view(vm_->fault, vm_->fault_length);

@@ -47,11 +47,14 @@ struct ScriptVm {
   bool needs_velocity{true};
   bool needs_time{true};
   int force_line{};  // line where force is defined, for messages about its return value
+  std::int64_t force_straight_line{};  // force's length when it cannot loop, else 0
 
   // Instruction budget of the current call (see budget.cpp).
   std::int64_t remaining_instructions{};
   std::int64_t budget_instructions{};
-  std::int64_t hook_period{0};  // 0: no hook installed yet
+  std::int64_t hook_period{0};  // of the count hook; 0: not counting
+  bool hook_on_calls{};         // the call hook is installed instead (see begin_call)
+  bool entered_function{};      // the call hook has seen the called function's own call
   bool check_clock{};
   std::chrono::steady_clock::time_point deadline{};
   bool tripped{};  // a limit was exceeded: every instruction raises until the call returns
@@ -100,11 +103,19 @@ struct ScriptVm {
 inline ScriptVm* vm_of(lua_State* L) { return *static_cast<ScriptVm**>(lua_getextraspace(L)); }
 
 // Budget (budget.cpp).
-// Starts a call with the given instruction budget and allocation limit.
-void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_limit_bytes);
+// Starts a call with the given instruction budget and allocation limit. With
+// `straight_line_instructions` > 0 (the called function cannot loop and is that long, see
+// bytecode.hpp) and below the budget, the function's own code runs without the count
+// hook, charged its length up front; anything it calls in Lua is counted.
+void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_limit_bytes,
+                std::int64_t straight_line_instructions = 0);
 void end_call(ScriptVm* vm);
-// The count hook installed on every thread.
+// Installs the count hook, firing every `period` instructions, on `L` and the main thread.
+void start_counting(ScriptVm* vm, lua_State* L, std::int64_t period);
+// The count hook: subtracts each period from the budget and trips at the deadline.
 void count_hook(lua_State* L, lua_Debug* ar);
+// The call hook of a straight-line call: starts counting when a Lua function is called.
+void call_hook(lua_State* L, lua_Debug* ar);
 // Charges a C function's work as `instructions`; raises if the budget runs out.
 void charge(lua_State* L, std::int64_t instructions);
 // Records the first fault message (printf-style, truncated to the buffer).
