@@ -1,6 +1,7 @@
 #include "engine/bench/tick_bench.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 #include "engine/bench/lab_baseline.hpp"
 #include "engine/core/step.hpp"
@@ -81,6 +82,8 @@ std::unique_ptr<TickLoop> baseline_loop(const LabBaselineConstants& constants) {
   return std::make_unique<TickLoopOf<BaselineTick<Function>>>(BaselineTick<Function>{constants, {}});
 }
 
+constexpr std::chrono::milliseconds kWarmUp{300};
+
 double median_of(std::vector<double> values) {
   if (values.empty()) return 0.0;
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
@@ -128,8 +131,13 @@ std::vector<TickCost> compare_tick_loops(const std::vector<TickLoop*>& loops,
   const std::size_t k = loops.size();
   std::vector<TickCost> costs(k);
   if (k == 0) return costs;
-  // One untimed pass each warms caches and branch predictors.
-  for (TickLoop* loop : loops) loop->time_pass(*timer, counts);
+  // Untimed passes over every loop for at least kWarmUp warm caches and branch
+  // predictors, and let a virtual CPU that was idle reach its working clock (a bench
+  // started cold measured its first group up to 1.5x slow without this).
+  const auto warm_until = std::chrono::steady_clock::now() + kWarmUp;
+  do {
+    for (TickLoop* loop : loops) loop->time_pass(*timer, counts);
+  } while (std::chrono::steady_clock::now() < warm_until);
 
   // Rounds: every loop once, starting with a different one each round.
   std::vector<std::vector<double>> round_ns(k);

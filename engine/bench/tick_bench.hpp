@@ -45,8 +45,8 @@ std::unique_ptr<TickLoop> scene_tick_loop(const Scene& scene);
 // (then there is nothing to compare with).
 std::unique_ptr<TickLoop> lab_baseline_tick_loop(const Scene& scene);
 
-// Times every loop over `counts` in `passes` interleaved rounds (one untimed pass each
-// first), then each one's tail; ratios are against loops[0]. With an available `counter`,
+// Times every loop over `counts` in `passes` interleaved rounds (after 0.3 s of untimed
+// passes), then each one's tail; ratios are against loops[0]. With an available `counter`,
 // one more pass each counts instructions.
 std::vector<TickCost> compare_tick_loops(const std::vector<TickLoop*>& loops,
                                          const std::vector<std::int32_t>& counts, int passes,

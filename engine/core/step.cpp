@@ -52,15 +52,22 @@ TickState make_tick_state(const Scene& scene) {
 
 namespace {
 
-// The effects stage: the built-in bank, then each script (one call per script per tick).
-[[gnu::always_inline]] inline double add_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts,
-                            std::uint64_t* script_calls) noexcept {
+// Each script's force (one call per script per tick). Out of line, so that a tick of
+// built-in effects only carries no call and needs no saved registers.
+[[gnu::noinline]] double add_scripts_N(double force_N, const EffectInput& input, ScriptList& scripts,
+                                       std::uint64_t* script_calls) noexcept {
+  const ScriptInput script_input{input.x_m, input.v_m_per_s, input.t_s, input.dt_s};
+  for (const auto& script : scripts) force_N += script->force_N(script_input);
+  if (script_calls != nullptr) *script_calls += scripts.size();
+  return force_N;
+}
+
+// The effects stage: the built-in bank, then the scripts.
+[[gnu::always_inline]] inline double add_effects_N(const Scene& scene, const EffectInput& input,
+                                                   ScriptList& scripts,
+                                                   std::uint64_t* script_calls) noexcept {
   double force_N = scene.bank.force_N(input);
-  if (!scripts.empty()) {
-    const ScriptInput script_input{input.x_m, input.v_m_per_s, input.t_s, input.dt_s};
-    for (const auto& script : scripts) force_N += script->force_N(script_input);
-    if (script_calls != nullptr) *script_calls += scripts.size();
-  }
+  if (!scripts.empty()) force_N = add_scripts_N(force_N, input, scripts, script_calls);
   return force_N;
 }
 
