@@ -34,8 +34,10 @@ class TickLoopOf : public TickLoop {
  public:
   explicit TickLoopOf(Tick tick) : tick_(std::move(tick)) {}
 
-  double time_pass(TickTimer& timer, const std::vector<std::int32_t>& counts) override {
-    return timer.batch_median_ns(counts.size(), [&](std::size_t i) { tick_(counts[i]); });
+  double time_slice(TickTimer& timer, const std::vector<std::int32_t>& counts, std::size_t begin,
+                    std::size_t end) override {
+    const std::int32_t* first = counts.data() + begin;
+    return timer.batch_median_ns(end - begin, [&](std::size_t i) { tick_(first[i]); });
   }
   void time_tail(TickTimer& timer, const std::vector<std::int32_t>& counts, int passes,
                  TickCost* cost) override {
@@ -125,40 +127,63 @@ std::unique_ptr<TickLoop> lab_baseline_tick_loop(const Scene& scene) {
   return nullptr;
 }
 
-std::vector<TickCost> compare_tick_loops(const std::vector<TickLoop*>& loops,
-                                         const std::vector<std::int32_t>& counts, int passes,
-                                         TickTimer* timer, InstructionCounter* counter) {
-  const std::size_t k = loops.size();
-  std::vector<TickCost> costs(k);
-  if (k == 0) return costs;
+std::vector<std::vector<TickCost>> compare_tick_loops(const std::vector<TickLoopGroup>& groups,
+                                                      int passes, TickTimer* timer,
+                                                      InstructionCounter* counter) {
   // Untimed passes over every loop for at least kWarmUp warm caches and branch
   // predictors, and let a virtual CPU that was idle reach its working clock (a bench
   // started cold measured its first group up to 1.5x slow without this).
   const auto warm_until = std::chrono::steady_clock::now() + kWarmUp;
   do {
-    for (TickLoop* loop : loops) loop->time_pass(*timer, counts);
+    for (const TickLoopGroup& group : groups) {
+      for (TickLoop* loop : group.loops) loop->time_slice(*timer, *group.counts, 0, group.counts->size());
+    }
   } while (std::chrono::steady_clock::now() < warm_until);
 
-  // Rounds: every loop once, starting with a different one each round.
-  std::vector<std::vector<double>> round_ns(k);
-  std::vector<std::vector<double>> round_ratio(k);
-  std::vector<double> this_round(k);
-  for (int round = 0; round < passes; ++round) {
-    for (std::size_t j = 0; j < k; ++j) {
-      const std::size_t which = (static_cast<std::size_t>(round) + j) % k;
-      this_round[which] = loops[which]->time_pass(*timer, counts);
-    }
-    for (std::size_t j = 0; j < k; ++j) {
-      round_ns[j].push_back(this_round[j]);
-      if (this_round[0] > 0.0) round_ratio[j].push_back(this_round[j] / this_round[0]);
+  // Rounds: one slice of each loop of each group, starting with a different one each round.
+  std::size_t slices = 1;
+  for (const TickLoopGroup& group : groups) slices = std::max(slices, group.counts->size() / kSliceTicks);
+  const std::size_t rounds = static_cast<std::size_t>(passes) * slices;
+  std::vector<std::vector<std::vector<double>>> round_ns(groups.size());
+  std::vector<std::vector<std::vector<double>>> round_ratio(groups.size());
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    round_ns[g].resize(groups[g].loops.size());
+    round_ratio[g].resize(groups[g].loops.size());
+  }
+  std::vector<double> this_round;
+  for (std::size_t round = 0; round < rounds; ++round) {
+    for (std::size_t h = 0; h < groups.size(); ++h) {
+      const TickLoopGroup& group = groups[(round + h) % groups.size()];
+      auto& group_ns = round_ns[(round + h) % groups.size()];
+      auto& group_ratio = round_ratio[(round + h) % groups.size()];
+      const std::size_t k = group.loops.size();
+      const std::size_t group_slices = std::max<std::size_t>(1, group.counts->size() / kSliceTicks);
+      const std::size_t begin = (round % group_slices) * kSliceTicks;
+      const std::size_t end = std::min(group.counts->size(), begin + kSliceTicks);
+      this_round.assign(k, 0.0);
+      for (std::size_t j = 0; j < k; ++j) {
+        const std::size_t which = (round + j) % k;
+        this_round[which] = group.loops[which]->time_slice(*timer, *group.counts, begin, end);
+      }
+      for (std::size_t j = 0; j < k; ++j) {
+        group_ns[j].push_back(this_round[j]);
+        if (this_round[0] > 0.0) group_ratio[j].push_back(this_round[j] / this_round[0]);
+      }
     }
   }
-  for (std::size_t j = 0; j < k; ++j) {
-    costs[j].median_ns = median_of(round_ns[j]);
-    costs[j].ratio = round_ratio[j].empty() ? -1.0 : median_of(round_ratio[j]);
-    loops[j]->time_tail(*timer, counts, passes, &costs[j]);
-    if (counter != nullptr && counter->available()) {
-      costs[j].instructions_per_tick = loops[j]->instructions_per_tick(*counter, counts);
+
+  std::vector<std::vector<TickCost>> costs(groups.size());
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    for (std::size_t j = 0; j < groups[g].loops.size(); ++j) {
+      TickCost cost;
+      cost.median_ns = median_of(round_ns[g][j]);
+      cost.ratio = round_ratio[g][j].empty() ? -1.0 : median_of(round_ratio[g][j]);
+      TickLoop* loop = groups[g].loops[j];
+      loop->time_tail(*timer, *groups[g].counts, passes, &cost);
+      if (counter != nullptr && counter->available()) {
+        cost.instructions_per_tick = loop->instructions_per_tick(*counter, *groups[g].counts);
+      }
+      costs[g].push_back(cost);
     }
   }
   return costs;

@@ -3,10 +3,11 @@
 // motor command; no I/O) for a scene, next to the hand-written Hapkit lab baseline, on
 // the same recorded sensor readings in the same run.
 //
-// Implementations are compared in interleaved rounds: each round times one pass of every
-// implementation back to back (in a rotating order), so a slow stretch of a shared machine
-// hits all of them alike. A median is the median over rounds of each round's median; a
-// ratio is the median over rounds of the per-round ratio to the reference.
+// Implementations are compared in many short interleaved rounds: each round times a slice
+// of readings of every implementation back to back (in a rotating order), so a slow
+// stretch of a shared machine hits them alike and spoils only a few rounds. A median is
+// the median over rounds of each round's median; a ratio is the median over rounds of the
+// per-round ratio to the group's reference.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -26,8 +27,9 @@ std::vector<std::int32_t> record_sensor_counts(const Scene& scene, double durati
 class TickLoop {
  public:
   virtual ~TickLoop() = default;
-  // One pass over `counts` in timed batches: the median batch's ns per tick.
-  virtual double time_pass(TickTimer& timer, const std::vector<std::int32_t>& counts) = 0;
+  // Ticks counts[begin, end) in timed batches: the median batch's ns per tick.
+  virtual double time_slice(TickTimer& timer, const std::vector<std::int32_t>& counts,
+                            std::size_t begin, std::size_t end) = 0;
   // `passes` passes with each tick timed alone: the tail fields of `cost`.
   virtual void time_tail(TickTimer& timer, const std::vector<std::int32_t>& counts, int passes,
                          TickCost* cost) = 0;
@@ -45,11 +47,20 @@ std::unique_ptr<TickLoop> scene_tick_loop(const Scene& scene);
 // (then there is nothing to compare with).
 std::unique_ptr<TickLoop> lab_baseline_tick_loop(const Scene& scene);
 
-// Times every loop over `counts` in `passes` interleaved rounds (after 0.3 s of untimed
-// passes), then each one's tail; ratios are against loops[0]. With an available `counter`,
-// one more pass each counts instructions.
-std::vector<TickCost> compare_tick_loops(const std::vector<TickLoop*>& loops,
-                                         const std::vector<std::int32_t>& counts, int passes,
-                                         TickTimer* timer, InstructionCounter* counter = nullptr);
+// Loops compared on the same readings; ratios are against the first.
+struct TickLoopGroup {
+  const std::vector<std::int32_t>* counts{};
+  std::vector<TickLoop*> loops;
+};
+
+// Times every loop of every group in interleaved rounds, after 0.3 s of untimed passes:
+// a round times one slice of kSliceTicks readings of each loop back to back, in a
+// rotating order; `passes` passes over the readings make the rounds. Then each loop's
+// tail over `passes` passes. With an available `counter`, one more pass each counts
+// instructions. Returns the costs group by group, loop by loop.
+inline constexpr std::size_t kSliceTicks = 2048;
+std::vector<std::vector<TickCost>> compare_tick_loops(const std::vector<TickLoopGroup>& groups,
+                                                      int passes, TickTimer* timer,
+                                                      InstructionCounter* counter = nullptr);
 
 }  // namespace hapscene

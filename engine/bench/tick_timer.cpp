@@ -21,18 +21,19 @@ TickTimer::TickTimer() {
   overhead_ticks_ = static_cast<double>(samples_[samples_.size() / 2]);
 }
 
-void TickTimer::summarise_tail(TickCost* cost) {
-  cost->ticks = samples_.size();
-  if (samples_.empty()) return;
+TickTimer::Tail TickTimer::summarise_tail() {
+  Tail tail;
+  if (samples_.empty()) return tail;
   std::sort(samples_.begin(), samples_.end());
   const auto at = [&](double fraction) {
     const auto index = static_cast<std::size_t>(fraction * static_cast<double>(samples_.size() - 1));
     const double ticks = static_cast<double>(samples_[index]) - overhead_ticks_;
     return std::max(0.0, ticks) * ns_per_tick_;
   };
-  cost->p99_ns = at(0.99);
-  cost->p999_ns = at(0.999);
-  cost->max_ns = at(1.0);
+  tail.p99_ns = at(0.99);
+  tail.p999_ns = at(0.999);
+  tail.max_ns = at(1.0);
+  return tail;
 }
 
 }  // namespace hapscene

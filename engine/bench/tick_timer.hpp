@@ -47,12 +47,29 @@ class TickTimer {
     return *middle;
   }
 
-  // Times `tick(i)` for i in [0, count) one tick at a time: fills the tail fields of a
-  // cost (ticks, p99, p99.9, max); `tick` must accept being called again with the same i.
+  // Times `tick(i)` for i in [0, count) one tick at a time, in kTailRepeats equal parts:
+  // fills the tail fields of a cost (ticks; p99 and p99.9 as the median of the parts' own,
+  // so a burst of outside noise in one part does not decide them; max of all). `tick`
+  // must accept being called again with the same i.
+  static constexpr std::size_t kTailRepeats = 5;
   template <typename Tick>
   void time_tail(std::size_t count, Tick&& tick, TickCost* cost) {
-    time_each(count, tick);
-    summarise_tail(cost);
+    const std::size_t part = count / kTailRepeats;
+    std::vector<double> p99(kTailRepeats), p999(kTailRepeats);
+    cost->ticks = 0;
+    cost->max_ns = 0.0;
+    for (std::size_t r = 0; r < kTailRepeats; ++r) {
+      time_each(part, [&](std::size_t i) { tick(r * part + i); });
+      const Tail tail = summarise_tail();
+      p99[r] = tail.p99_ns;
+      p999[r] = tail.p999_ns;
+      cost->max_ns = std::max(cost->max_ns, tail.max_ns);
+      cost->ticks += part;
+    }
+    std::sort(p99.begin(), p99.end());
+    std::sort(p999.begin(), p999.end());
+    cost->p99_ns = p99[kTailRepeats / 2];
+    cost->p999_ns = p999[kTailRepeats / 2];
   }
 
   double ns_per_timer_tick() const { return ns_per_tick_; }
@@ -81,7 +98,10 @@ class TickTimer {
     }
   }
 
-  void summarise_tail(TickCost* cost);
+  struct Tail {
+    double p99_ns{}, p999_ns{}, max_ns{};
+  };
+  Tail summarise_tail();
 
   std::vector<double> batch_ns_;
   std::vector<std::uint64_t> samples_;

@@ -104,58 +104,36 @@ int bench_command(std::vector<std::string> args) {
   TickTimer timer;
   InstructionCounter counter;
   std::printf("tick compute in ns (read counts -> motor command, no I/O); %g s of recorded sensor "
-              "readings x %d interleaved passes per row; ratios against the hand-written lab code, same rounds\n", seconds, passes);
+              "readings x %d passes per row, every row interleaved in rounds of %zu ticks; ratios against the hand-written lab code, same rounds\n", seconds, passes, kSliceTicks);
   if (counter.available()) {
     std::printf("instr: instructions per tick from the CPU's counters (one more pass)\n\n");
   } else {
     std::printf("instr: not available here (%s); count them with valgrind: hapscene bench --callgrind "
                 "(see README, Measurements)\n\n", counter.reason().c_str());
   }
-  print_header();
-  bool tails_ok = true;
-  std::vector<std::string> goals;
+  // Each environment's group: the hand-written code first (the ratios' reference), then
+  // the engine, then Lua, on the environment's own recorded readings.
+  struct EnvironmentLoops {
+    std::vector<std::int32_t> counts;
+    std::unique_ptr<TickLoop> baseline, builtin, lua;
+  };
+  std::vector<EnvironmentLoops> environments(scenes.size());
+  std::vector<TickLoopGroup> groups;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
-    const Scene& scene = scenes[i];
-    const std::vector<std::int32_t> counts = record_sensor_counts(scene, seconds);
-    // The hand-written code first (the ratios' reference), then the engine, then Lua.
-    const std::unique_ptr<TickLoop> baseline = lab_baseline_tick_loop(scene);
-    const std::unique_ptr<TickLoop> builtin = scene_tick_loop(scene);
-    const std::unique_ptr<TickLoop> lua = lua_scenes[i] ? scene_tick_loop(*lua_scenes[i]) : nullptr;
-    std::vector<TickLoop*> loops;
-    for (TickLoop* loop : {baseline.get(), builtin.get(), lua.get()}) {
-      if (loop != nullptr) loops.push_back(loop);
+    EnvironmentLoops& e = environments[i];
+    e.counts = record_sensor_counts(scenes[i], seconds);
+    e.baseline = lab_baseline_tick_loop(scenes[i]);
+    e.builtin = scene_tick_loop(scenes[i]);
+    if (lua_scenes[i]) e.lua = scene_tick_loop(*lua_scenes[i]);
+    TickLoopGroup group{&e.counts, {}};
+    for (TickLoop* loop : {e.baseline.get(), e.builtin.get(), e.lua.get()}) {
+      if (loop != nullptr) group.loops.push_back(loop);
     }
-    std::vector<TickCost> costs = compare_tick_loops(loops, counts, passes, &timer, &counter);
-    if (!baseline) {
-      for (TickCost& cost : costs) cost.ratio = -1.0;
-    }
-    std::size_t row = 0;
-    if (baseline) print_row(scene.name, "hand-written C++", costs[row++], false);
-    const TickCost builtin_cost = costs[row++];
-    print_row(scene.name, "built-in (JSON)", builtin_cost, false);
-    char goal[200];
-    if (baseline) {
-      std::snprintf(goal, sizeof goal, "%s: built-in %.2fx the hand-written code (goal <= %.1fx): %s",
-                    scene.name.c_str(), builtin_cost.ratio, kBuiltinGoalRatio,
-                    builtin_cost.ratio <= kBuiltinGoalRatio ? "met" : "NOT met");
-      goals.push_back(goal);
-    }
-    if (lua) {
-      const TickCost lua_cost = costs[row++];
-      tails_ok = print_row(scene.name, "Lua script", lua_cost, true) && tails_ok;
-      std::snprintf(goal, sizeof goal, "%s: Lua median %.1f ns (goal < %.0f ns): %s", scene.name.c_str(),
-                    lua_cost.median_ns, kLuaGoal_ns, lua_cost.median_ns < kLuaGoal_ns ? "met" : "NOT met");
-      goals.push_back(goal);
-    }
+    groups.push_back(std::move(group));
   }
-  std::printf("\ngoals\n");
-  for (const std::string& goal : goals) std::printf("  %s\n", goal.c_str());
-  std::printf("  Lua rows: p99.9 <= %.0fx the median (no GC spikes): %s\n", kTailGoalRatio,
-              tails_ok ? "met" : "NOT met (see p99.9/med)");
 
-  std::printf("\nwhat each part of a scene costs (median ns per tick, interleaved as above; ratio against "
-              "the first row)\n\n");
-  const std::vector<std::int32_t> counts = record_sensor_counts(
+  // The parts group: scenes that differ in one part, on the readings of a wall scene.
+  const std::vector<std::int32_t> part_counts = record_sensor_counts(
       load_environment_text(R"({"effects": [{"type": "wall", "position": 0.01, "stiffness": 500,
         "solid": "above"}]})", "bench"), seconds);
   std::vector<Scene> part_scenes;
@@ -167,14 +145,55 @@ int bench_command(std::vector<std::string> args) {
     part_scenes.push_back(load_environment_text(text, "bench", "."));
   }
   std::vector<std::unique_ptr<TickLoop>> part_loops;
-  std::vector<TickLoop*> loops;
+  TickLoopGroup parts{&part_counts, {}};
   for (const Scene& scene : part_scenes) {
     part_loops.push_back(scene_tick_loop(scene));
-    loops.push_back(part_loops.back().get());
+    parts.loops.push_back(part_loops.back().get());
   }
-  const std::vector<TickCost> costs = compare_tick_loops(loops, counts, passes, &timer);
+  groups.push_back(parts);
+
+  // Everything measured in one interleaved run, then printed.
+  const std::vector<std::vector<TickCost>> costs = compare_tick_loops(groups, passes, &timer, &counter);
+
+  print_header();
+  bool tails_ok = true;
+  std::vector<std::string> goals;
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const Scene& scene = scenes[i];
+    const EnvironmentLoops& e = environments[i];
+    std::vector<TickCost> row_costs = costs[i];
+    if (!e.baseline) {
+      for (TickCost& cost : row_costs) cost.ratio = -1.0;
+    }
+    std::size_t row = 0;
+    if (e.baseline) print_row(scene.name, "hand-written C++", row_costs[row++], false);
+    const TickCost builtin_cost = row_costs[row++];
+    print_row(scene.name, "built-in (JSON)", builtin_cost, false);
+    char goal[200];
+    if (e.baseline) {
+      std::snprintf(goal, sizeof goal, "%s: built-in %.2fx the hand-written code (goal <= %.1fx): %s",
+                    scene.name.c_str(), builtin_cost.ratio, kBuiltinGoalRatio,
+                    builtin_cost.ratio <= kBuiltinGoalRatio ? "met" : "NOT met");
+      goals.push_back(goal);
+    }
+    if (e.lua) {
+      const TickCost lua_cost = row_costs[row++];
+      tails_ok = print_row(scene.name, "Lua script", lua_cost, true) && tails_ok;
+      std::snprintf(goal, sizeof goal, "%s: Lua median %.1f ns (goal < %.0f ns): %s", scene.name.c_str(),
+                    lua_cost.median_ns, kLuaGoal_ns, lua_cost.median_ns < kLuaGoal_ns ? "met" : "NOT met");
+      goals.push_back(goal);
+    }
+  }
+  std::printf("\ngoals\n");
+  for (const std::string& goal : goals) std::printf("  %s\n", goal.c_str());
+  std::printf("  Lua rows: p99.9 <= %.0fx the median (no GC spikes): %s\n", kTailGoalRatio,
+              tails_ok ? "met" : "NOT met (see p99.9/med)");
+
+  std::printf("\nwhat each part of a scene costs (median ns per tick, measured with the rows above; "
+              "ratio against the first row)\n\n");
+  const std::vector<TickCost>& part_costs = costs.back();
   for (std::size_t i = 0; i < part_scenes.size(); ++i) {
-    std::printf("%-52s %8.1f %6.2fx", kPartScenes[i][0], costs[i].median_ns, costs[i].ratio);
+    std::printf("%-52s %8.1f %6.2fx", kPartScenes[i][0], part_costs[i].median_ns, part_costs[i].ratio);
     if (part_scenes[i].script_count > 0) {
       std::printf("   %zu script effect(s), %.3f Lua calls per tick", part_scenes[i].script_count,
                   part_loops[i]->script_calls_per_tick());
