@@ -37,17 +37,15 @@ struct Scene {
   VelocityEstimatorConfig velocity;
 
   std::vector<Effect> effects;       // as written in the file
-  EffectBank bank;                  // the built-in ones among them, grouped for the tick
+  EffectBank bank;                  // the built-in ones that can act, grouped for the tick
   std::size_t script_count{};       // ScriptEffects among them (instance_index 0..n-1)
   Needs needs;                      // union of the effects' needs: what step() computes
 
   ValidateThresholds validate;      // the optional "validate" block (the harness only)
 };
 
-// The declared needs of one effect.
-Needs needs_of(const Effect& effect) noexcept;
-
-// Appends `effect` to the scene: its list, its bank (or its script count) and its needs.
+// Appends `effect` to the scene's list and, when it can act inside the workspace (safety
+// must be set first), to its bank (or its script count) and needs.
 void add_effect(Scene* scene, Effect effect);
 
 }  // namespace hapscene

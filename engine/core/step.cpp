@@ -4,26 +4,34 @@
 
 namespace hapscene {
 
-Needs needs_of(const Effect& effect) noexcept {
-  return std::visit(
-      [](const auto& e) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(e)>, ScriptEffect>) return e.needs;
-        else return std::decay_t<decltype(e)>::kNeeds;
-      },
-      effect);
-}
-
 void add_effect(Scene* scene, Effect effect) {
-  scene->needs |= needs_of(effect);
+  const double min_m = scene->safety.workspace_min_m;
+  const double max_m = scene->safety.workspace_max_m;
+  // A built-in effect that cannot act inside the workspace (zero gain, or a wall whose
+  // solid side lies beyond it) is listed but not compiled: it costs the tick nothing and
+  // adds no needs.
+  const auto add_built_in = [&](auto& group, const auto& e) {
+    if (!e.can_act_within(min_m, max_m)) return;
+    group.push_back(e);
+    scene->needs |= std::decay_t<decltype(e)>::kNeeds;
+  };
   std::visit(
       [&](auto& e) {
         using Type = std::decay_t<decltype(e)>;
-        if constexpr (std::is_same_v<Type, ScriptEffect>) e.instance_index = scene->script_count++;
-        else if constexpr (std::is_same_v<Type, Spring>) scene->bank.springs.push_back(e);
-        else if constexpr (std::is_same_v<Type, Wall>) scene->bank.walls.push_back(e);
-        else if constexpr (std::is_same_v<Type, Damper>) scene->bank.dampers.push_back(e);
-        else if constexpr (std::is_same_v<Type, Texture>) scene->bank.textures.push_back(e);
-        else static_assert(sizeof(Type) == 0, "a new effect type needs a group in EffectBank");
+        if constexpr (std::is_same_v<Type, ScriptEffect>) {
+          e.instance_index = scene->script_count++;
+          scene->needs |= e.needs;
+        } else if constexpr (std::is_same_v<Type, Spring>) {
+          add_built_in(scene->bank.springs, e);
+        } else if constexpr (std::is_same_v<Type, Wall>) {
+          add_built_in(scene->bank.walls, e);
+        } else if constexpr (std::is_same_v<Type, Damper>) {
+          add_built_in(scene->bank.dampers, e);
+        } else if constexpr (std::is_same_v<Type, Texture>) {
+          add_built_in(scene->bank.textures, e);
+        } else {
+          static_assert(sizeof(Type) == 0, "a new effect type needs a group in EffectBank");
+        }
       },
       effect);
   scene->effects.push_back(std::move(effect));
@@ -52,9 +60,8 @@ TickState make_tick_state(const Scene& scene) {
 
 namespace {
 
-// Each script's force (one call per script per tick). Out of line, so that a tick of
-// built-in effects only carries no call and needs no saved registers.
-[[gnu::noinline]] double add_scripts_N(double force_N, const EffectInput& input, ScriptList& scripts,
+// Each script's force (one call per script per tick).
+double add_scripts_N(double force_N, const EffectInput& input, ScriptList& scripts,
                                        std::uint64_t* script_calls) noexcept {
   const ScriptInput script_input{input.x_m, input.v_m_per_s, input.t_s, input.dt_s};
   for (const auto& script : scripts) force_N += script->force_N(script_input);
@@ -62,19 +69,21 @@ namespace {
   return force_N;
 }
 
-// The effects stage: the built-in bank, then the scripts.
+// The effects stage: the built-in bank, then the scripts (when kScripts).
+template <bool kScripts>
 [[gnu::always_inline]] inline double add_effects_N(const Scene& scene, const EffectInput& input,
                                                    ScriptList& scripts,
                                                    std::uint64_t* script_calls) noexcept {
   double force_N = scene.bank.force_N(input);
-  if (!scripts.empty()) force_N = add_scripts_N(force_N, input, scripts, script_calls);
+  if constexpr (kScripts) force_N = add_scripts_N(force_N, input, scripts, script_calls);
   return force_N;
 }
 
-// One tick. The common case (no cross-fade) is its own instantiation, so a plain tick
-// carries no cross-fade branches and keeps its values in registers.
-template <bool kFading>
-[[gnu::always_inline]] inline void step_tick(const Scene& scene, std::int32_t raw_counts,
+// One tick. Each case is its own instantiation: a tick of built-in effects alone (the
+// common one) makes no call at all, so it saves no registers and keeps its values in
+// them; scripts and cross-fades take the others.
+template <bool kFading, bool kScripts>
+[[gnu::noinline]] void step_tick(const Scene& scene, std::int32_t raw_counts,
                                              TickState* state, const Crossfade* fade) noexcept {
   // Sensor: unwrap the MR sensor and convert counts to handle position. (The tick count
   // converts as signed: one instruction, and runs never reach 2^63 ticks.)
@@ -97,9 +106,9 @@ template <bool kFading>
   input.v_m_per_s = state->v_m_per_s;
   input.t_s = needs.time ? state->t_s : 0.0;
   input.dt_s = scene.period_s;
-  double effects_N = add_effects_N(scene, input, state->scripts, &state->script_calls);
+  double effects_N = add_effects_N<kScripts>(scene, input, state->scripts, &state->script_calls);
   if constexpr (kFading) {
-    const double from_N = add_effects_N(*fade->from, input, *fade->from_scripts, &state->script_calls);
+    const double from_N = add_effects_N<kScripts>(*fade->from, input, *fade->from_scripts, &state->script_calls);
     effects_N = (1.0 - fade->weight_to) * from_N + fade->weight_to * effects_N;
   }
   state->effects_force_N = effects_N;
@@ -114,7 +123,7 @@ template <bool kFading>
 
 double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts,
                      std::uint64_t* script_calls) noexcept {
-  return add_effects_N(scene, input, scripts, script_calls);
+  return add_effects_N<true>(scene, input, scripts, script_calls);
 }
 
 void collect_script_garbage(TickState* state) noexcept {
@@ -123,10 +132,12 @@ void collect_script_garbage(TickState* state) noexcept {
 
 void step(const Scene& scene, std::int32_t raw_counts, TickState* state,
           const Crossfade* fade) noexcept {
-  if (fade == nullptr) [[likely]] {
-    step_tick<false>(scene, raw_counts, state, nullptr);
+  if (fade != nullptr) [[unlikely]] {
+    step_tick<true, true>(scene, raw_counts, state, fade);
+  } else if (state->scripts.empty()) [[likely]] {
+    step_tick<false, false>(scene, raw_counts, state, nullptr);
   } else {
-    step_tick<true>(scene, raw_counts, state, fade);
+    step_tick<false, true>(scene, raw_counts, state, nullptr);
   }
 }
 

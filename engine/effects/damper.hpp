@@ -15,6 +15,9 @@ struct Damper {
   static Damper parse(ObjectReader& reader);
 
   double force_N(const EffectInput& in) const noexcept { return -damping_N_s_per_m * in.v_m_per_s; }
+
+  // Whether it can give a force for some x in [min_m, max_m] (else the scene drops it).
+  bool can_act_within(double, double) const noexcept { return damping_N_s_per_m != 0.0; }
 };
 
 }  // namespace hapscene

@@ -18,6 +18,9 @@ struct Spring {
   double force_N(const EffectInput& in) const noexcept {
     return -stiffness_N_per_m * (in.x_m - center_m);
   }
+
+  // Whether it can give a force for some x in [min_m, max_m] (else the scene drops it).
+  bool can_act_within(double, double) const noexcept { return stiffness_N_per_m != 0.0; }
 };
 
 }  // namespace hapscene

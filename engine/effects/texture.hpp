@@ -37,6 +37,11 @@ struct Texture {
   double force_N(const EffectInput& in) const noexcept {
     return in_field(in.x_m) ? -damping_N_s_per_m * in.v_m_per_s : 0.0;
   }
+
+  // Whether it can give a force for some x in [min_m, max_m] (else the scene drops it).
+  bool can_act_within(double, double) const noexcept {
+    return damping_N_s_per_m != 0.0 && width_m > 0.0;
+  }
 };
 
 }  // namespace hapscene

@@ -22,6 +22,12 @@ struct Wall {
     const bool inside = solid_above ? penetration_m > 0.0 : penetration_m < 0.0;
     return inside ? -stiffness_N_per_m * penetration_m : 0.0;
   }
+
+  // Whether it can give a force for some x in [min_m, max_m]: not when its solid side
+  // lies wholly outside (the safety stage renders nothing there anyway).
+  bool can_act_within(double min_m, double max_m) const noexcept {
+    return stiffness_N_per_m != 0.0 && (solid_above ? position_m < max_m : position_m > min_m);
+  }
 };
 
 }  // namespace hapscene

@@ -144,3 +144,37 @@ TEST_CASE("step: disabled effects are not in the compiled scene at all") {
   CHECK(scene.script_count == 0);
   CHECK_FALSE(scene.needs.velocity);
 }
+
+TEST_CASE("step: effects that cannot act inside the workspace are listed but never computed") {
+  const Scene plain = scene_from(R"({"effects": [{"type": "spring", "stiffness": 100}]})");
+  const double max_m = plain.safety.workspace_max_m;
+  const double min_m = plain.safety.workspace_min_m;
+  // Walls whose solid side lies beyond the workspace, and effects with zero gain.
+  const Scene padded = scene_from(R"({"effects": [{"type": "spring", "stiffness": 100},
+    {"type": "wall", "position": )" + std::to_string(max_m) + R"(, "stiffness": 1000, "solid": "above"},
+    {"type": "wall", "position": )" + std::to_string(min_m - 0.1) + R"(, "stiffness": 1000, "solid": "below"},
+    {"type": "damper", "damping": 0}, {"type": "texture", "width": 0.005, "damping": 0},
+    {"type": "spring", "stiffness": 0}, {"type": "wall", "position": 0, "stiffness": 0, "solid": "above"}]})");
+  CHECK(padded.effects.size() == 7);  // as written, for reports and tools
+  CHECK(padded.bank.springs.size() == 1);
+  CHECK(padded.bank.walls.empty());
+  CHECK(padded.bank.dampers.empty());
+  CHECK(padded.bank.textures.empty());
+  CHECK_FALSE(padded.needs.velocity);  // the zero-gain damper and texture start no estimator
+
+  // The same ticks as the spring alone, to the bit, across the whole workspace and beyond.
+  TickState a = make_tick_state(plain);
+  TickState b = make_tick_state(padded);
+  for (int i = 0; i <= 2000; ++i) {
+    const double x_m = min_m - 0.01 + (max_m - min_m + 0.02) * i / 2000.0;
+    step(plain, counts_at(plain, x_m), &a);
+    step(padded, counts_at(padded, x_m), &b);
+    REQUIRE(b.output_N == a.output_N);
+    REQUIRE(b.command.duty == a.command.duty);
+  }
+
+  // A wall whose solid side reaches into the workspace, however little, is kept.
+  const Scene edge = scene_from(R"({"effects": [{"type": "wall", "position": )" +
+                                std::to_string(max_m - 0.001) + R"(, "stiffness": 1000, "solid": "above"}]})");
+  CHECK(edge.bank.walls.size() == 1);
+}
