@@ -24,22 +24,24 @@ namespace hapscene {
 using Effect = std::variant<Spring, Wall, Damper, Texture, ScriptEffect>;
 
 struct Scene {
+  // What the tick reads, first and together (about four cache lines), so a tick touches
+  // few lines even when a busy neighbour keeps evicting them.
+  double period_s{};                // 1 / rate_hz
+  Needs needs;                      // union of the effects' needs: what step() computes
+  Kinematics kinematics;            // the device's, compiled for the tick
+  SafetyConfig safety;              // device limits lowered by the environment's
+  VelocityEstimatorConfig velocity;
+  EffectBank bank;                  // the built-in effects that can act, grouped for the tick
+
+  double rate_hz{};                 // tick rate
   std::string name;
   std::string description;
   std::string source_path;          // the file it was loaded from, for messages
 
-  double rate_hz{};                 // tick rate
-  double period_s{};                // 1 / rate_hz
-
   DeviceProfile device;
-  Kinematics kinematics;            // the device's, compiled for the tick
-  SafetyConfig safety;              // device limits lowered by the environment's
-  VelocityEstimatorConfig velocity;
 
-  std::vector<Effect> effects;       // as written in the file
-  EffectBank bank;                  // the built-in ones that can act, grouped for the tick
+  std::vector<Effect> effects;      // as written in the file
   std::size_t script_count{};       // ScriptEffects among them (instance_index 0..n-1)
-  Needs needs;                      // union of the effects' needs: what step() computes
 
   ValidateThresholds validate;      // the optional "validate" block (the harness only)
 };
