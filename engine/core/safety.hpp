@@ -40,7 +40,7 @@ struct SafetyCounters {
 
 struct SafetyState {
   bool started{};                // false until the first tick (or after restart_soft_start)
-  double ramp_gain{1.0};         // soft-start gain in [0, 1]
+  double ramp_gain{0.0};         // soft-start gain in [0, 1]; 0 until started
   double previous_output_N{};    // for the slew limit
   SafetyCounters counters;
 };
@@ -49,6 +49,12 @@ struct SafetyState {
 // (Inline: it runs every tick.)
 inline double apply_static_safety(const SafetyConfig& config, double x_m, double force_N,
                                   SafetyCounters* counters) noexcept {
+  // The common case in three comparisons: a force within the limit (so finite: NaN and
+  // infinities fail it) inside the workspace passes unchanged.
+  if (std::abs(force_N) <= config.max_force_N && x_m >= config.workspace_min_m &&
+      x_m <= config.workspace_max_m) [[likely]] {
+    return force_N;
+  }
   // 1. Non-finite force: a fault, rendered as nothing.
   if (!std::isfinite(force_N)) {
     ++counters->nonfinite_faults;
@@ -60,11 +66,8 @@ inline double apply_static_safety(const SafetyConfig& config, double x_m, double
     return 0.0;
   }
   // 4. Clamp to the force limit.
-  if (std::abs(force_N) > config.max_force_N) {
-    ++counters->clamped_ticks;
-    return std::copysign(config.max_force_N, force_N);
-  }
-  return force_N;
+  ++counters->clamped_ticks;
+  return std::copysign(config.max_force_N, force_N);
 }
 
 // All five rules, for one tick of a run. (Inline: it runs every tick.)
@@ -72,15 +75,18 @@ inline double apply_safety(const SafetyConfig& config, double x_m, double force_
                            SafetyState* state) noexcept {
   double output_N = apply_static_safety(config, x_m, force_N, &state->counters);
 
-  // 3. Soft start: decided on the first tick from the force the scene asks for there.
-  if (!state->started) [[unlikely]] {
-    state->started = true;
-    state->ramp_gain = std::abs(output_N) > config.soft_start_threshold_N ? 0.0 : 1.0;
-  }
+  // 3. Soft start: decided on the first tick from the force the scene asks for there,
+  // then ramping; a single comparison once the ramp is done (the gain is 0 until then).
   if (state->ramp_gain < 1.0) [[unlikely]] {
-    output_N *= state->ramp_gain;
-    state->ramp_gain = std::min(1.0, state->ramp_gain + config.ramp_step_per_tick);
-    ++state->counters.soft_start_ticks;
+    if (!state->started) {
+      state->started = true;
+      state->ramp_gain = std::abs(output_N) > config.soft_start_threshold_N ? 0.0 : 1.0;
+    }
+    if (state->ramp_gain < 1.0) {
+      output_N *= state->ramp_gain;
+      state->ramp_gain = std::min(1.0, state->ramp_gain + config.ramp_step_per_tick);
+      ++state->counters.soft_start_ticks;
+    }
   }
 
   // 5. Slew limit against the previous output.
