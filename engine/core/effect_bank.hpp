@@ -1,7 +1,7 @@
 #pragma once
 // A scene's built-in effects grouped by type, compiled once at load: the tick loops over
 // each group as a plain array, with no per-effect dispatch, so a scene pays only for the
-// groups it has (an empty group costs one comparison). Within a group effects keep their
+// groups it has (an empty group costs a comparison). Within a group effects keep their
 // order in the file; the groups add up springs, walls, dampers, textures, then scripts.
 #include <vector>
 

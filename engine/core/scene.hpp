@@ -24,8 +24,7 @@ namespace hapscene {
 using Effect = std::variant<Spring, Wall, Damper, Texture, ScriptEffect>;
 
 struct Scene {
-  // What the tick reads, first and together (about four cache lines), so a tick touches
-  // few lines even when a busy neighbour keeps evicting them.
+  // What the tick reads, first and together: about four cache lines.
   double period_s{};                // 1 / rate_hz
   Needs needs;                      // union of the effects' needs: what step() computes
   Kinematics kinematics;            // the device's, compiled for the tick

@@ -62,7 +62,7 @@ namespace {
 
 // Each script's force (one call per script per tick).
 double add_scripts_N(double force_N, const EffectInput& input, ScriptList& scripts,
-                                       std::uint64_t* script_calls) noexcept {
+                     std::uint64_t* script_calls) noexcept {
   const ScriptInput script_input{input.x_m, input.v_m_per_s, input.t_s, input.dt_s};
   for (const auto& script : scripts) force_N += script->force_N(script_input);
   if (script_calls != nullptr) *script_calls += scripts.size();
@@ -83,8 +83,8 @@ template <bool kScripts>
 // common one) makes no call at all, so it saves no registers and keeps its values in
 // them; scripts and cross-fades take the others.
 template <bool kFading, bool kScripts>
-[[gnu::noinline]] void step_tick(const Scene& scene, std::int32_t raw_counts,
-                                             TickState* state, const Crossfade* fade) noexcept {
+[[gnu::noinline]] void step_tick(const Scene& scene, std::int32_t raw_counts, TickState* state,
+                                 const Crossfade* fade) noexcept {
   // Sensor: unwrap the MR sensor and convert counts to handle position. (The tick count
   // converts as signed: one instruction, and runs never reach 2^63 ticks.)
   state->t_s = static_cast<double>(static_cast<std::int64_t>(state->tick)) * scene.period_s;

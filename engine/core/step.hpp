@@ -22,8 +22,9 @@ struct Crossfade {
 void step(const Scene& scene, std::int32_t raw_counts, TickState* state,
           const Crossfade* fade = nullptr) noexcept;
 
-// The effects stage alone: the sum of every effect's force for one input, with the
-// scene's script instances; adds the number of script calls made to *script_calls.
+// The effects stage alone, as the tick runs it: the sum of the compiled effects' forces
+// (the bank's, then each script's) for one input, with the scene's script instances;
+// adds the number of script calls made to *script_calls.
 double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts,
                      std::uint64_t* script_calls = nullptr) noexcept;
 
