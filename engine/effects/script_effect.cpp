@@ -8,6 +8,7 @@
 #include "engine/core/errors.hpp"
 #include "engine/load/json_source.hpp"
 #include "engine/load/object_reader.hpp"
+#include "engine/lua/log_queue.hpp"
 
 namespace hapscene {
 
@@ -23,6 +24,14 @@ ScriptLimits parse_script_limits(ObjectReader& reader) {
       "allocation_bytes_per_call", 1 << 10, 1ll << 30, static_cast<long long>(limits.allocation_bytes_per_call)));
   limits.wall_time_per_call_s =
       reader.quantity_or("wall_time_per_call", Quantity::time_s, limits.wall_time_per_call_s, Bound::non_negative);
+  limits.instructions_at_load = reader.integer_or("instructions_at_load", 100, 1'000'000'000,
+                                                  limits.instructions_at_load);
+  limits.string_bytes = static_cast<std::size_t>(
+      reader.integer_or("string_bytes", 256, 16 << 20, static_cast<long long>(limits.string_bytes)));
+  limits.log_messages_per_s =
+      reader.quantity_or("log_rate", Quantity::frequency_Hz, limits.log_messages_per_s, Bound::non_negative);
+  limits.log_burst = static_cast<std::size_t>(reader.integer_or(
+      "log_burst", 0, static_cast<long long>(detail::LogQueue::kSlots), static_cast<long long>(limits.log_burst)));
   reader.finish();
   return limits;
 }

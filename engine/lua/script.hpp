@@ -38,7 +38,7 @@ struct ScriptVm;
 struct ScriptLimits {
   // VM instructions per force() or reset() call, counted by a hook that keeps firing
   // after the deadline so pcall cannot swallow it. Runaway loops stop after about
-  // 0.4 ms at this default; the lab spring uses about 5, the texture 10, pong.lua 95.
+  // 0.4 ms at this default; the lab spring is charged 10, the texture 19, pong.lua ~95.
   std::int64_t instructions_per_call{100'000};
   // VM instructions for the top-level chunk, run at load time (off the loop), so a
   // script can precompute tables.

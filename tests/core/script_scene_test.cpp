@@ -78,3 +78,33 @@ TEST_CASE("script scene: load errors name the file and the place") {
   CHECK(load_error(R"({"effects": [{"type": "script", "source": "this is not lua", "enabled": false}]})") ==
         "(no error)");
 }
+
+TEST_CASE("script scene: every script limit can be set from the environment, within its range") {
+  const Scene scene = scene_from(R"({"effects": [{"type": "script", "source": "function force(s) return 0 end",
+    "limits": {"instructions_per_call": 20000, "instructions_at_load": 50000000, "memory_bytes": 1048576,
+               "allocation_bytes_per_call": 65536, "string_bytes": 1024, "wall_time_per_call": "0.5 ms",
+               "log_rate": "2 Hz", "log_burst": 5}}]})");
+  const ScriptLimits& limits = std::get<ScriptEffect>(scene.effects[0]).program->limits;
+  CHECK(limits.instructions_per_call == 20000);
+  CHECK(limits.instructions_at_load == 50000000);
+  CHECK(limits.memory_bytes == 1048576);
+  CHECK(limits.allocation_bytes_per_call == 65536);
+  CHECK(limits.string_bytes == 1024);
+  CHECK(limits.wall_time_per_call_s == doctest::Approx(0.0005));
+  CHECK(limits.log_messages_per_s == 2.0);
+  CHECK(limits.log_burst == 5);
+
+  const auto error_for = [](const std::string& key_value) {
+    return load_error(R"({"effects": [{"type": "script", "source": "function force(s) return 0 end",
+      "limits": {)" + key_value + "}}]}");
+  };
+  CHECK(error_for(R"("instructions_at_load": 10)") ==
+        "test.json: /effects/0/limits/instructions_at_load: must be in [100, 1000000000], got 10");
+  CHECK(error_for(R"("string_bytes": 100)") ==
+        "test.json: /effects/0/limits/string_bytes: must be in [256, 16777216], got 100");
+  CHECK(error_for(R"("log_burst": 65)") == "test.json: /effects/0/limits/log_burst: must be in [0, 64], got 65");
+  CHECK(error_for(R"("log_rate": "2 mm")").starts_with("test.json: /effects/0/limits/log_rate: "));
+  CHECK(error_for(R"("log_rate": -1)").starts_with("test.json: /effects/0/limits/log_rate: "));
+  CHECK(error_for(R"("instruction_at_load": 1000)").starts_with(
+      "test.json: /effects/0/limits/instruction_at_load: unknown key"));
+}
