@@ -1,15 +1,9 @@
 #include "engine/devices/board_report.hpp"
 
-#include <cstdio>
+#include "engine/core/format.hpp"
 
 namespace hapscene {
 namespace {
-
-std::string format(const char* pattern, auto... values) {
-  char line[256];
-  std::snprintf(line, sizeof line, pattern, values...);
-  return line;
-}
 
 double us(std::uint64_t ns) { return static_cast<double>(ns) * 1e-3; }
 
@@ -20,7 +14,7 @@ std::string board_report(const BoardLink& link, std::int64_t start_ns) {
   // Who the board is.
   if (link.identified()) {
     const hs_hello_reply& id = link.identity();
-    out += format("  board            hapkit firmware %u.%u.%u, protocol %u, signature %02X %02X %02X, "
+    out += printf_string("  board            hapkit firmware %u.%u.%u, protocol %u, signature %02X %02X %02X, "
                   "sampling %u Hz, duty limit %u/255, timeout %u ms, reset cause 0x%02X\n",
                   id.firmware_major, id.firmware_minor, id.firmware_patch, id.protocol_version,
                   id.signature[0], id.signature[1], id.signature[2], id.sample_rate_hz,
@@ -32,25 +26,25 @@ std::string board_report(const BoardLink& link, std::int64_t start_ns) {
   // What crossed the link, and what went wrong on the way.
   const LinkCounters& c = link.counters();
   const hs_decoder& d = link.decoder();
-  out += format("  link             %llu commands, %llu states; host saw %u CRC errors, %u bad lengths, "
+  out += printf_string("  link             %llu commands, %llu states; host saw %u CRC errors, %u bad lengths, "
                 "%u bytes skipped, %llu lost frames, %llu stale reads\n",
                 static_cast<unsigned long long>(c.commands_sent),
                 static_cast<unsigned long long>(c.states_received), d.crc_errors, d.length_errors,
                 d.bytes_skipped, static_cast<unsigned long long>(c.seq_gaps),
                 static_cast<unsigned long long>(c.stale_reads));
   const LatencyHistogram& rtt = link.round_trip_ns();
-  out += format("  round trip       p50 %.1f us  p99 %.1f us  max %.1f us (%llu replies)\n",
+  out += printf_string("  round trip       p50 %.1f us  p99 %.1f us  max %.1f us (%llu replies)\n",
                 us(rtt.percentile_ns(0.50)), us(rtt.percentile_ns(0.99)), us(rtt.max_ns()),
                 static_cast<unsigned long long>(rtt.count()));
 
   // The board's own view, from its last STATS frame.
   if (link.has_stats()) {
     const hs_stats& s = link.board_stats();
-    out += format("  firmware timing  sampler interrupt max %u cycles, main loop pass max %u cycles "
+    out += printf_string("  firmware timing  sampler interrupt max %u cycles, main loop pass max %u cycles "
                   "(at 16 MHz: %.1f us, %.1f us)\n",
                   s.sampler_cycles_max, s.loop_cycles_max, s.sampler_cycles_max / 16.0,
                   s.loop_cycles_max / 16.0);
-    out += format("  board saw        %u frames, %u CRC errors, %u bad lengths, %u bytes skipped, "
+    out += printf_string("  board saw        %u frames, %u CRC errors, %u bad lengths, %u bytes skipped, "
                   "%u lost frames, %u command timeouts\n",
                   s.frames_ok, s.crc_errors, s.length_errors, s.bytes_skipped, s.seq_gaps, s.timeouts);
   }
@@ -58,11 +52,11 @@ std::string board_report(const BoardLink& link, std::int64_t start_ns) {
   // Every fault event, in order.
   for (std::size_t i = 0; i < link.event_count(); ++i) {
     const LinkEvent& event = link.event(i);
-    out += format("  link event       %.3f s: %s\n",
+    out += printf_string("  link event       %.3f s: %s\n",
                   static_cast<double>(event.t_ns - start_ns) * 1e-9, link_event_name(event.kind));
   }
   if (link.events_total() > link.event_count()) {
-    out += format("  link event       ... and %llu more\n",
+    out += printf_string("  link event       ... and %llu more\n",
                   static_cast<unsigned long long>(link.events_total() - link.event_count()));
   }
   return out;

@@ -1,16 +1,11 @@
 #include "engine/harness/checks.hpp"
 
 #include <cmath>
-#include <cstdio>
+
+#include "engine/core/format.hpp"
 
 namespace hapscene {
 namespace {
-
-std::string format(const char* pattern, auto... values) {
-  char text[256];
-  std::snprintf(text, sizeof text, pattern, values...);
-  return text;
-}
 
 CheckResult at_most(std::string name, double value, double threshold, std::string unit,
                     std::string detail) {
@@ -28,21 +23,21 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scen
   // Force: how large, how long at the limit, how fast it changes, how rough.
   const double max_force_N = t.max_force_N > 0.0 ? t.max_force_N : scene.safety.max_force_N;
   checks.push_back(at_most("max_force", m.max_output_N, max_force_N, "N",
-                           format("at %.2f mm, t %.3f s (asked up to %.3f N)", m.max_output_x_m * 1e3,
+                           printf_string("at %.2f mm, t %.3f s (asked up to %.3f N)", m.max_output_x_m * 1e3,
                                   m.max_output_t_s, m.max_requested_N)));
   checks.push_back(at_most("time_at_limit", m.time_at_limit_fraction, t.max_time_at_limit_fraction, "",
-                           format("%.3f s of %.3f s at %g N", m.time_at_limit_s, m.duration_s,
+                           printf_string("%.3f s of %.3f s at %g N", m.time_at_limit_s, m.duration_s,
                                   scene.safety.max_force_N)));
   const double max_slew = t.max_slew_N_per_s > 0.0 ? t.max_slew_N_per_s : scene.safety.slew_limit_N_per_s;
   CheckResult slew = at_most("slew", m.max_slew_N_per_s, max_slew, "N/s",
-                             format("slew limiter acted on %llu ticks",
+                             printf_string("slew limiter acted on %llu ticks",
                                     static_cast<unsigned long long>(m.safety.slew_limited_ticks)));
   slew.pass = m.max_slew_N_per_s < max_slew * (1.0 - 1e-9);  // reaching the limiter fails
   checks.push_back(slew);
   checks.push_back(at_most(
       "slip", static_cast<double>(m.slip_force_ticks + m.slip_step_ticks),
       static_cast<double>(t.max_slip_ticks), "ticks",
-      format("%llu ticks above %g N, %llu with a 1-ms step above %g N (largest %.3f N)",
+      printf_string("%llu ticks above %g N, %llu with a 1-ms step above %g N (largest %.3f N)",
              static_cast<unsigned long long>(m.slip_force_ticks), scene.device.limits.slip_force_N,
              static_cast<unsigned long long>(m.slip_step_ticks), scene.device.limits.slip_step_N,
              m.max_step_1ms_N)));
@@ -51,7 +46,7 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scen
   const PassivityMetrics& p = m.passivity;
   CheckResult passivity = at_most(
       "passivity", p.ratio, t.max_passivity_ratio, "",
-      format("created %.3g mJ, dissipated %.3g mJ, net %.3g mJ%s", p.created_J * 1e3,
+      printf_string("created %.3g mJ, dissipated %.3g mJ, net %.3g mJ%s", p.created_J * 1e3,
              p.dissipated_J * 1e3, p.net_J * 1e3, p.grows ? ", growing" : ""));
   passivity.pass = p.created_J <= t.min_judged_energy_J || (p.ratio <= t.max_passivity_ratio && !p.grows);
   checks.push_back(passivity);
@@ -60,7 +55,7 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scen
   if (m.oscillation) {
     const OscillationMetrics& o = *m.oscillation;
     const std::string motion =
-        format("from %.2f s: %d half-cycles at %.2f Hz around %.2f mm, initial %.3f mm", o.from_s,
+        printf_string("from %.2f s: %d half-cycles at %.2f Hz around %.2f mm, initial %.3f mm", o.from_s,
                o.half_cycles, o.frequency_Hz, o.rest_m * 1e3, o.initial_amplitude_m * 1e3);
     checks.push_back(at_most("limit_cycle", o.residual_amplitude_m, t.max_residual_amplitude_m, "m", motion));
     checks.push_back(at_most("growth", o.growth, t.max_amplitude_growth, "", motion));
@@ -71,7 +66,7 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scen
   for (const StiffRegion& region : field.regions) has_edges = has_edges || region.low_is_edge || region.high_is_edge;
   if (has_edges) {
     checks.push_back(at_most("penetration", m.max_penetration_m, t.max_penetration_m, "m",
-                             format("deepest at %.2f mm", m.max_penetration_x_m * 1e3)));
+                             printf_string("deepest at %.2f mm", m.max_penetration_x_m * 1e3)));
   }
 
   // Grit, scripts and timing.
@@ -79,12 +74,12 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scen
                            "rms second difference of the commanded force"));
   checks.push_back(at_most("script", static_cast<double>(m.script_errors + m.script_budget_overruns),
                            static_cast<double>(t.max_script_faults), "faults",
-                           format("%llu errors, %llu budget overruns",
+                           printf_string("%llu errors, %llu budget overruns",
                                   static_cast<unsigned long long>(m.script_errors),
                                   static_cast<unsigned long long>(m.script_budget_overruns))));
   const double max_compute_s = t.max_tick_compute_s > 0.0 ? t.max_tick_compute_s : 0.5 * scene.period_s;
   checks.push_back(at_most("tick_compute", m.compute_p99_s, max_compute_s, "s",
-                           format("p50 %.2f us, p99 %.2f us, max %.2f us", m.compute_p50_s * 1e6,
+                           printf_string("p50 %.2f us, p99 %.2f us, max %.2f us", m.compute_p50_s * 1e6,
                                   m.compute_p99_s * 1e6, m.compute_max_s * 1e6)));
   (void)scenario;
   return checks;

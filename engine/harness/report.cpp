@@ -1,16 +1,11 @@
 #include "engine/harness/report.hpp"
 
 #include <cmath>
-#include <cstdio>
+
+#include "engine/core/format.hpp"
 
 namespace hapscene {
 namespace {
-
-std::string printf_string(const char* pattern, auto... values) {
-  char text[512];
-  std::snprintf(text, sizeof text, pattern, values...);
-  return text;
-}
 
 std::string padded(std::string text, std::size_t width) {
   if (text.size() < width) text.append(width - text.size(), ' ');

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <optional>
 
+#include "engine/core/format.hpp"
 #include "engine/core/step.hpp"
 #include "engine/harness/validate.hpp"
 #include "engine/load/environment.hpp"
@@ -14,12 +14,6 @@
 
 namespace hapscene {
 namespace {
-
-std::string printf_string(const char* pattern, auto... values) {
-  char text[512];
-  std::snprintf(text, sizeof text, pattern, values...);
-  return text;
-}
 
 // A spec, parsed and checked before anything runs.
 struct ForceExpectation {
