@@ -2,6 +2,7 @@
 
 #include <avr/interrupt.h>
 #include <avr/io.h>
+#include <util/atomic.h>
 
 #include "engine/devices/flip_counter.hpp"
 #include "engine/firmware/board.h"
@@ -64,38 +65,34 @@ ISR(TIMER1_COMPA_vect) {
 
 sampler_reading sampler_latest(void) {
   sampler_reading reading;
-  const uint8_t sreg = SREG;
-  cli();
-  reading.raw_counts = g_raw_counts;
-  reading.unwrapped_counts = g_unwrapped_counts;
-  reading.sample_count = g_sample_count;
-  SREG = sreg;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+    reading.raw_counts = g_raw_counts;
+    reading.unwrapped_counts = g_unwrapped_counts;
+    reading.sample_count = g_sample_count;
+  }
   return reading;
 }
 
 uint16_t sampler_ticks(void) {
-  const uint8_t sreg = SREG;
-  cli();
-  const uint16_t ticks = (uint16_t)g_ticks;
-  SREG = sreg;
+  uint16_t ticks;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { ticks = (uint16_t)g_ticks; }
   return ticks;
 }
 
 uint32_t sampler_now_cycles(void) {
-  const uint8_t sreg = SREG;
-  cli();
-  uint32_t ticks = g_ticks;
-  const uint16_t within = TCNT1;
-  /* A compare match not yet serviced: the counter restarted but ticks lag by one. */
-  if ((TIFR1 & _BV(OCF1A)) && within < HS_SAMPLE_PERIOD_CYCLES / 2) ++ticks;
-  SREG = sreg;
+  uint32_t ticks;
+  uint16_t within;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+    ticks = g_ticks;
+    within = TCNT1;
+    /* A compare match not yet serviced: the counter restarted but ticks lag by one. */
+    if ((TIFR1 & _BV(OCF1A)) && within < HS_SAMPLE_PERIOD_CYCLES / 2) ++ticks;
+  }
   return ticks * HS_SAMPLE_PERIOD_CYCLES + within;
 }
 
 uint16_t sampler_cycles_max(void) {
-  const uint8_t sreg = SREG;
-  cli();
-  const uint16_t cycles = g_cycles_max;
-  SREG = sreg;
+  uint16_t cycles;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { cycles = g_cycles_max; }
   return cycles;
 }

@@ -2,6 +2,7 @@
 
 #include <avr/interrupt.h>
 #include <avr/io.h>
+#include <util/atomic.h>
 
 #include "engine/firmware/board.h"
 
@@ -67,9 +68,7 @@ uint8_t uart_write(const uint8_t* data, uint8_t length) {
 }
 
 uint16_t uart_rx_overruns(void) {
-  const uint8_t sreg = SREG;
-  cli();
-  const uint16_t overruns = g_rx_overruns;
-  SREG = sreg;
+  uint16_t overruns;
+  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { overruns = g_rx_overruns; }
   return overruns;
 }
