@@ -73,8 +73,15 @@ ScriptEffect ScriptEffect::parse(ObjectReader& reader) {
 
   ScriptEffect effect;
   if (has_file) effect.file = display_name;
-  effect.program = std::make_shared<const ScriptProgram>(compile_script(
-      display_name, std::move(source), params, reader.file(), reader.pointer_to("params"), limits));
+  try {
+    effect.program = std::make_shared<const ScriptProgram>(compile_script(
+        display_name, std::move(source), params, reader.file(), reader.pointer_to("params"), limits));
+  } catch (const InputError& error) {
+    // An error inside a referenced script file: "env.json: /effects/0/file: s.lua:12: ...".
+    const std::string message = error.what();
+    if (has_file && message.starts_with(display_name + ":")) reader.fail("file", message);
+    throw;
+  }
   effect.needs.velocity = effect.program->needs_velocity;
   effect.needs.time = effect.program->needs_time;
   return effect;

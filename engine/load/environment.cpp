@@ -133,8 +133,9 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
   const std::string device_name = reader.string_or("device", "hapkit3");
   try {
     scene.device = load_device_profile(device_name, base_dir);
-  } catch (const UnknownProfileError& error) {
-    reader.fail("device", error.what());  // errors inside a profile file name that file
+  } catch (const InputError& error) {
+    // "env.json: /device: profile.json:3:7: ...": the referring place, then the profile's own.
+    reader.fail("device", error.what());
   }
 
   scene.kinematics = compile_kinematics(scene.device);

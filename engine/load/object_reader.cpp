@@ -1,7 +1,9 @@
 #include "engine/load/object_reader.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "engine/core/errors.hpp"
@@ -102,15 +104,33 @@ std::pair<double, double> ObjectReader::range(std::string_view key, Quantity qua
 long long ObjectReader::integer(std::string_view key, long long min, long long max) {
   const nlohmann::json* value = get(key);
   if (value == nullptr) fail("", "missing required key \"" + std::string(key) + "\"");
-  if (!value->is_number_integer()) {
-    fail(key, "expected a whole number, got " + json_type_name(*value));
+  const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
+  // Echo the number as written: an unsigned above 2^63 - 1 must not read back as negative.
+  if (value->is_number_unsigned()) {
+    const auto number = value->get<std::uint64_t>();
+    const bool below = min > 0 && number < static_cast<std::uint64_t>(min);
+    const bool above = max < 0 || number > static_cast<std::uint64_t>(max);
+    if (below || above) fail(key, "must be in " + range + ", got " + std::to_string(number));
+    return static_cast<long long>(number);
   }
-  const long long number = value->get<long long>();
-  if (number < min || number > max) {
-    fail(key, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
-                  std::to_string(number));
+  if (value->is_number_integer()) {
+    const auto number = value->get<long long>();
+    if (number < min || number > max) fail(key, "must be in " + range + ", got " + std::to_string(number));
+    return number;
   }
-  return number;
+  // "1e6" is a whole number too; 1.5 is not.
+  if (value->is_number_float()) {
+    const double number = value->get<double>();
+    char shown[32];
+    const auto written = std::to_chars(shown, shown + sizeof shown, number);
+    const std::string text(shown, written.ptr);
+    if (number != std::floor(number)) fail(key, "expected a whole number, got " + text);
+    if (number < static_cast<double>(min) || number > static_cast<double>(max)) {
+      fail(key, "must be in " + range + ", got " + text);
+    }
+    return static_cast<long long>(number);
+  }
+  fail(key, "expected a whole number, got " + json_type_name(*value));
 }
 
 long long ObjectReader::integer_or(std::string_view key, long long min, long long max,

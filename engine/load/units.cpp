@@ -143,6 +143,11 @@ QuantityParse parse_quantity(std::string_view text) {
   double value = 0.0;
   const auto [end, ec] =
       std::from_chars(number_text.data(), number_text.data() + number_text.size(), value);
+  // A number past what a double holds ("1e400", "1e-400") is out of range, not malformed.
+  if (ec == std::errc::result_out_of_range) {
+    result.error = "value out of range, got \"" + std::string(text) + "\"";
+    return result;
+  }
   if (ec != std::errc() || end == number_text.data()) {
     result.error = "expected a number with an optional unit, such as \"10 mm\", got \"" +
                    std::string(text) + "\"";

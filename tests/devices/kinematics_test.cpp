@@ -113,7 +113,7 @@ TEST_CASE("profile: bad profiles fail with the file and the place") {
   CHECK(error_with("\"direction_sign\": 1", "\"direction_sign\": 0") ==
         "x.json: /drive/direction_sign: must be 1 or -1");
   CHECK(error_with("\"pwm_levels\": 255", "\"pwm_levels\": 2.5") ==
-        "x.json: /drive/pwm_levels: expected a whole number, got number");
+        "x.json: /drive/pwm_levels: expected a whole number, got 2.5");
   CHECK(error_with("[-0.05, 0.05]", "[0.05, -0.05]") ==
         "x.json: /limits/workspace: low must be below high");
   CHECK(error_with("[-0.06, 0.06]", "[-0.06]") ==

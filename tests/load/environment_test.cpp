@@ -196,7 +196,7 @@ TEST_CASE("environment: validate block errors name the key") {
   CHECK(load_error(R"({"validate": {"max_time_at_limit": 2}, "effects": []})") ==
         "test.json: /validate/max_time_at_limit: must be a fraction in [0, 1], got 2");
   CHECK(load_error(R"({"validate": {"max_slip_ticks": 1.5}, "effects": []})") ==
-        "test.json: /validate/max_slip_ticks: expected a whole number, got number");
+        "test.json: /validate/max_slip_ticks: expected a whole number, got 1.5");
   CHECK(load_error(R"({"validate": {"max_penetration": "3 N"}, "effects": []})") ==
         "test.json: /validate/max_penetration: expected a length (m), got a force (\"3 N\")");
   CHECK(load_error(R"({"validate": {"max_forse": 3}, "effects": []})") ==

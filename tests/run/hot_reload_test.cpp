@@ -128,7 +128,8 @@ TEST_CASE("reload watcher: a changed file is compiled off the loop and offered; 
   watcher.poll();
   CHECK(exchange.take_offer() == nullptr);
   REQUIRE(reports.size() == 2);
-  CHECK(reports[1].starts_with("reload failed, keeping the running version: " + script.string() + ":3:"));
+  CHECK(reports[1].starts_with("reload failed, keeping the running version: " + env.string() + ": /effects/0/file: " +
+                               script.string() + ":3:"));
 
   // The rate cannot change during a run.
   write(script, "params = {f = 2.0}\nfunction force(s) return params.f end\n");
