@@ -8,6 +8,7 @@
 
 #include "engine/bench/accuracy.hpp"
 #include "engine/cli/bench_modes.hpp"
+#include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
 #include "engine/devices/profile.hpp"
 #include "engine/harness/svg_plot.hpp"
@@ -101,7 +102,7 @@ std::string accuracy_svg(const std::vector<AccuracyResult>& results) {
 
 int bench_accuracy(Arguments& arguments) {
   const std::optional<std::string> svg = arguments.take_value("svg");
-  const std::optional<double> only_rate = arguments.take_quantity("rate", Quantity::frequency_Hz);
+  const std::optional<double> only_rate = arguments.take(option::accuracy_rate);
   const std::vector<std::string> rest = arguments.positionals();
   if (!rest.empty()) arguments.fail("--accuracy takes no environment files");
 

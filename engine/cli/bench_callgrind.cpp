@@ -11,6 +11,7 @@
 #include "engine/bench/lua_equivalent.hpp"
 #include "engine/bench/tick_bench.hpp"
 #include "engine/cli/bench_modes.hpp"
+#include "engine/cli/option_definitions.hpp"
 #include "engine/core/step.hpp"
 #include "engine/load/environment.hpp"
 
@@ -18,17 +19,10 @@ namespace hapscene {
 
 int bench_callgrind(Arguments& arguments) {
   const std::string impl = arguments.take_value("impl").value_or("builtin");
-  const std::string ticks_text = arguments.take_value("ticks").value_or("100000");
+  const auto ticks = static_cast<long long>(arguments.take(option::callgrind_ticks).value_or(100'000));
   const std::string scripts_dir = arguments.take_value("scripts").value_or("scripts");
   const std::vector<std::string> files = arguments.positionals();
   if (files.size() != 1) arguments.fail("--callgrind: give exactly one environment file");
-  long long ticks = 0;
-  try {
-    ticks = std::stoll(ticks_text);
-  } catch (const std::exception&) {
-    arguments.fail("--ticks: expected a whole number, got \"" + ticks_text + "\"");
-  }
-  if (ticks < 0 || ticks > 1'000'000'000) arguments.fail("--ticks: must be in [0, 1e9]");
   if (impl != "builtin" && impl != "lua" && impl != "baseline") {
     arguments.fail("--impl: \"" + impl + "\" is not one of \"builtin\", \"lua\", \"baseline\"");
   }

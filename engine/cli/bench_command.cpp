@@ -1,6 +1,8 @@
 // `hapscene bench [ENV...]`: per-tick compute cost of each environment next to the
 // hand-written Hapkit lab baseline, and a table of what each part of a scene costs, all
 // measured in one run so the ratios compare like with like.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -11,8 +13,10 @@
 #include "engine/bench/tick_bench.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/bench_modes.hpp"
+#include "engine/cli/option_definitions.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/load/environment.hpp"
+#include "engine/load/object_reader.hpp"
 
 namespace hapscene {
 namespace {
@@ -77,6 +81,35 @@ bool print_row(const std::string& scene, const char* implementation, const TickC
   return ok || !tail_goal;
 }
 
+// The memory the values drive: the recorded readings (4 bytes a tick per environment) and
+// two timings per round for every loop (rounds = passes x slices of the longest recording).
+// Refused before anything is recorded, naming the values to lower.
+constexpr std::size_t kMaxBenchReadings = std::size_t{1} << 24;      // 64 MiB per environment
+constexpr std::size_t kMaxBenchRoundTimings = std::size_t{1} << 25;  // 512 MiB in all
+
+void check_bench_memory(const Arguments& arguments, const std::vector<Scene>& scenes, double seconds, int passes) {
+  double longest_ticks = seconds * 1000.0;  // the parts group runs at the default 1 kHz
+  for (const Scene& scene : scenes) {
+    const double ticks = seconds * scene.rate_hz;
+    if (ticks > static_cast<double>(kMaxBenchReadings)) {
+      arguments.fail("--seconds " + format_number(seconds) + " at " + format_number(scene.rate_hz) + " Hz (" +
+                     scene.source_path + ") records " + format_number(std::floor(ticks)) +
+                     " sensor readings, more than the " + std::to_string(kMaxBenchReadings) +
+                     " a bench holds; lower --seconds");
+    }
+    longest_ticks = std::max(longest_ticks, ticks);
+  }
+  const double loops = 3.0 * static_cast<double>(scenes.size()) + static_cast<double>(std::size(kPartScenes));
+  const double slices = std::max(1.0, std::floor(longest_ticks / static_cast<double>(kSliceTicks)));
+  const double timings = static_cast<double>(passes) * slices * loops;
+  if (timings > static_cast<double>(kMaxBenchRoundTimings)) {
+    arguments.fail("--passes " + std::to_string(passes) + " x --seconds " + format_number(seconds) + " over " +
+                   format_number(loops) + " timed loops keeps " + format_number(timings) +
+                   " round timings, more than the " + std::to_string(kMaxBenchRoundTimings) +
+                   " a bench holds; lower --passes or --seconds, or give fewer environments");
+  }
+}
+
 }  // namespace
 
 int bench_command(std::vector<std::string> args) {
@@ -85,18 +118,10 @@ int bench_command(std::vector<std::string> args) {
   if (arguments.take_flag("stress")) return bench_stress(arguments);
   if (arguments.take_flag("soak")) return bench_soak(arguments);
   if (arguments.take_flag("callgrind")) return bench_callgrind(arguments);
-  const double seconds = arguments.take_quantity("seconds", Quantity::time_s).value_or(20.0);
-  const auto passes_text = arguments.take_value("passes").value_or("10");
+  const double seconds = arguments.take(option::bench_seconds).value_or(20.0);
+  const int passes = static_cast<int>(arguments.take(option::bench_passes).value_or(10));
   const std::string scripts_dir = arguments.take_value("scripts").value_or("scripts");
   std::vector<std::string> files = arguments.positionals();
-  int passes = 0;
-  try {
-    passes = std::stoi(passes_text);
-  } catch (const std::exception&) {
-    arguments.fail("--passes: expected a whole number, got \"" + passes_text + "\"");
-  }
-  if (passes < 1 || passes > 1000) arguments.fail("--passes: must be in [1, 1000]");
-  if (!(seconds > 0.0 && seconds <= 600.0)) arguments.fail("--seconds: must be > 0 s and at most 600 s");
   if (files.empty()) files.assign(std::begin(kLabEnvironments), std::end(kLabEnvironments));
 
   // Every scene, and its Lua twin, loaded before anything is timed.
@@ -106,6 +131,8 @@ int bench_command(std::vector<std::string> args) {
     scenes.push_back(load_environment_file(file));
     lua_scenes.push_back(lua_equivalent(scenes.back(), scripts_dir));
   }
+
+  check_bench_memory(arguments, scenes, seconds, passes);
 
   TickTimer timer;
   InstructionCounter counter;

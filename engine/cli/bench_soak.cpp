@@ -9,22 +9,16 @@
 #include "engine/bench/lua_equivalent.hpp"
 #include "engine/bench/soak.hpp"
 #include "engine/cli/bench_modes.hpp"
+#include "engine/cli/option_definitions.hpp"
 #include "engine/load/environment.hpp"
 
 namespace hapscene {
 
 int bench_soak(Arguments& arguments) {
-  const std::string ticks_text = arguments.take_value("ticks").value_or("100000000");
+  const unsigned long long ticks = arguments.take(option::soak_ticks).value_or(100'000'000);
   const std::string scripts_dir = arguments.take_value("scripts").value_or("scripts");
   const bool with_lua = !arguments.take_flag("no-lua");
   std::vector<std::string> files = arguments.positionals();
-  unsigned long long ticks = 0;
-  try {
-    ticks = std::stoull(ticks_text);
-  } catch (const std::exception&) {
-    arguments.fail("--ticks: expected a whole number, got \"" + ticks_text + "\"");
-  }
-  if (ticks < 10000 || ticks > 10'000'000'000ull) arguments.fail("--ticks: must be in [1e4, 1e10]");
   if (files.empty()) {
     files = {"environments/spring.json", "environments/wall.json", "environments/damper.json",
              "environments/texture.json"};

@@ -6,15 +6,14 @@
 
 #include "engine/bench/stability_sweep.hpp"
 #include "engine/cli/bench_modes.hpp"
+#include "engine/cli/option_definitions.hpp"
 
 namespace hapscene {
 
 int bench_stress(Arguments& arguments) {
-  const double noise_counts = arguments.take_quantity("noise", Quantity::dimensionless).value_or(0.5);
-  const double damping_rate_hz = arguments.take_quantity("rate", Quantity::frequency_Hz).value_or(1000.0);
+  const double noise_counts = arguments.take(option::stress_noise).value_or(0.5);
+  const double damping_rate_hz = arguments.take(option::stress_rate).value_or(1000.0);
   if (!arguments.positionals().empty()) arguments.fail("--stress takes no environment files");
-  if (!(noise_counts >= 0.0 && noise_counts <= 100.0)) arguments.fail("--noise: must be in [0, 100] counts");
-  if (!(damping_rate_hz >= 100.0 && damping_rate_hz <= 100000.0)) arguments.fail("--rate: must be in [100 Hz, 100 kHz]");
 
   const DeviceProfile profile = stress_profile();
   std::printf("stiffness sweep: one wall at 10 mm on the simulated %s (m %g kg, b %g N*s/m, Coulomb %g N), "

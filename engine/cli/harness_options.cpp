@@ -2,31 +2,18 @@
 
 #include <string>
 
-namespace hapscene {
+#include "engine/cli/option_definitions.hpp"
 
-std::uint64_t parse_seed(const Arguments& arguments, const std::string& text) {
-  try {
-    std::size_t used = 0;
-    const std::uint64_t seed = std::stoull(text, &used);
-    if (used == text.size() && !text.starts_with('-')) return seed;
-  } catch (const std::exception&) {
-  }
-  arguments.fail("--seed: expected a whole number, got \"" + text + "\"");
-}
+namespace hapscene {
 
 HarnessOptions take_harness_options(Arguments& arguments) {
   HarnessOptions o;
-  o.hand_stiffness_N_per_m = arguments.take_quantity("hand-stiffness", Quantity::stiffness_N_per_m)
-                                 .value_or(o.hand_stiffness_N_per_m);
-  o.hand_damping_N_s_per_m = arguments.take_quantity("hand-damping", Quantity::damping_N_s_per_m)
-                                 .value_or(o.hand_damping_N_s_per_m);
-  o.hand_mass_kg = arguments.take_quantity("hand-mass", Quantity::mass_kg).value_or(o.hand_mass_kg);
-  if (!(o.hand_stiffness_N_per_m > 0.0)) arguments.fail("--hand-stiffness: must be > 0");
-  if (o.hand_damping_N_s_per_m < 0.0) arguments.fail("--hand-damping: must be >= 0");
-  if (o.hand_mass_kg < 0.0) arguments.fail("--hand-mass: must be >= 0");
-  o.noise_counts = arguments.take_quantity("noise", Quantity::dimensionless).value_or(-1.0);
-  if (const auto seed = arguments.take_value("seed")) o.seed = parse_seed(arguments, *seed);
-  o.free_start_m = arguments.take_quantity("start", Quantity::length_m).value_or(o.free_start_m);
+  o.hand_stiffness_N_per_m = arguments.take(option::hand_stiffness).value_or(o.hand_stiffness_N_per_m);
+  o.hand_damping_N_s_per_m = arguments.take(option::hand_damping).value_or(o.hand_damping_N_s_per_m);
+  o.hand_mass_kg = arguments.take(option::hand_mass).value_or(o.hand_mass_kg);
+  o.noise_counts = arguments.take(option::noise).value_or(-1.0);
+  o.seed = arguments.take(option::seed).value_or(o.seed);
+  o.free_start_m = arguments.take(option::free_start).value_or(o.free_start_m);
   return o;
 }
 

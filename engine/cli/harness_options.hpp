@@ -14,7 +14,4 @@ HarnessOptions take_harness_options(Arguments& arguments);
 // Takes --scenario NAME[,NAME...]; empty when not given (all scenarios).
 std::vector<ScenarioKind> take_scenarios(Arguments& arguments);
 
-// Reads a --seed value.
-std::uint64_t parse_seed(const Arguments& arguments, const std::string& text);
-
 }  // namespace hapscene

@@ -1,11 +1,14 @@
 // The `hapscene` command: dispatch to a subcommand and map errors to exit codes
 // (0 success, 2 invalid input, 1 anything else).
+#include <cerrno>
+#include <cstdio>
 #include <exception>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "engine/cli/commands.hpp"
+#include "engine/cli/output_file.hpp"
 #include "engine/core/errors.hpp"
 
 namespace {
@@ -57,15 +60,18 @@ validate options:
   --noise COUNTS        --seed N            --start X (free scenario start, default 4 mm)
   --report FILE.json    --plot FILE.svg     --quiet
 
-Values take SI numbers or strings with units ("10 mm", "2 kHz").
+Values take SI numbers or strings with units ("10 mm", "2 kHz"); each numeric option
+has a range (README, "Using it"), and a value outside it is invalid input.
 Exit codes: 0 success, 2 invalid input (file, arguments), 1 anything else
-(validate and test: 1 when a check or expectation fails).
+(validate and test: 1 when a check or expectation fails; any command: 1 when its
+output could not be written).
 )";
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+namespace {
+
+int dispatch(std::vector<std::string> args) {
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
     (args.empty() ? std::cerr : std::cout) << kUsage;
     return args.empty() ? hapscene::kExitInvalidInput : hapscene::kExitOk;
@@ -92,4 +98,17 @@ int main(int argc, char** argv) {
     std::cerr << "hapscene: " << error.what() << "\n";
     return hapscene::kExitFailure;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int code = dispatch(std::vector<std::string>(argv + 1, argv + argc));
+  // Output that never arrived is a failure, not a success: "probe ... > /dev/full" exits 1.
+  errno = 0;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
+    std::cerr << "hapscene: " << hapscene::write_failed_message("standard output", errno) << "\n";
+    return code == hapscene::kExitOk ? hapscene::kExitFailure : code;
+  }
+  return code;
 }

@@ -9,13 +9,13 @@
 
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
+#include "engine/cli/option_definitions.hpp"
 #include "engine/core/step.hpp"
 #include "engine/load/environment.hpp"
+#include "engine/load/object_reader.hpp"
 
 namespace hapscene {
 namespace {
-
-constexpr long long kMaxProbePoints = 1'000'000;
 
 struct ProbeRange {
   double start_m{};
@@ -31,18 +31,22 @@ ProbeRange parse_range(const Arguments& arguments, const std::string& text) {
     arguments.fail("--x: expected START:STOP:STEP, got \"" + text + "\"");
   }
   ProbeRange range;
-  range.start_m = parse_option_quantity(text.substr(0, first), Quantity::length_m, "hapscene probe: --x START");
-  range.stop_m = parse_option_quantity(text.substr(first + 1, second - first - 1), Quantity::length_m,
+  range.start_m = parse_option_quantity(text.substr(0, first), option::probe_position, "hapscene probe: --x START");
+  range.stop_m = parse_option_quantity(text.substr(first + 1, second - first - 1), option::probe_position,
                                        "hapscene probe: --x STOP");
-  range.step_m = parse_option_quantity(text.substr(second + 1), Quantity::length_m, "hapscene probe: --x STEP");
+  range.step_m = parse_option_quantity(text.substr(second + 1), option::probe_step, "hapscene probe: --x STEP");
   if (range.step_m == 0.0) arguments.fail("--x: STEP must not be 0");
+  // A step far below the sensor's resolution is a typo; it would also overflow START / STEP.
+  if (std::fabs(range.step_m) < option::kMinProbeStep_m) {
+    arguments.fail("--x: STEP must be at least 1 nm in size, got " + format_number(range.step_m) + " m");
+  }
   if ((range.stop_m - range.start_m) * range.step_m < 0.0) {
     arguments.fail("--x: STEP goes away from STOP");
   }
   // A tolerance of a millionth of a step keeps STOP when rounding falls just short.
   const double intervals = std::floor((range.stop_m - range.start_m) / range.step_m + 1e-6);
-  if (intervals + 1.0 > static_cast<double>(kMaxProbePoints)) {
-    arguments.fail("--x: more than " + std::to_string(kMaxProbePoints) + " points");
+  if (intervals + 1.0 > static_cast<double>(option::kMaxProbePoints)) {
+    arguments.fail("--x: more than " + std::to_string(option::kMaxProbePoints) + " points");
   }
   range.points = static_cast<long long>(intervals) + 1;
   return range;
@@ -60,7 +64,7 @@ std::string shortest(double value) {
 int probe_command(std::vector<std::string> args) {
   Arguments arguments(std::move(args), "hapscene probe");
   const std::optional<std::string> x_text = arguments.take_value("x");
-  const double v_m_per_s = arguments.take_quantity("v", Quantity::velocity_m_per_s).value_or(0.0);
+  const double v_m_per_s = arguments.take(option::probe_velocity).value_or(0.0);
   const std::vector<std::string> files = arguments.positionals();
   if (files.size() != 1) arguments.fail("expected one environment file");
   if (!x_text) arguments.fail("--x START:STOP:STEP is required");

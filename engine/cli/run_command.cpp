@@ -15,13 +15,14 @@
 
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
+#include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
+#include "engine/cli/run_trace.hpp"
 #include "engine/core/errors.hpp"
 #include "engine/devices/open_device.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/load/object_reader.hpp"
 #include "engine/harness/figures.hpp"
-#include "engine/harness/recorder.hpp"
 #include "engine/run/live_status.hpp"
 #include "engine/run/reload_watcher.hpp"
 #include "engine/run/observer_list.hpp"
@@ -50,21 +51,8 @@ struct RunSettings {
 RunSettings parse_settings(Arguments& arguments) {
   RunSettings settings;
   settings.device = arguments.take_value("device").value_or("sim");
-  if (const auto baud = arguments.take_value("baud")) {
-    try {
-      std::size_t used = 0;
-      const long value = std::stol(*baud, &used);
-      if (used != baud->size() || value <= 0 || value > 100'000'000) throw std::invalid_argument(*baud);
-      settings.link.baud = static_cast<int>(value);
-    } catch (const std::exception&) {
-      arguments.fail("--baud: expected a positive whole number of bits per second, got \"" + *baud + "\"");
-    }
-  }
-  settings.options.duration_s =
-      arguments.take_quantity("duration", Quantity::time_s).value_or(settings.options.duration_s);
-  if (!(settings.options.duration_s > 0.0 && settings.options.duration_s <= 24 * 3600.0)) {
-    arguments.fail("--duration: must be > 0 s and at most 24 h");
-  }
+  if (const auto baud = arguments.take(option::baud)) settings.link.baud = static_cast<int>(*baud);
+  settings.options.duration_s = arguments.take(option::duration).value_or(settings.options.duration_s);
   if (arguments.take_flag("sim-time")) settings.options.pacing = Pacing::simulated_time;
 
   HandConfig& hand = settings.simulation.hand;
@@ -75,27 +63,13 @@ RunSettings parse_settings(Arguments& arguments) {
     }
     hand.motion = static_cast<HandMotion>(found - std::begin(kHandMotionNames));
   }
-  hand.stiffness_N_per_m = arguments.take_quantity("hand-stiffness", Quantity::stiffness_N_per_m)
-                               .value_or(hand.stiffness_N_per_m);
-  hand.damping_N_s_per_m = arguments.take_quantity("hand-damping", Quantity::damping_N_s_per_m)
-                               .value_or(hand.damping_N_s_per_m);
-  if (hand.stiffness_N_per_m < 0.0 || hand.damping_N_s_per_m < 0.0) {
-    arguments.fail("--hand-stiffness and --hand-damping must be >= 0");
-  }
-  hand.hold_m = arguments.take_quantity("hold", Quantity::length_m).value_or(hand.hold_m);
-  hand.release_s = arguments.take_quantity("release", Quantity::time_s).value_or(hand.release_s);
-  settings.simulation.start_x_m =
-      arguments.take_quantity("start", Quantity::length_m).value_or(0.0);
-  settings.noise_counts = arguments.take_quantity("noise", Quantity::dimensionless).value_or(-1.0);
-  if (const auto seed = arguments.take_value("seed")) {
-    try {
-      std::size_t used = 0;
-      settings.simulation.noise_seed = std::stoull(*seed, &used);
-      if (used != seed->size()) throw std::invalid_argument(*seed);
-    } catch (const std::exception&) {
-      arguments.fail("--seed: expected a whole number, got \"" + *seed + "\"");
-    }
-  }
+  hand.stiffness_N_per_m = arguments.take(option::run_hand_stiffness).value_or(hand.stiffness_N_per_m);
+  hand.damping_N_s_per_m = arguments.take(option::run_hand_damping).value_or(hand.damping_N_s_per_m);
+  hand.hold_m = arguments.take(option::hold).value_or(hand.hold_m);
+  hand.release_s = arguments.take(option::release).value_or(hand.release_s);
+  settings.simulation.start_x_m = arguments.take(option::run_start).value_or(0.0);
+  settings.noise_counts = arguments.take(option::noise).value_or(-1.0);
+  settings.simulation.noise_seed = arguments.take(option::seed).value_or(settings.simulation.noise_seed);
   settings.quiet = arguments.take_flag("quiet");
   settings.reload = !arguments.take_flag("no-reload");
   settings.log_path = arguments.take_value("log");
@@ -250,6 +224,7 @@ int run_command(std::vector<std::string> args) {
   settings.options.stop_requested = &g_stop_requested;
   const bool show_status = !settings.quiet && isatty(STDERR_FILENO) == 1;
   bool faulted = false;  // a run that ended on a fault makes the exit code 1
+  bool write_failed = false;  // so does a --log file that could not be written
   for (std::size_t i = 0; i < scenes.size() && !g_stop_requested.load(); ++i) {
     const Scene& scene = scenes[i];
     Device& device = *devices[shared_device ? 0 : i];
@@ -268,10 +243,11 @@ int run_command(std::vector<std::string> args) {
       log = std::make_unique<TelemetryLog>(*settings.log_path, capacity);
     }
     observers.add(log.get());
-    std::unique_ptr<Recorder> trace;
+    // The figure's trace: a fixed number of records, decimated for long runs.
+    std::unique_ptr<RunTrace> trace;
     if (settings.plot_path) {
-      const auto ticks = static_cast<std::size_t>(std::llround(settings.options.duration_s * scene.rate_hz));
-      trace = std::make_unique<Recorder>(dynamic_cast<const SimulatedHapkit*>(&device), ticks + 1);
+      const auto ticks = static_cast<std::uint64_t>(std::llround(settings.options.duration_s * scene.rate_hz));
+      trace = std::make_unique<RunTrace>(dynamic_cast<const SimulatedHapkit*>(&device), ticks);
     }
     observers.add(trace.get());
     RunSummary summary;
@@ -299,13 +275,23 @@ int run_command(std::vector<std::string> args) {
     }
     if (log) {
       log->finish();
-      std::printf("  telemetry        %llu samples written to %s, %llu dropped (ring full)\n",
-                  static_cast<unsigned long long>(log->written()), settings.log_path->c_str(),
-                  static_cast<unsigned long long>(log->dropped()));
+      if (!log->error().empty()) {
+        // Never claim samples reached a file that refused them: say so, and exit 1.
+        std::printf("  telemetry        FAILED: %s\n", log->error().c_str());
+        std::fprintf(stderr, "hapscene run: %s\n", log->error().c_str());
+        write_failed = true;
+      } else {
+        std::printf("  telemetry        %llu samples written to %s, %llu dropped (ring full)\n",
+                    static_cast<unsigned long long>(log->written()), settings.log_path->c_str(),
+                    static_cast<unsigned long long>(log->dropped()));
+      }
     }
     if (trace) {
-      const std::string what = "run, hand " +
+      std::string what = "run, hand " +
           std::string(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]);
+      if (trace->ticks_per_bucket() > 1) {
+        what += ", lowest and highest force of every " + std::to_string(trace->ticks_per_bucket()) + " ticks";
+      }
       write_output_file(*settings.plot_path, run_figure_svg(scene, trace->records(), what));
       std::printf("  plot             %s\n", settings.plot_path->c_str());
     }
@@ -313,7 +299,7 @@ int run_command(std::vector<std::string> args) {
     std::fflush(stdout);
     faulted = faulted || summary.overrun_fault;
   }
-  return faulted ? kExitFailure : kExitOk;
+  return faulted || write_failed ? kExitFailure : kExitOk;
 }
 
 }  // namespace hapscene

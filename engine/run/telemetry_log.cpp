@@ -1,7 +1,9 @@
 #include "engine/run/telemetry_log.hpp"
 
 #include <charconv>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 
 #include "engine/core/errors.hpp"
 
@@ -26,12 +28,18 @@ std::string telemetry_csv_line(const TelemetrySample& s) {
   return line;
 }
 
-TelemetryLog::TelemetryLog(const std::string& path, std::size_t capacity) : ring_(capacity) {
+TelemetryLog::TelemetryLog(const std::string& path, std::size_t capacity) : ring_(capacity), path_(path) {
   file_ = std::fopen(path.c_str(), "wb");
   if (file_ == nullptr) throw InputError(path + ": cannot write file");
-  std::fputs(kTelemetryCsvHeader, file_);
-  std::fputc('\n', file_);
+  errno = 0;
+  if (std::fputs(kTelemetryCsvHeader, file_) < 0 || std::fputc('\n', file_) == EOF) note_write_error(errno);
   writer_ = std::thread([this] { drain_loop(); });
+}
+
+void TelemetryLog::note_write_error(int error_number) {
+  if (error_.empty()) {
+    error_ = path_ + ": write failed: " + (error_number != 0 ? std::strerror(error_number) : "unknown error");
+  }
 }
 
 TelemetryLog::~TelemetryLog() { finish(); }
@@ -50,8 +58,14 @@ void TelemetryLog::drain_loop() {
     const bool stopping = stop_.load(std::memory_order_acquire);
     bool any = false;
     while (ring_.try_pop(&sample)) {
+      // After a failed write the rest is drained and discarded, so the loop never waits.
+      if (!error_.empty()) continue;
       const std::string line = telemetry_csv_line(sample);
-      std::fwrite(line.data(), 1, line.size(), file_);
+      errno = 0;
+      if (std::fwrite(line.data(), 1, line.size(), file_) != line.size()) {
+        note_write_error(errno);
+        continue;
+      }
       written_.fetch_add(1, std::memory_order_relaxed);
       any = true;
     }
@@ -66,7 +80,11 @@ void TelemetryLog::finish() {
     writer_.join();
   }
   if (file_ != nullptr) {
-    std::fclose(file_);
+    // Buffered lines reach the disk here: a full disk often shows only now.
+    errno = 0;
+    if (std::fflush(file_) != 0) note_write_error(errno);
+    errno = 0;
+    if (std::fclose(file_) != 0) note_write_error(errno);
     file_ = nullptr;
   }
 }

@@ -45,17 +45,25 @@ class TelemetryLog final : public TickObserver {
   // The loop's side: push, or count a drop. Never blocks, never allocates.
   void on_tick(const TickState& state) noexcept override;
 
-  // Stops the writer after it has drained the ring and closes the file. Idempotent.
+  // Stops the writer after it has drained the ring, flushes and closes the file.
+  // Idempotent. A write, flush or close that failed is kept for error().
   void finish();
+
+  // Empty while every line reached the file; else "PATH: write failed: <reason>" (the
+  // first failure; later samples are not written, and written() stops counting).
+  const std::string& error() const noexcept { return error_; }
 
   std::uint64_t written() const noexcept { return written_.load(std::memory_order_relaxed); }
   std::uint64_t dropped() const noexcept { return dropped_.load(std::memory_order_relaxed); }
 
  private:
   void drain_loop();
+  void note_write_error(int error_number);
 
   SpscRing<TelemetrySample> ring_;
+  std::string path_;
   std::FILE* file_{nullptr};
+  std::string error_;  // written by the writer thread until joined, then by finish()
   std::atomic<bool> stop_{false};
   std::atomic<std::uint64_t> written_{0};
   std::atomic<std::uint64_t> dropped_{0};

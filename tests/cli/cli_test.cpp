@@ -89,7 +89,8 @@ TEST_CASE("cli: invalid input exits with 2 and says where") {
   CHECK(bad_baud.exit_code == 2);
   CHECK(bad_baud.err.starts_with("error: hapscene run: --baud: 12345 is not a rate the serial port offers (9600, "));
   CHECK(run_cli("run environments/wall.json --baud fast").err ==
-        "error: hapscene run: --baud: expected a positive whole number of bits per second, got \"fast\"\n");
+        "error: hapscene run: --baud: expected a positive whole number of bits per second in [1, 100000000], got "
+        "\"fast\"\n");
   CHECK(run_cli("run environments/wall.json --device hil:/nonexistent.elf").exit_code == 2);
 
   CHECK(run_cli("").exit_code == 2);

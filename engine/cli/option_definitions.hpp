@@ -1,0 +1,53 @@
+#pragma once
+// Every numeric option of every command, with the values it accepts. The commands take
+// their numbers through these definitions only (Arguments::take), so a value outside its
+// range is refused in one place, with exit code 2 and a message naming the option and
+// the range. The ranges are generous for real use and keep every allocation and loop a
+// value drives bounded (the README's "Using it" lists them).
+#include <cstdint>
+#include <limits>
+
+#include "engine/cli/arguments.hpp"
+
+namespace hapscene::option {
+
+inline constexpr double kDay_s = 24.0 * 3600.0;
+
+// run
+inline constexpr WholeOption baud{"baud", 1, 100'000'000, "a positive whole number of bits per second"};
+inline constexpr QuantityOption duration{"duration", Quantity::time_s, 0.0, kDay_s, true};
+inline constexpr QuantityOption run_hand_stiffness{"hand-stiffness", Quantity::stiffness_N_per_m, 0.0, 1e6};
+inline constexpr QuantityOption run_hand_damping{"hand-damping", Quantity::damping_N_s_per_m, 0.0, 1e4};
+inline constexpr QuantityOption hold{"hold", Quantity::length_m, -1.0, 1.0};
+inline constexpr QuantityOption release{"release", Quantity::time_s, 0.0, kDay_s};
+inline constexpr QuantityOption run_start{"start", Quantity::length_m, -1.0, 1.0};
+
+// run, validate, plot: the sensor noise and its seed
+inline constexpr QuantityOption noise{"noise", Quantity::dimensionless, 0.0, 1000.0, false, "counts"};
+inline constexpr WholeOption seed{"seed", 0, std::numeric_limits<std::uint64_t>::max()};
+
+// validate, plot: the virtual hand and the free scenario's start
+inline constexpr QuantityOption hand_stiffness{"hand-stiffness", Quantity::stiffness_N_per_m, 0.0, 1e6, true};
+inline constexpr QuantityOption hand_damping{"hand-damping", Quantity::damping_N_s_per_m, 0.0, 1e4};
+inline constexpr QuantityOption hand_mass{"hand-mass", Quantity::mass_kg, 0.0, 10.0};
+inline constexpr QuantityOption free_start{"start", Quantity::length_m, -1.0, 1.0};
+
+// probe: START and STOP of --x, its STEP (at least kMinProbeStep_m in size), and --v
+inline constexpr QuantityOption probe_position{"x", Quantity::length_m, -1000.0, 1000.0};
+inline constexpr QuantityOption probe_step{"x", Quantity::length_m, -1000.0, 1000.0};
+inline constexpr double kMinProbeStep_m = 1e-9;
+inline constexpr long long kMaxProbePoints = 1'000'000;
+inline constexpr QuantityOption probe_velocity{"v", Quantity::velocity_m_per_s, -1000.0, 1000.0};
+
+// bench (tick cost tables)
+inline constexpr QuantityOption bench_seconds{"seconds", Quantity::time_s, 0.0, 600.0, true};
+inline constexpr WholeOption bench_passes{"passes", 1, 1000};
+// bench --soak and --callgrind
+inline constexpr WholeOption soak_ticks{"ticks", 10'000, 10'000'000'000ull};
+inline constexpr WholeOption callgrind_ticks{"ticks", 0, 1'000'000'000};
+// bench --stress and --accuracy
+inline constexpr QuantityOption stress_noise{"noise", Quantity::dimensionless, 0.0, 100.0, false, "counts"};
+inline constexpr QuantityOption stress_rate{"rate", Quantity::frequency_Hz, 100.0, 100'000.0};
+inline constexpr QuantityOption accuracy_rate{"rate", Quantity::frequency_Hz, 250.0, 20'000.0};
+
+}  // namespace hapscene::option
