@@ -1,5 +1,6 @@
 #include "engine/cli/harness_options.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "engine/cli/option_definitions.hpp"
@@ -30,6 +31,10 @@ std::vector<ScenarioKind> take_scenarios(Arguments& arguments) {
       std::string message = "--scenario: unknown scenario \"" + name + "\" (one of sweep, press, release, hold, shake, free";
       const std::string suggestion = nearest_name(name, kScenarioNames);
       arguments.fail(message + (suggestion.empty() ? ")" : "; did you mean \"" + suggestion + "\"?)"));
+    }
+    // Each scenario once: a list is not a way to run one scenario a thousand times.
+    if (std::find(kinds.begin(), kinds.end(), *kind) != kinds.end()) {
+      arguments.fail("--scenario: \"" + name + "\" is listed twice");
     }
     kinds.push_back(*kind);
     begin = end + 1;

@@ -95,6 +95,8 @@ TEST_CASE("cli values: an option given twice is reported as given twice") {
         "error: hapscene validate: --report is given twice\n");
   CHECK(refused("run environments/wall.json --quiet=yes") ==
         "error: hapscene run: --quiet takes no value, got \"--quiet=yes\"\n");
+  CHECK(refused("validate environments/wall.json --scenario hold,sweep,hold") ==
+        "error: hapscene validate: --scenario: \"hold\" is listed twice\n");
   // Still unknown when nobody takes it.
   CHECK(refused("probe environments/wall.json --x 0:1:1 --speed 3 --speed 4") ==
         "error: hapscene probe: unknown option --speed\n");
