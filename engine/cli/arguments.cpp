@@ -43,6 +43,8 @@ std::optional<std::string> Arguments::take_value(std::string_view name) {
   if (args_[i] == option) {
     if (i + 1 >= args_.size()) fail(option + " needs a value");
     value = args_[i + 1];
+    // "--log --quiet" forgot the file name; it would otherwise write a file called "--quiet".
+    if (value.starts_with("--") && value.size() > 2) fail(option + " needs a value, got the option " + value);
     used = 2;
   } else {
     value = args_[i].substr(option.size() + 1);

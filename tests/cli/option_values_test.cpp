@@ -97,6 +97,8 @@ TEST_CASE("cli values: an option given twice is reported as given twice") {
         "error: hapscene run: --quiet takes no value, got \"--quiet=yes\"\n");
   CHECK(refused("validate environments/wall.json --scenario hold,sweep,hold") ==
         "error: hapscene validate: --scenario: \"hold\" is listed twice\n");
+  CHECK(refused("run environments/wall.json --log --colour") ==
+        "error: hapscene run: --log needs a value, got the option --colour\n");
   // Still unknown when nobody takes it.
   CHECK(refused("probe environments/wall.json --x 0:1:1 --speed 3 --speed 4") ==
         "error: hapscene probe: unknown option --speed\n");
