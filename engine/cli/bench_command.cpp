@@ -81,32 +81,35 @@ bool print_row(const std::string& scene, const char* implementation, const TickC
   return ok || !tail_goal;
 }
 
-// The memory the values drive: the recorded readings (4 bytes a tick per environment) and
-// two timings per round for every loop (rounds = passes x slices of the longest recording).
-// Refused before anything is recorded, naming the values to lower.
-constexpr std::size_t kMaxBenchReadings = std::size_t{1} << 24;      // 64 MiB per environment
-constexpr std::size_t kMaxBenchRoundTimings = std::size_t{1} << 25;  // 512 MiB in all
+// The memory the values drive, estimated before anything is recorded: the recorded
+// readings (4 bytes a tick per environment), two timings per round for every loop
+// (rounds = passes x slices of the longest recording) and one timing per tick of the
+// tail measurement (readings x passes / kTailRepeats, the longest loop at a time).
+// Over kMaxBenchBytes the command is refused, naming the values to lower.
+constexpr double kMaxBenchBytes = 1024.0 * 1024.0 * 1024.0;  // 1 GiB
+
+std::string mebibytes(double bytes) { return format_number(std::round(bytes / (1024.0 * 1024.0))) + " MiB"; }
 
 void check_bench_memory(const Arguments& arguments, const std::vector<Scene>& scenes, double seconds, int passes) {
-  double longest_ticks = seconds * 1000.0;  // the parts group runs at the default 1 kHz
+  double longest_ticks = std::floor(seconds * 1000.0);  // the parts group runs at the default 1 kHz
+  double readings = longest_ticks;
   for (const Scene& scene : scenes) {
-    const double ticks = seconds * scene.rate_hz;
-    if (ticks > static_cast<double>(kMaxBenchReadings)) {
-      arguments.fail("--seconds " + format_number(seconds) + " at " + format_number(scene.rate_hz) + " Hz (" +
-                     scene.source_path + ") records " + format_number(std::floor(ticks)) +
-                     " sensor readings, more than the " + std::to_string(kMaxBenchReadings) +
-                     " a bench holds; lower --seconds");
-    }
+    const double ticks = std::floor(seconds * scene.rate_hz);
+    readings += ticks;
     longest_ticks = std::max(longest_ticks, ticks);
   }
   const double loops = 3.0 * static_cast<double>(scenes.size()) + static_cast<double>(std::size(kPartScenes));
   const double slices = std::max(1.0, std::floor(longest_ticks / static_cast<double>(kSliceTicks)));
-  const double timings = static_cast<double>(passes) * slices * loops;
-  if (timings > static_cast<double>(kMaxBenchRoundTimings)) {
-    arguments.fail("--passes " + std::to_string(passes) + " x --seconds " + format_number(seconds) + " over " +
-                   format_number(loops) + " timed loops keeps " + format_number(timings) +
-                   " round timings, more than the " + std::to_string(kMaxBenchRoundTimings) +
-                   " a bench holds; lower --passes or --seconds, or give fewer environments");
+  const double readings_bytes = 4.0 * readings;
+  const double rounds_bytes = 2.0 * 8.0 * static_cast<double>(passes) * slices * loops;
+  const double tail_bytes = 8.0 * longest_ticks * static_cast<double>(passes) / static_cast<double>(TickTimer::kTailRepeats);
+  const double total = readings_bytes + rounds_bytes + tail_bytes;
+  if (total > kMaxBenchBytes) {
+    arguments.fail("--seconds " + format_number(seconds) + " x --passes " + std::to_string(passes) + " over " +
+                   std::to_string(scenes.size()) + " environment(s) needs about " + mebibytes(total) +
+                   " (readings " + mebibytes(readings_bytes) + ", round timings " + mebibytes(rounds_bytes) +
+                   ", tail timings " + mebibytes(tail_bytes) + "), more than the " + mebibytes(kMaxBenchBytes) +
+                   " a bench may use; lower --seconds or --passes, or give fewer environments");
   }
 }
 

@@ -148,11 +148,13 @@ TEST_CASE("cli values: bench refuses values whose recordings or timings would no
   std::ofstream(fast) << R"({"rate_hz": "100 kHz", "effects": [{"type": "spring", "stiffness": 100}]})";
   std::ofstream(medium) << R"({"rate_hz": "20 kHz", "effects": [{"type": "spring", "stiffness": 100}]})";
   CHECK(refused("bench --seconds 600 " + fast.string()) ==
-        "error: hapscene bench: --seconds 600 at 100000 Hz (" + fast.string() +
-            ") records 60000000 sensor readings, more than the 16777216 a bench holds; lower --seconds\n");
-  CHECK(refused("bench --seconds 600 --passes 1000 " + medium.string()) ==
-        "error: hapscene bench: --passes 1000 x --seconds 600 over 13 timed loops keeps 76167000 round timings, "
-        "more than the 33554432 a bench holds; lower --passes or --seconds, or give fewer environments\n");
+        "error: hapscene bench: --seconds 600 x --passes 10 over 1 environment(s) needs about 1205 MiB (readings 231 "
+        "MiB, round timings 58 MiB, tail timings 916 MiB), more than the 1024 MiB a bench may use; lower --seconds or "
+        "--passes, or give fewer environments\n");
+  CHECK(refused("bench --seconds 600 --passes 1000 " + medium.string()).starts_with(
+      "error: hapscene bench: --seconds 600 x --passes 1000 over 1 environment(s) needs about 19521 MiB"));
+  // The largest values of both ranges over the four lab environments are just over.
+  CHECK(refused("bench --seconds 600 --passes 1000").find("needs about 1025 MiB") != std::string::npos);
   std::filesystem::remove(fast);
   std::filesystem::remove(medium);
 }
