@@ -1,10 +1,14 @@
 // Numbers at the edges of what the file formats can hold: out of range is said so, and a
 // number is echoed as written (never wrapped to -1, never rounded into another number).
 #include <doctest/doctest.h>
+#include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "engine/devices/profile.hpp"
+#include "engine/harness/test_spec.hpp"
 #include "engine/load/json_source.hpp"
 #include "engine/load/units.hpp"
 #include "tests/support.hpp"
@@ -50,4 +54,17 @@ TEST_CASE("numbers: whole-number keys echo what was written, accept 1e6 and refu
   // The same reader serves profiles and validate blocks.
   CHECK(load_error(R"({"validate": {"max_slip_ticks": 18446744073709551615}, "effects": []})") ==
         "test.json: /validate/max_slip_ticks: must be in [0, 1000000000], got 18446744073709551615");
+}
+
+TEST_CASE("numbers: test specs read numbers the same way") {
+  const auto dir = std::filesystem::temp_directory_path() / ("hapscene_numbers_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "wall.json") << R"({"effects": [{"type": "wall", "position": 0.01, "stiffness": 500, "solid": "above"}]})";
+  std::ofstream(dir / "seed.test.json") << R"({"environment": "wall.json", "options": {"seed": 18446744073709551615}})";
+  std::ofstream(dir / "force.test.json") << "{\"environment\": \"wall.json\",\n \"never_exceeds\": 1e400}";
+  CHECK(test::input_error_of([&] { run_test_spec((dir / "seed.test.json").string()); }) ==
+        (dir / "seed.test.json").string() + ": /options/seed: must be in [0, 9007199254740992], got 18446744073709551615");
+  CHECK(test::input_error_of([&] { run_test_spec((dir / "force.test.json").string()); }) ==
+        (dir / "force.test.json").string() + ":2:19: number out of range: 1e400");
+  std::filesystem::remove_all(dir);
 }
