@@ -22,6 +22,9 @@ void check_limits(const ScriptLimits& limits, const std::string& error_context,
   if (limits.allocation_bytes_per_call < 1024) fail("allocation_bytes_per_call must be at least 1024");
   if (limits.string_bytes < 256) fail("string_bytes must be at least 256");
   if (!(limits.wall_time_per_call_s >= 0.0)) fail("wall_time_per_call_s must be 0 (off) or positive");
+  if (!(limits.load_time_s > 0.0 && limits.load_time_s <= 600.0)) {
+    fail("load_time_s must be positive and at most 600 s");
+  }
   if (!(limits.log_messages_per_s >= 0.0)) fail("log_messages_per_s must not be negative");
 }
 
