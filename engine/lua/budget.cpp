@@ -66,7 +66,6 @@ void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_
   vm->tripped = false;
   vm->clock_started = false;
   vm->slow = false;
-  vm->backstop_s = call_time_backstop_s(vm->limits);
   vm->in_call = true;
   vm->call_bytes = 0;
   vm->call_limit_bytes = allocation_limit_bytes;

@@ -101,6 +101,7 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   vm->display_name = program.display_name;
   vm->short_source = short_source_of(program.display_name);
   vm->limits = program.limits;
+  vm->backstop_s = call_time_backstop_s(program.limits);
   vm->source = &program.source;
   vm->params_override = &program.params_override;
   vm->error_context = program.error_context;

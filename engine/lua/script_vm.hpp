@@ -73,7 +73,7 @@ struct ScriptVm {
   // Running: the call's clock starts at its first checkpoint; past kSlowCall the CPU time
   // is read, and the backstop is confirmed on CPU time before it trips.
   std::chrono::steady_clock::time_point load_deadline{};
-  double backstop_s{};         // CPU seconds per call
+  double backstop_s{};         // CPU seconds per call (call_time_backstop_s, set at creation)
   bool clock_started{};
   bool slow{};                 // the call has run for over kSlowCall
   std::chrono::steady_clock::time_point clock_start{};

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <ctime>
 
+#include "engine/effects/script_effect.hpp"
+#include "engine/load/object_reader.hpp"
 #include "tests/lua/script_test_support.hpp"
 
 namespace hapscene {
@@ -178,6 +180,28 @@ TEST_CASE("hostile: next() over a huge sparse table is stopped by the time backs
   check_engine_still_works();
 }
 
+TEST_CASE("hostile: reset() has the same backstop as force()") {
+  ScriptLimits limits;
+  limits.memory_bytes = 16u << 20;
+  auto script = run_inline(
+      "local t, armed = {}, false\n"
+      "for i = 1, 100000 do t[i * 7 + 0.5] = true end\n"
+      "for i = 1, 99999 do t[i * 7 + 0.5] = nil end\n"
+      "function reset()\n"
+      "  if armed then while true do next(t) end end\n"
+      "  armed = true\n"
+      "end\n"
+      "function force(s) return 0 end",
+      limits);
+  script->reset();  // arms it (the instance is fresh: the check at load ran on another)
+  CHECK_FALSE(script->disabled());
+  const double cpu_start_s = thread_cpu_s();
+  script->reset();
+  CHECK(thread_cpu_s() - cpu_start_s < 0.3);
+  CHECK(script->fault() == ScriptFault::time_limit);
+  CHECK(std::string(script->fault_message()).find("t.lua:5: time backstop exceeded") == 0);
+}
+
 TEST_CASE("hostile: lookups of hash-colliding keys are stopped by the time backstop") {
   // Integer keys that are all multiples of the hash modulus share one chain: each lookup
   // of a missing one walks all 6000.
@@ -283,6 +307,19 @@ TEST_CASE("hostile: a top level of costly instructions stops at the load deadlin
   CHECK(error == "t.lua:4: load time limit exceeded (1 s to load the script)");
   CHECK(elapsed_s < 5.0);
   check_engine_still_works();
+}
+
+TEST_CASE("hostile: load_time is a key of an effect's limits") {
+  const auto parse = [](const nlohmann::json& limits) {
+    ObjectReader reader(limits, "/effects/0/limits", "test.json");
+    return parse_script_limits(reader);
+  };
+  CHECK(parse(nlohmann::json::object()).load_time_s == 5.0);
+  CHECK(parse({{"load_time", "250 ms"}}).load_time_s == doctest::Approx(0.25));
+  CHECK_THROWS_WITH_AS(parse({{"load_time", "700 s"}}),
+                       doctest::Contains("/effects/0/limits/load_time: must be at most 600 s"),
+                       InputError);
+  CHECK_THROWS_AS(parse({{"load_time", 0}}), InputError);
 }
 
 TEST_CASE("hostile: the compile itself stops at the load deadline") {
