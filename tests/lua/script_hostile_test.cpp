@@ -338,6 +338,25 @@ TEST_CASE("hostile: the compile itself stops at the load deadline") {
   CHECK(elapsed_s < 2.0);
 }
 
+TEST_CASE("hostile: a source of many number literals is refused before Lua compiles it") {
+  // 16 000 integers that all collide in the compiler's constant table (modulus 2^14 - 1):
+  // Lua took about 1 s to compile them, without one allocation for the deadline to see.
+  std::string numbers = "local t = {";
+  for (int i = 1; i <= 16000; ++i) numbers += std::to_string(16383 * i) + ",";
+  numbers += "}\nfunction force(s) return 0 end\n";
+  const auto start = std::chrono::steady_clock::now();
+  CHECK(load_error(numbers) ==
+        "t.lua: 16001 number literals; a script may have at most 10000 (compiling many numbers "
+        "can take seconds): compute large tables in code");
+  CHECK(seconds_since(start) < 0.5);
+  // Numbers in names, strings and comments do not count; 10 000 literals are fine.
+  std::string fine = "local t = {";
+  for (int i = 1; i <= 9997; ++i) fine += "1,";
+  fine += "}\nlocal s1 = '123 456' -- 789 1011\n--[==[ 1 2 3 ]==] local s2 = [[4 5 6]]\n"
+          "function force(s) return #t + 0x1p4 + 1e-3 - 16.001 end\n";
+  CHECK(load_error(fine) == "");
+}
+
 TEST_CASE("hostile: params are checked in one pass over the source, however many there are") {
   // 20 000 params in a 500 KB source: locating each declaration used to scan the source.
   std::string source = "params = {\n";
