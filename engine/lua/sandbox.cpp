@@ -206,7 +206,8 @@ void wrap(lua_State* L, int index, const char* name, lua_CFunction wrapper) {
 // - no __gc: Lua runs finalizers with hooks off, so an endless one would hang the host's
 //   collector (Lua registers a finalizer only when __gc is there at setmetatable time);
 // - no __mode: the collector clears weak tables in one step that no one can interrupt,
-//   and with weak keys its work grows with the square of their size;
+//   and with weak keys (ephemerons) it iterates to convergence, which can grow faster
+//   than their size;
 // - __index and __newindex chains of tables at most kMaxChainDepth long, and no loops:
 //   Lua follows up to 2000 of them inside one instruction, each a table lookup.
 // Chains stay bounded because a table that some frozen metatable names as __index or

@@ -3,6 +3,7 @@
 // that the instruction count does not see at its real cost; without its fix each took
 // seconds to forever. The time bounds are loose (a loaded 2-core machine), the faults
 // exact.
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 
@@ -287,6 +288,33 @@ TEST_CASE("hostile: a metatable is frozen when set; getmetatable still answers t
                    "local obj = setmetatable({ v = 3 }, Derived)\nassert(obj:get() == 3)\n"
                    "setmetatable(obj, nil)\nsetmetatable(obj, Derived)\n"
                    "function force(s) return obj:get() end") == "");
+}
+
+TEST_CASE("hostile: a collector step in the tick's slack is bounded by the heap") {
+  // 3 MiB of small tables, all touched every call (so the atomic step re-traverses them),
+  // and garbage every call so that the collector keeps running.
+  ScriptLimits limits;
+  limits.memory_bytes = 8u << 20;
+  auto script = run_inline(
+      "local cells = {}\n"
+      "for i = 1, 40000 do cells[i] = { i } end\n"
+      "local n = 0\n"
+      "function force(s)\n"
+      "  n = n + 1\n"
+      "  for i = 1, 40 do cells[(n * 40 + i) % 40000 + 1] = { n } end\n"
+      "  return 0\n"
+      "end",
+      limits);
+  double worst_s = 0.0;
+  for (int call = 0; call < 3000; ++call) {
+    script->force_N(at(0.0));
+    const double cpu_start_s = thread_cpu_s();
+    script->collect_garbage();
+    worst_s = std::max(worst_s, thread_cpu_s() - cpu_start_s);
+  }
+  MESSAGE("worst collector step over a 3 MiB heap: " << worst_s * 1e3 << " ms of CPU");
+  CHECK_FALSE(script->disabled());
+  CHECK(worst_s < 0.1);
 }
 
 // ---- Load --------------------------------------------------------------------------------
