@@ -28,6 +28,9 @@ ScriptLimits parse_script_limits(ObjectReader& reader) {
                                                   limits.instructions_at_load);
   limits.string_bytes = static_cast<std::size_t>(
       reader.integer_or("string_bytes", 256, 16 << 20, static_cast<long long>(limits.string_bytes)));
+  limits.load_time_s =
+      reader.quantity_or("load_time", Quantity::time_s, limits.load_time_s, Bound::positive);
+  if (limits.load_time_s > 600.0) reader.fail("load_time", "must be at most 600 s");
   limits.log_messages_per_s =
       reader.quantity_or("log_rate", Quantity::frequency_Hz, limits.log_messages_per_s, Bound::non_negative);
   limits.log_burst = static_cast<std::size_t>(reader.integer_or(

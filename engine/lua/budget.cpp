@@ -10,6 +10,7 @@
 // thread to counting for the rest of the call.
 #include <cstdarg>
 #include <cstdio>
+#include <ctime>
 
 #include "engine/lua/script_vm.hpp"
 
@@ -20,8 +21,19 @@ namespace {
 // allocates nothing. The message is in ScriptVm::fault.
 const char kTrippedError = 0;
 
-bool past_deadline(const ScriptVm* vm) {
-  return vm->check_clock && std::chrono::steady_clock::now() > vm->deadline;
+using Clock = std::chrono::steady_clock;
+
+// A call that has run this long is no longer ordinary: its CPU time is measured from here.
+constexpr auto kSlowCall = std::chrono::milliseconds(1);
+
+double thread_cpu_s() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+Clock::duration to_duration(double seconds) {
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
 }
 
 const char* budget_phrase(const ScriptVm* vm) {
@@ -34,7 +46,8 @@ void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_
                 std::int64_t straight_line_instructions) {
   vm->budget_instructions = instructions;
   vm->remaining_instructions = instructions;
-  if (straight_line_instructions > 0 && straight_line_instructions < instructions && !vm->tripped) {
+  if (straight_line_instructions > 0 && straight_line_instructions < instructions &&
+      straight_line_instructions <= kMaxStraightLine && !vm->tripped) {
     // The function's own code runs uncounted, charged its length up front; the call hook
     // switches to counting as soon as it calls a Lua function.
     vm->remaining_instructions -= straight_line_instructions;
@@ -51,6 +64,8 @@ void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_
     if (period != vm->hook_period || vm->tripped) start_counting(vm, vm->L, period);
   }
   vm->tripped = false;
+  vm->clock_started = false;
+  vm->slow = false;
   vm->in_call = true;
   vm->call_bytes = 0;
   vm->call_limit_bytes = allocation_limit_bytes;
@@ -97,30 +112,83 @@ void count_hook(lua_State* L, lua_Debug* ar) {
     // This thread's own period: a coroutine keeps the hook it had when it was counting.
     vm->remaining_instructions -= lua_gethookcount(L);
     const bool over_budget = vm->remaining_instructions <= 0;
-    const bool over_time = !over_budget && past_deadline(vm);
-    if (!over_budget && !over_time) return;
-    // Level 0 inside a hook is the function being run.
-    lua_getinfo(L, "Sl", ar);
     if (over_budget) {
+      // Level 0 inside a hook is the function being run.
+      lua_getinfo(L, "Sl", ar);
       record_fault(vm, ScriptFault::instruction_budget, "%s:%d: instruction budget exceeded (%lld %s)",
-                   ar->short_src,
-                   ar->currentline, static_cast<long long>(vm->budget_instructions),
+                   ar->short_src, ar->currentline, static_cast<long long>(vm->budget_instructions),
                    budget_phrase(vm));
     } else {
-      record_fault(vm, ScriptFault::time_limit, "%s:%d: time limit exceeded (%g ms per call)",
-                   ar->short_src,
-                   ar->currentline, vm->limits.wall_time_per_call_s * 1e3);
+      if (!time_exceeded(vm, L, 0)) return;
     }
     trip(vm, L);
   }
   raise_tripped(L);
 }
 
+bool time_exceeded(ScriptVm* vm, lua_State* L, int level) {
+  const Clock::time_point now = Clock::now();
+  char where[160];
+  const auto locate = [&] { describe_position(L, level, vm, where, sizeof where); };
+  // The call's clock starts at its first checkpoint (reading it on entry would cost every
+  // call). The hook period never depends on time, so the instruction count stays exact
+  // and machine-independent.
+  const bool first_check = !vm->clock_started;
+  if (first_check) {
+    vm->clock_started = true;
+    vm->clock_start = now;
+  }
+
+  if (vm->phase == Phase::loading) {
+    if (now <= vm->load_deadline) return false;
+    locate();
+    record_fault(vm, ScriptFault::time_limit,
+                 "%s: load time limit exceeded (%g s to load the script)", where,
+                 vm->limits.load_time_s);
+    return true;
+  }
+  if (vm->check_clock && now > vm->deadline) {
+    locate();
+    record_fault(vm, ScriptFault::time_limit, "%s: time limit exceeded (%g ms per call)", where,
+                 vm->limits.wall_time_per_call_s * 1e3);
+    return true;
+  }
+
+  // The backstop, on CPU time.
+  if (!vm->slow) {
+    if (first_check || now - vm->clock_start < kSlowCall) return false;
+    // Measure CPU time from here on (reading it is a system call: only in long calls).
+    vm->slow = true;
+    vm->wall_before_slow = now - vm->clock_start;
+    vm->cpu_at_slow_s = thread_cpu_s();
+    vm->next_cpu_check = vm->clock_start + to_duration(vm->backstop_s);
+    return false;
+  }
+  if (now < vm->next_cpu_check) return false;
+  // Wall time says the backstop is reached; CPU time decides (preemption is not the
+  // script's doing).
+  const double used_s = std::chrono::duration<double>(vm->wall_before_slow).count() +
+                        (thread_cpu_s() - vm->cpu_at_slow_s);
+  if (used_s < vm->backstop_s) {
+    vm->next_cpu_check = now + to_duration(vm->backstop_s - used_s);
+    return false;
+  }
+  locate();
+  record_fault(vm, ScriptFault::time_limit,
+               "%s: time backstop exceeded (%g ms of CPU time per call; instructions that cost "
+               "far more than usual, see scripts/README.md)", where, vm->backstop_s * 1e3);
+  return true;
+}
+
 void charge(lua_State* L, std::int64_t instructions) {
   ScriptVm* vm = vm_of(L);
   if (vm->tripped) raise_tripped(L);
   vm->remaining_instructions -= instructions;
-  if (vm->remaining_instructions > 0) return;
+  if (vm->remaining_instructions > 0) {
+    if (!time_exceeded(vm, L, 1)) return;
+    trip(vm, L);
+    raise_tripped(L);
+  }
   char where[160];
   describe_position(L, 1, vm, where, sizeof where);
   record_fault(vm, ScriptFault::instruction_budget,
@@ -166,3 +234,14 @@ void describe_position(lua_State* L, int level, const ScriptVm* vm, char* out, s
 }
 
 }  // namespace hapscene::detail
+
+namespace hapscene {
+
+double call_time_backstop_s(const ScriptLimits& limits) {
+  constexpr double kPerInstruction_s = 1e-6;
+  constexpr double kFloor_s = 0.02;
+  const double backstop_s = static_cast<double>(limits.instructions_per_call) * kPerInstruction_s;
+  return backstop_s > kFloor_s ? backstop_s : kFloor_s;
+}
+
+}  // namespace hapscene

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string_view>
+#include <unordered_map>
 
 #include "engine/load/units.hpp"
 #include "engine/lua/params.hpp"
@@ -18,29 +19,67 @@ namespace {
 // Registry key of the params table as first assigned.
 const char kParamsKey = 0;
 
-// ---- Suggestions without allocating (they run inside the tick on error paths) -------
+// ---- Suggestions: noted at the failed lookup, searched only when reported -------------
 
+// Registry key of the table of the last failed lookup.
+const char kSuggestTableKey = 0;
+
+// Candidates compared at most; a table with more near-length names gets no suggestion,
+// so the search is bounded and its answer does not depend on traversal order.
+constexpr int kMaxCandidates = 256;
 
 // The string key of the table at `index` nearest to `name` (ties: the smaller key), or ""
 // when none is close: at most one edit per three letters (one for short names).
 void nearest_key(lua_State* L, int index, std::string_view name, char* out, std::size_t size) {
   out[0] = '\0';
+  if (name.size() > kMaxSuggestedNameBytes || lua_checkstack(L, 3) == 0) return;
   index = lua_absindex(L, index);
-  std::size_t best = std::max<std::size_t>(1, name.size() / 3) + 1;
+  const std::size_t threshold = std::max<std::size_t>(1, name.size() / 3) + 1;
+  std::size_t best = threshold;
+  int candidates = 0;
   lua_pushnil(L);
   while (lua_next(L, index) != 0) {
     if (lua_type(L, -2) == LUA_TSTRING) {
       std::size_t length = 0;
       const char* key = lua_tolstring(L, -2, &length);
-      const std::size_t d = edit_distance(name, std::string_view(key, length));
-      if (d > 0 && length < size &&
-          (d < best || (d == best && out[0] != '\0' && std::strcmp(key, out) < 0))) {
-        best = d;
-        std::memcpy(out, key, length + 1);
+      // The length difference is a lower bound of the distance.
+      const std::size_t gap = length > name.size() ? length - name.size() : name.size() - length;
+      if (gap < threshold && ++candidates <= kMaxCandidates) {
+        const std::size_t d = edit_distance(name, std::string_view(key, length));
+        if (d > 0 && length < size &&
+            (d < best || (d == best && out[0] != '\0' && std::strcmp(key, out) < 0))) {
+          best = d;
+          std::memcpy(out, key, length + 1);
+        }
       }
     }
     lua_pop(L, 1);
   }
+  if (candidates > kMaxCandidates) out[0] = '\0';
+}
+
+// Raises "<place>: <format with name>" after noting the lookup for suggestion_for. The
+// table looked up is argument 1.
+int raise_lookup_error(lua_State* L, PendingSuggestion::Kind kind, const char* library,
+                       const char* format, const char* name) {
+  ScriptVm* vm = vm_of(L);
+  luaL_where(L, 1);
+  lua_pushfstring(L, format, name);
+  lua_concat(L, 2);
+  std::size_t length = 0;
+  const char* message = lua_tolstring(L, -1, &length);
+  PendingSuggestion& pending = vm->suggestion;
+  pending.kind = PendingSuggestion::Kind::none;
+  const std::size_t name_length = std::strlen(name);
+  if (length < sizeof pending.message && name_length < sizeof pending.name) {
+    std::memcpy(pending.message, message, length + 1);
+    std::memcpy(pending.name, name, name_length + 1);
+    std::snprintf(pending.library, sizeof pending.library, "%s", library);
+    pending.kind = kind;
+    lua_pushvalue(L, 1);
+    lua_rawsetp(L, LUA_REGISTRYINDEX, &kSuggestTableKey);  // the slot exists: no allocation
+  }
+  return lua_error(L);
 }
 
 // ---- Load errors: stored as text, thrown as InputError once the Lua call returns -----
@@ -64,26 +103,33 @@ int raise_load_error(lua_State* L) { return raise_tripped(L); }
 
 // ---- params ------------------------------------------------------------------------
 
-// The last line at or before `last_line` where `name = ` appears in the source (a table
-// constructor ends at the line of the assignment, so its fields are above it), or 0.
-int declaration_line(const std::string& source, const std::string& name, int last_line) {
+// For every name written as `name = ` at or before `last_line`, the last line where it
+// is (a table constructor ends at the line of the assignment, so its fields are above
+// it). One pass over the source, however many params there are.
+std::unordered_map<std::string_view, int> declaration_lines(const std::string& source, int last_line) {
+  std::unordered_map<std::string_view, int> lines;
+  const auto is_word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
   int line = 1;
-  int found = 0;
-  for (std::size_t i = 0; i < source.size() && line <= last_line; ++i) {
+  for (std::size_t i = 0; i < source.size() && line <= last_line;) {
     if (source[i] == '\n') {
       ++line;
+      ++i;
       continue;
     }
-    const bool starts_word =
-        i == 0 || !(std::isalnum(static_cast<unsigned char>(source[i - 1])) || source[i - 1] == '_');
-    if (!starts_word || source.compare(i, name.size(), name) != 0) continue;
-    std::size_t j = i + name.size();
+    if (!is_word(source[i])) {
+      ++i;
+      continue;
+    }
+    std::size_t end = i;
+    while (end < source.size() && is_word(source[end])) ++end;
+    std::size_t j = end;
     while (j < source.size() && (source[j] == ' ' || source[j] == '\t')) ++j;
     if (j < source.size() && source[j] == '=' && (j + 1 >= source.size() || source[j + 1] != '=')) {
-      found = line;
+      lines[std::string_view(source).substr(i, end - i)] = line;
     }
+    i = end;
   }
-  return found;
+  return lines;
 }
 
 // Reads the declared defaults of the table at `index` (0: none declared) and resolves
@@ -92,6 +138,8 @@ bool resolve_declared(lua_State* L, int index, const char* declared_at, int assi
                       ScriptVm* vm) noexcept {
   try {
     std::vector<DeclaredParam> declared;
+    std::unordered_map<std::string_view, int> lines;
+    if (index != 0 && vm->source != nullptr) lines = declaration_lines(*vm->source, assigned_line);
     if (index != 0) {
       lua_pushnil(L);
       while (lua_next(L, index) != 0) {
@@ -123,9 +171,8 @@ bool resolve_declared(lua_State* L, int index, const char* declared_at, int assi
             d.text = luaL_typename(L, -1);
             break;
         }
-        if (!d.name.empty() && vm->source != nullptr) {
-          const int line = declaration_line(*vm->source, d.name, assigned_line);
-          if (line > 0) d.declared_at = vm->short_source + ":" + std::to_string(line);
+        if (const auto line = lines.find(d.name); !d.name.empty() && line != lines.end()) {
+          d.declared_at = vm->short_source + ":" + std::to_string(line->second);
         }
         declared.push_back(std::move(d));
         lua_pop(L, 1);
@@ -147,13 +194,8 @@ bool resolve_declared(lua_State* L, int index, const char* declared_at, int assi
 // params.stifness (a typo) is an error naming the nearest parameter.
 int params_index(lua_State* L) {
   if (lua_type(L, 2) != LUA_TSTRING) return luaL_error(L, "params has no field [%s]", luaL_typename(L, 2));
-  const char* name = lua_tostring(L, 2);
-  char suggestion[64];
-  nearest_key(L, 1, name, suggestion, sizeof suggestion);
-  if (suggestion[0] != '\0') {
-    return luaL_error(L, "params has no field '%s' (did you mean '%s'?)", name, suggestion);
-  }
-  return luaL_error(L, "params has no field '%s'", name);
+  return raise_lookup_error(L, PendingSuggestion::Kind::params, "", "params has no field '%s'",
+                            lua_tostring(L, 2));
 }
 
 // New fields of params are errors too: every parameter is declared in the table.
@@ -270,12 +312,7 @@ int state_index(lua_State* L) {
   if (!vm->needs_time && std::strcmp(name, "t") == 0) {
     return luaL_error(L, "s.t is not available: the script declares needs.time = false");
   }
-  char suggestion[64];
-  nearest_key(L, 1, name, suggestion, sizeof suggestion);
-  if (suggestion[0] != '\0') {
-    return luaL_error(L, "s has no field '%s' (did you mean 's.%s'?)", name, suggestion);
-  }
-  return luaL_error(L, "s has no field '%s' (s has x, v, t, dt)", name);
+  return raise_lookup_error(L, PendingSuggestion::Kind::state, "", "s has no field '%s'", name);
 }
 
 int state_newindex(lua_State* L) {
@@ -335,12 +372,7 @@ int global_index(lua_State* L) {
   if (std::strcmp(name, "unpack") == 0) {
     return luaL_error(L, "undefined global 'unpack' (use table.unpack)");
   }
-  char suggestion[64];
-  nearest_key(L, 1, name, suggestion, sizeof suggestion);
-  if (suggestion[0] != '\0') {
-    return luaL_error(L, "undefined global '%s' (did you mean '%s'?)", name, suggestion);
-  }
-  return luaL_error(L, "undefined global '%s'", name);
+  return raise_lookup_error(L, PendingSuggestion::Kind::global, "", "undefined global '%s'", name);
 }
 
 // Creating a global: fine while loading (that is how a script declares its state and
@@ -380,13 +412,45 @@ int library_index(lua_State* L) {
       }
     }
   }
-  char suggestion[64];
-  nearest_key(L, 1, name, suggestion, sizeof suggestion);
-  if (suggestion[0] != '\0') {
-    return luaL_error(L, "%s has no field '%s' (did you mean '%s.%s'?)", library, name, library,
-                      suggestion);
+  // The format names the library; the name is the one argument.
+  char format[48];
+  std::snprintf(format, sizeof format, "%s has no field '%%s'", library);
+  return raise_lookup_error(L, PendingSuggestion::Kind::library, library, format, name);
+}
+
+void prepare_suggestions(lua_State* L) {
+  lua_pushboolean(L, 0);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &kSuggestTableKey);
+}
+
+void suggestion_for(ScriptVm* vm, lua_State* L, const char* message, char* out, std::size_t size) {
+  out[0] = '\0';
+  PendingSuggestion& pending = vm->suggestion;
+  if (pending.kind == PendingSuggestion::Kind::none || std::strcmp(message, pending.message) != 0) {
+    return;
   }
-  return luaL_error(L, "%s has no field '%s'", library, name);
+  char nearest[64] = "";
+  if (lua_checkstack(L, 4) != 0 && lua_rawgetp(L, LUA_REGISTRYINDEX, &kSuggestTableKey) == LUA_TTABLE) {
+    nearest_key(L, -1, pending.name, nearest, sizeof nearest);
+  }
+  lua_pop(L, 1);
+  const bool found = nearest[0] != '\0';
+  switch (pending.kind) {
+    case PendingSuggestion::Kind::state:
+      if (found) {
+        std::snprintf(out, size, " (did you mean 's.%s'?)", nearest);
+      } else {
+        std::snprintf(out, size, " (s has x, v, t, dt)");
+      }
+      break;
+    case PendingSuggestion::Kind::library:
+      if (found) std::snprintf(out, size, " (did you mean '%s.%s'?)", pending.library, nearest);
+      break;
+    default:
+      if (found) std::snprintf(out, size, " (did you mean '%s'?)", nearest);
+      break;
+  }
+  pending.kind = PendingSuggestion::Kind::none;
 }
 
 // ---- After the chunk has run -----------------------------------------------------------

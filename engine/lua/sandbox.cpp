@@ -5,8 +5,9 @@
 // io, os, debug, package/require, load/loadstring/dofile/loadfile, warn, string.dump,
 // string.pack/unpack, and the string pattern functions (find, match, gmatch, gsub): one
 // pattern call can backtrack for seconds inside C, where no hook can stop it.
-// Replaced: setmetatable (refuses __gc, whose finalizers run with hooks disabled),
-// collectgarbage ("count" only: the host runs the collector), print (= log).
+// Replaced: setmetatable (freezes a copy of the metatable; refuses __gc, __mode and long
+// or looping __index chains), collectgarbage ("count" only: the host runs the collector),
+// print (= log).
 // Charged: library functions whose C loops depend on their arguments (table.sort, insert,
 // remove, move, concat, unpack, string.rep, string.byte, utf8 scans) subtract their work
 // from the instruction budget before they run.
@@ -50,9 +51,36 @@ std::int64_t span(lua_Integer first, lua_Integer last) {
   return count >= (1ull << 62) ? (1ll << 62) : static_cast<std::int64_t>(count) + 1;
 }
 
-// #t as the original will see it (honours __len), or 0 when the argument is not a table.
+// #t (honours __len), or 0 when the argument is not a table.
 lua_Integer length_of(lua_State* L, int index) {
   return lua_type(L, index) == LUA_TTABLE ? luaL_len(L, index) : 0;
+}
+
+// __len of a fixed-length proxy: upvalue 1.
+int fixed_length(lua_State* L) {
+  lua_pushvalue(L, lua_upvalueindex(1));
+  return 1;
+}
+
+// A __len metamethod is script code: asked again by the original function, it may answer
+// a different length than the one charged (a negative one first, a huge one next), and
+// the original's C loop would run uncharged. So a table with __len is handed to the
+// original as a proxy whose length is fixed at `length`; reads and writes go through to
+// the table (its own __index and __newindex included).
+void fix_length(lua_State* L, int index, lua_Integer length) {
+  if (lua_type(L, index) != LUA_TTABLE || luaL_getmetafield(L, index, "__len") == LUA_TNIL) return;
+  lua_pop(L, 1);
+  lua_createtable(L, 0, 0);
+  lua_createtable(L, 0, 3);
+  lua_pushvalue(L, index);
+  lua_setfield(L, -2, "__index");
+  lua_pushvalue(L, index);
+  lua_setfield(L, -2, "__newindex");
+  lua_pushinteger(L, length);
+  lua_pushcclosure(L, fixed_length, 1);
+  lua_setfield(L, -2, "__len");
+  lua_setmetatable(L, -2);
+  lua_replace(L, index);
 }
 
 // table.sort: about n log2 n comparisons.
@@ -61,17 +89,26 @@ int charged_sort(lua_State* L) {
   std::int64_t log2n = 1;
   while (log2n < 62 && (lua_Integer{1} << log2n) < n) ++log2n;
   charge(L, n > (1ll << 40) ? (1ll << 62) : n * log2n);
+  fix_length(L, 1, n);
   return call_original(L);
 }
 
 // table.insert(t, pos, v) and table.remove(t, pos) shift up to #t elements; appending
 // (insert with two arguments, remove with one) is one step.
 int charged_insert(lua_State* L) {
-  if (lua_gettop(L) >= 3) charge(L, span(1, length_of(L, 1)));
+  if (lua_gettop(L) >= 3) {
+    const lua_Integer n = length_of(L, 1);
+    charge(L, span(1, n));
+    fix_length(L, 1, n);
+  }
   return call_original(L);
 }
 int charged_remove(lua_State* L) {
-  if (lua_gettop(L) >= 2) charge(L, span(1, length_of(L, 1)));
+  if (lua_gettop(L) >= 2) {
+    const lua_Integer n = length_of(L, 1);
+    charge(L, span(1, n));
+    fix_length(L, 1, n);
+  }
   return call_original(L);
 }
 
@@ -81,12 +118,22 @@ int charged_move(lua_State* L) {
   return call_original(L);
 }
 
-// table.concat(t, sep, i, j) and table.unpack(t, i, j) visit j - i + 1 elements.
+// table.concat(t, sep, i, j) and table.unpack(t, i, j) visit j - i + 1 elements. The
+// range is passed on explicitly, so the original never asks __len again.
+// (table.unpack takes the length of anything, as the original does: "abc" has 3.)
 int charged_range(lua_State* L, int first_arg) {
   const lua_Integer first = luaL_optinteger(L, first_arg, 1);
-  const lua_Integer last =
-      lua_isnoneornil(L, first_arg + 1) ? length_of(L, 1) : luaL_checkinteger(L, first_arg + 1);
+  const bool any_length = first_arg == 2;
+  const lua_Integer last = !lua_isnoneornil(L, first_arg + 1) ? luaL_checkinteger(L, first_arg + 1)
+                           : any_length                        ? luaL_len(L, 1)
+                                                               : length_of(L, 1);
   charge(L, span(first, last));
+  fix_length(L, 1, last);  // concat asks the length even when given the range
+  if (lua_gettop(L) < first_arg + 1) lua_settop(L, first_arg + 1);
+  lua_pushinteger(L, first);
+  lua_replace(L, first_arg);
+  lua_pushinteger(L, last);
+  lua_replace(L, first_arg + 1);
   return call_original(L);
 }
 int charged_concat(lua_State* L) { return charged_range(L, 3); }
@@ -151,27 +198,135 @@ void wrap(lua_State* L, int index, const char* name, lua_CFunction wrapper) {
 
 // ---- Replacements -------------------------------------------------------------------
 
-// setmetatable without finalizers: Lua runs __gc with hooks off, so an endless one would
-// hang the host's collector. Lua only registers a finalizer when __gc is present at
-// setmetatable time, so checking here is enough.
+// ---- setmetatable: frozen metatables --------------------------------------------------
+//
+// A metatable is copied when it is set: the table gets a private copy of its metamethods,
+// and later changes to the script's table have no effect (getmetatable still answers the
+// script's table). Frozen, the metamethods can be checked once, here:
+// - no __gc: Lua runs finalizers with hooks off, so an endless one would hang the host's
+//   collector (Lua registers a finalizer only when __gc is there at setmetatable time);
+// - no __mode: the collector clears weak tables in one step that no one can interrupt,
+//   and with weak keys (ephemerons) it iterates to convergence, which can grow faster
+//   than their size;
+// - __index and __newindex chains of tables at most kMaxChainDepth long, and no loops:
+//   Lua follows up to 2000 of them inside one instruction, each a table lookup.
+// Chains stay bounded because a table that some frozen metatable names as __index or
+// __newindex (a "target") may later get a new metatable only if its chain does not grow.
+
+// Keys of the copies (light userdata: no script can name them) and of the registry set.
+const char kProtectedKey = 0;  // copy[&kProtectedKey]: the original had __metatable
+const char kDepthKey = 0;      // copy[&kDepthKey]: tables from here to the chain's end
+const char kTargetsKey = 0;    // registry: weak-keyed set of tables named by a copy
+
+constexpr int kMaxChainDepth = 16;
+
+// The events Lua and its libraries look up in a metatable (raw), but __gc and __mode.
+constexpr std::array kEvents{"__index", "__newindex", "__len",  "__eq",     "__lt",   "__le",
+                             "__unm",   "__add",      "__sub",  "__mul",    "__div",  "__mod",
+                             "__pow",   "__idiv",     "__band", "__bor",    "__bxor", "__shl",
+                             "__shr",   "__bnot",     "__concat", "__call", "__close",
+                             "__tostring", "__name",  "__pairs"};
+
+// Chain depth of the table at `index`: 0 without a metatable; a metatable the sandbox
+// made itself (s, libraries, globals, params) is one table deep at most.
+lua_Integer chain_depth(lua_State* L, int index) {
+  if (lua_getmetatable(L, index) == 0) return 0;
+  const lua_Integer depth = lua_rawgetp(L, -1, &kDepthKey) == LUA_TNUMBER ? lua_tointeger(L, -1) : 1;
+  lua_pop(L, 2);
+  return depth;
+}
+
+bool is_target(lua_State* L, int index) {
+  index = lua_absindex(L, index);
+  lua_rawgetp(L, LUA_REGISTRYINDEX, &kTargetsKey);
+  lua_pushvalue(L, index);
+  const bool target = lua_rawget(L, -2) != LUA_TNIL;
+  lua_pop(L, 2);
+  return target;
+}
+
+// Whether the current metatable of the table at `index` forbids changing it.
+bool protected_metatable(lua_State* L, int index) {
+  if (lua_getmetatable(L, index) == 0) return false;
+  bool is_protected = false;
+  if (lua_rawgetp(L, -1, &kProtectedKey) == LUA_TBOOLEAN) {
+    is_protected = lua_toboolean(L, -1) != 0;
+  } else {
+    lua_pushliteral(L, "__metatable");
+    is_protected = lua_rawget(L, -3) != LUA_TNIL;
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 2);
+  return is_protected;
+}
+
 int sandbox_setmetatable(lua_State* L) {
   luaL_checktype(L, 1, LUA_TTABLE);
   const int type = lua_type(L, 2);
   luaL_argexpected(L, type == LUA_TNIL || type == LUA_TTABLE, 2, "nil or table");
-  if (type == LUA_TTABLE) {
-    lua_pushliteral(L, "__gc");
-    const bool has_gc = lua_rawget(L, 2) != LUA_TNIL;
+  lua_settop(L, 2);
+  if (protected_metatable(L, 1)) return luaL_error(L, "cannot change a protected metatable");
+  if (type == LUA_TNIL) {
+    lua_setmetatable(L, 1);
+    return 1;  // the table, now on top
+  }
+  for (const char* refused : {"__gc", "__mode"}) {
+    lua_pushstring(L, refused);
+    const bool present = lua_rawget(L, 2) != LUA_TNIL;
     lua_pop(L, 1);
-    if (has_gc) {
+    if (!present) continue;
+    if (std::strcmp(refused, "__gc") == 0) {
       return luaL_error(L, "setmetatable: __gc finalizers are not allowed in scripts "
                            "(they would run outside the instruction budget)");
     }
+    return luaL_error(L, "setmetatable: weak tables (__mode) are not allowed in scripts (the "
+                         "collector clears them in one step that cannot be interrupted)");
   }
-  if (luaL_getmetafield(L, 1, "__metatable") != LUA_TNIL) {
-    return luaL_error(L, "cannot change a protected metatable");
+  charge(L, static_cast<std::int64_t>(kEvents.size()));
+
+  // The copy (3), its chain depth, and the tables it names.
+  const lua_Integer old_depth = chain_depth(L, 1);
+  lua_createtable(L, 0, 4);
+  lua_Integer depth = 0;
+  for (const char* event : kEvents) {
+    lua_pushstring(L, event);
+    if (lua_rawget(L, 2) == LUA_TNIL) {
+      lua_pop(L, 1);
+      continue;
+    }
+    const bool chain = std::strcmp(event, "__index") == 0 || std::strcmp(event, "__newindex") == 0;
+    if (chain && lua_type(L, -1) == LUA_TTABLE) {
+      depth = std::max(depth, 1 + chain_depth(L, -1));
+      lua_rawgetp(L, LUA_REGISTRYINDEX, &kTargetsKey);
+      lua_pushvalue(L, -2);
+      lua_pushboolean(L, 1);
+      lua_rawset(L, -3);
+      lua_pop(L, 1);
+    }
+    lua_setfield(L, 3, event);
   }
-  lua_settop(L, 2);
+  if (depth > kMaxChainDepth) {
+    return luaL_error(L, "setmetatable: __index/__newindex chains longer than %d tables are not "
+                         "allowed in scripts", kMaxChainDepth);
+  }
+  if (depth > old_depth && is_target(L, 1)) {
+    return luaL_error(L, "setmetatable: this table is the __index or __newindex of another "
+                         "table, so its own chain cannot grow (it would make a loop or a long chain)");
+  }
+  // getmetatable(t) answers the script's table, or its __metatable field.
+  lua_pushliteral(L, "__metatable");
+  const bool has_protection = lua_rawget(L, 2) != LUA_TNIL;
+  if (!has_protection) {
+    lua_pop(L, 1);
+    lua_pushvalue(L, 2);
+  }
+  lua_setfield(L, 3, "__metatable");
+  lua_pushboolean(L, has_protection ? 1 : 0);
+  lua_rawsetp(L, 3, &kProtectedKey);
+  lua_pushinteger(L, depth);
+  lua_rawsetp(L, 3, &kDepthKey);
   lua_setmetatable(L, 1);
+  lua_settop(L, 1);
   return 1;
 }
 
@@ -308,6 +463,15 @@ int global_newindex(lua_State* L);  // globals.cpp
 
 int open_sandbox(lua_State* L) {
   lua_settop(L, 0);
+  prepare_suggestions(L);
+  // The set of chain targets (see sandbox_setmetatable): weak keys, values true, so the
+  // collector clears it in one linear pass.
+  lua_createtable(L, 0, 0);
+  lua_createtable(L, 0, 1);
+  lua_pushliteral(L, "k");
+  lua_setfield(L, -2, "__mode");
+  lua_setmetatable(L, -2);
+  lua_rawsetp(L, LUA_REGISTRYINDEX, &kTargetsKey);
   lua_newtable(L);
   const int env = 1;
 

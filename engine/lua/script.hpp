@@ -54,12 +54,27 @@ struct ScriptLimits {
   std::size_t string_bytes{4096};
   // Wall-clock time per force()/reset() call, checked every 128 instructions; 0 = off.
   // Off by default because it makes faults depend on the machine (simulated runs are
-  // deterministic); a real-time runner should set it to about one tick period.
+  // deterministic); a real-time runner should set it to about one tick period. (A
+  // backstop is always on: see call_time_backstop_s.)
   double wall_time_per_call_s{0.0};
+  // Wall-clock time for the whole load of one instance (compile, top-level code,
+  // checks), always on. A well-behaved load takes milliseconds; this stops a source
+  // that is pathological to compile or a top level whose C work the instruction count
+  // does not see. Hot reload relies on it: ScriptInstance::create and compile_script
+  // return or throw within load_time_s plus the overshoot bound in scripts/README.md.
+  double load_time_s{5.0};
   // log()/print(): messages admitted per second of run time (s.t), and the burst.
   double log_messages_per_s{10.0};
   std::size_t log_burst{20};
 };
+
+// The CPU-time backstop of one force()/reset() call: 1 us per budgeted instruction, at
+// least 20 ms (100 ms at the default budget). Plain Lua runs 2-10 ns per instruction, so
+// a script within its budget never comes near it and simulated runs stay deterministic;
+// it stops a call whose instructions are each very costly (hash-colliding tables, long
+// __index chains, sparse traversals), which the instruction count cannot see. It is CPU
+// time of the calling thread, so being preempted does not count against the script.
+double call_time_backstop_s(const ScriptLimits& limits);
 
 // Why a script was disabled.
 enum class ScriptFault {
@@ -67,7 +82,7 @@ enum class ScriptFault {
   error,               // a runtime error (including C stack overflow)
   bad_return,          // force(s) returned something other than a finite number
   instruction_budget,  // instructions_per_call (C functions are charged for their work)
-  time_limit,          // wall_time_per_call_s
+  time_limit,          // wall_time_per_call_s, the call's CPU-time backstop, or load_time_s
   memory_limit,        // memory_bytes, allocation_bytes_per_call or string_bytes
 };
 

@@ -2,6 +2,7 @@
 // sequence (sandbox, text-only chunk, top-level code, checks); the calls in the tick
 // (force_N, reset) run under the instruction budget and allocation limits and turn any
 // failure into "disabled, 0 N, one message".
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -38,8 +39,10 @@ bool has_place(const ScriptVm& vm, const char* message) {
   if (vm.fault_length > 0) throw InputError(std::string(vm.fault, vm.fault_length));
   if (lua_type(L, -1) == LUA_TSTRING) {
     const char* message = lua_tostring(L, -1);
-    if (has_place(vm, message)) throw InputError(message);
-    throw InputError(vm.display_name + ": " + message);
+    char hint[160];
+    detail::suggestion_for(const_cast<ScriptVm*>(&vm), L, message, hint, sizeof hint);
+    if (has_place(vm, message)) throw InputError(message + std::string(hint));
+    throw InputError(vm.display_name + ": " + message + hint);
   }
   throw InputError(vm.display_name + ": error while loading (error object is a " +
                    luaL_typename(L, -1) + " value)");
@@ -51,10 +54,13 @@ void record_call_failure(ScriptVm* vm, int status, const char* what) {
   if (vm->fault_length > 0) return;  // a tripped limit already said why
   if (status != LUA_OK && lua_type(L, -1) == LUA_TSTRING) {
     const char* message = lua_tostring(L, -1);
+    // The "did you mean" search of a failed lookup runs here, once, for the reported error.
+    char hint[160];
+    detail::suggestion_for(vm, L, message, hint, sizeof hint);
     if (has_place(*vm, message)) {
-      detail::record_fault(vm, ScriptFault::error, "%s", message);
+      detail::record_fault(vm, ScriptFault::error, "%s%s", message, hint);
     } else {
-      detail::record_fault(vm, ScriptFault::error, "%s: %s", vm->display_name.c_str(), message);
+      detail::record_fault(vm, ScriptFault::error, "%s: %s%s", vm->display_name.c_str(), message, hint);
     }
     return;
   }
@@ -95,6 +101,7 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   vm->display_name = program.display_name;
   vm->short_source = short_source_of(program.display_name);
   vm->limits = program.limits;
+  vm->backstop_s = call_time_backstop_s(program.limits);
   vm->source = &program.source;
   vm->params_override = &program.params_override;
   vm->error_context = program.error_context;
@@ -116,7 +123,12 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   lua_gc(L, LUA_GCINC, 0, 0, kGcStepSizeLog2);
 
   // Load: sandbox, chunk (text only, named "@display_name" so messages read
-  // "scripts/bumps.lua:12: ..."), top-level code, then the checks. One budget for all.
+  // "scripts/bumps.lua:12: ..."), top-level code, then the checks. One budget and one
+  // deadline for all (checked by the count hook, charged functions and the allocator,
+  // which is all that runs while Lua compiles).
+  vm->load_deadline = std::chrono::steady_clock::now() +
+                      std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                          std::chrono::duration<double>(program.limits.load_time_s));
   detail::begin_call(vm, program.limits.instructions_at_load, static_cast<std::size_t>(-1));
   lua_pushcfunction(L, detail::open_sandbox);
   if (lua_pcall(L, 0, 0, 0) != LUA_OK) throw_load_failure(*vm, L);

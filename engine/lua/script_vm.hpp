@@ -34,8 +34,20 @@ inline constexpr int kSlotCount = 8;
 
 // The hook fires every this many instructions (fewer when the budget is smaller).
 inline constexpr std::int64_t kHookPeriod = 128;
+// Longest force() that runs uncounted (see begin_call): no time check runs inside it, so
+// its length times the costliest instruction bounds the call.
+inline constexpr std::int64_t kMaxStraightLine = 256;
 
 enum class Phase { loading, running };
+
+// What a failed lookup left for the suggestion search (see globals.cpp).
+struct PendingSuggestion {
+  enum class Kind { none, global, params, state, library };
+  Kind kind{Kind::none};
+  char message[256]{};  // the error as raised, with its place
+  char name[64]{};      // the name looked up (suggestions are for names up to 48 bytes)
+  char library[16]{};   // for Kind::library
+};
 
 struct ScriptVm {
   // Set at creation.
@@ -56,7 +68,19 @@ struct ScriptVm {
   bool hook_on_calls{};         // the call hook is installed instead (see begin_call)
   bool entered_function{};      // the call hook has seen the called function's own call
   bool check_clock{};
-  std::chrono::steady_clock::time_point deadline{};
+  std::chrono::steady_clock::time_point deadline{};  // of wall_time_per_call_s
+  // Time backstop (see check_time in budget.cpp). Loading: a wall-clock deadline.
+  // Running: the call's clock starts at its first checkpoint; past kSlowCall the CPU time
+  // is read, and the backstop is confirmed on CPU time before it trips.
+  std::chrono::steady_clock::time_point load_deadline{};
+  double backstop_s{};         // CPU seconds per call (call_time_backstop_s, set at creation)
+  bool clock_started{};
+  bool slow{};                 // the call has run for over kSlowCall
+  std::chrono::steady_clock::time_point clock_start{};
+  std::chrono::steady_clock::time_point next_cpu_check{};
+  double cpu_at_slow_s{};
+  std::chrono::steady_clock::duration wall_before_slow{};
+  unsigned allocations_since_check{};
   bool tripped{};  // a limit was exceeded: every instruction raises until the call returns
 
   // Memory accounting (see allocator.cpp).
@@ -95,6 +119,10 @@ struct ScriptVm {
   std::vector<ScriptParam> params;
   std::string load_error;  // set by a C function that failed a load check; thrown later
 
+  // The last failed lookup of a guarded table (globals, params, s, a library), whose
+  // "did you mean" search is owed: it runs only if this error is the one reported.
+  PendingSuggestion suggestion;
+
   LogQueue log;
   bool log_writing{};  // inside log(), between taking a slot and publishing it
 };
@@ -116,8 +144,13 @@ void start_counting(ScriptVm* vm, lua_State* L, std::int64_t period);
 void count_hook(lua_State* L, lua_Debug* ar);
 // The call hook of a straight-line call: starts counting when a Lua function is called.
 void call_hook(lua_State* L, lua_Debug* ar);
-// Charges a C function's work as `instructions`; raises if the budget runs out.
+// Charges a C function's work as `instructions`; raises if the budget runs out or the
+// call is past its time limits.
 void charge(lua_State* L, std::int64_t instructions);
+// Checks the time limits at a checkpoint (hook, charge, allocation while loading):
+// records the fault and returns true when one is exceeded. Never raises.
+// `L` and `level` locate the script's position for the message (see describe_position).
+bool time_exceeded(ScriptVm* vm, lua_State* L, int level);
 // Records the first fault message (printf-style, truncated to the buffer).
 void record_fault(ScriptVm* vm, ScriptFault kind, const char* format, ...)
     __attribute__((format(printf, 3, 4)));
@@ -139,6 +172,14 @@ int open_sandbox(lua_State* L);
 // Gives the table at `index` a hidden metatable (getmetatable answers false) whose
 // __index and __newindex are the given functions: for strict globals and sealed params.
 void set_guard_metatable(lua_State* L, int index, lua_CFunction on_index, lua_CFunction on_newindex);
+// Makes the registry slot that holds the table of the last failed lookup (so noting one
+// never allocates).
+void prepare_suggestions(lua_State* L);
+// When `message` is the error of the last failed lookup, searches that table for the
+// nearest name and writes the hint (" (did you mean 'stiffness'?)") into `out`; else
+// writes "". Runs once, when an error is reported, outside any protected call: one
+// traversal of the table and at most 256 edit distances. Never raises or allocates.
+void suggestion_for(ScriptVm* vm, lua_State* L, const char* message, char* out, std::size_t size);
 // lua_CFunction __index of the library tables (upvalue 1: the library's name).
 int library_index(lua_State* L);
 // lua_CFunction: after the chunk ran, checks force/reset/needs/params and sets up `s`
