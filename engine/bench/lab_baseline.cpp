@@ -20,12 +20,13 @@ inline double sketch_position_m(const LabBaselineConstants& c, std::int32_t raw,
   return c.handle_radius_m * theta_deg * 3.14159265358979323846 / 180.0;
 }
 
-// The sketch's velocity: difference over the period, filtered 0.9 / 0.1.
+// The sketch's velocity: 0.9 of the new difference over the period plus 0.1 of the
+// previous difference.
 inline double sketch_velocity(const LabBaselineConstants& c, double xh, LabBaselineState* s) noexcept {
   const double dxh = (xh - s->last_x_m) / c.period_s;
-  const double filtered = 0.9 * dxh + 0.1 * s->last_v_m_per_s;
+  const double filtered = 0.9 * dxh + 0.1 * s->last_dxh_m_per_s;
   s->last_x_m = xh;
-  s->last_v_m_per_s = filtered;
+  s->last_dxh_m_per_s = dxh;
   return filtered;
 }
 
