@@ -63,7 +63,8 @@ void lab_texture_tick(const LabBaselineConstants& c, std::int32_t raw, LabBaseli
   const double xh = sketch_position_m(c, raw, s);
   const double dxh = sketch_velocity(c, xh, s);
   const double period = c.width_m + c.spacing_m;
-  const double within = std::fmod(std::fmod(xh - c.offset_m, period) + period, period);
+  const double phase = c.mirror ? std::fabs(xh - c.offset_m) : xh - c.offset_m;  // the lab's |x|
+  const double within = std::fmod(std::fmod(phase, period) + period, period);
   sketch_output(c, within < c.width_m ? -c.damping_N_s_per_m * dxh : 0.0, s);
 }
 
@@ -99,6 +100,7 @@ bool lab_baseline_for(const Scene& scene, LabBaselineKind* kind, LabBaselineCons
     c.width_m = texture->width_m;
     c.spacing_m = texture->spacing_m;
     c.offset_m = texture->offset_m;
+    c.mirror = texture->mirror;
   } else {
     return false;
   }

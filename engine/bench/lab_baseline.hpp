@@ -28,6 +28,7 @@ struct LabBaselineConstants {
   double width_m{};
   double spacing_m{};
   double offset_m{};
+  bool mirror{};           // texture fields mirrored about offset_m
 };
 
 // What the sketch keeps between loop() calls.
