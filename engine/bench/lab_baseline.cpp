@@ -20,12 +20,13 @@ inline double sketch_position_m(const LabBaselineConstants& c, std::int32_t raw,
   return c.handle_radius_m * theta_deg * 3.14159265358979323846 / 180.0;
 }
 
-// The sketch's velocity: difference over the period, filtered 0.9 / 0.1.
+// The sketch's velocity: 0.9 of the new difference over the period plus 0.1 of the
+// previous difference.
 inline double sketch_velocity(const LabBaselineConstants& c, double xh, LabBaselineState* s) noexcept {
   const double dxh = (xh - s->last_x_m) / c.period_s;
-  const double filtered = 0.9 * dxh + 0.1 * s->last_v_m_per_s;
+  const double filtered = 0.9 * dxh + 0.1 * s->last_dxh_m_per_s;
   s->last_x_m = xh;
-  s->last_v_m_per_s = filtered;
+  s->last_dxh_m_per_s = dxh;
   return filtered;
 }
 
@@ -62,7 +63,8 @@ void lab_texture_tick(const LabBaselineConstants& c, std::int32_t raw, LabBaseli
   const double xh = sketch_position_m(c, raw, s);
   const double dxh = sketch_velocity(c, xh, s);
   const double period = c.width_m + c.spacing_m;
-  const double within = std::fmod(std::fmod(xh - c.offset_m, period) + period, period);
+  const double phase = c.mirror ? std::fabs(xh - c.offset_m) : xh - c.offset_m;  // the lab's |x|
+  const double within = std::fmod(std::fmod(phase, period) + period, period);
   sketch_output(c, within < c.width_m ? -c.damping_N_s_per_m * dxh : 0.0, s);
 }
 
@@ -98,6 +100,7 @@ bool lab_baseline_for(const Scene& scene, LabBaselineKind* kind, LabBaselineCons
     c.width_m = texture->width_m;
     c.spacing_m = texture->spacing_m;
     c.offset_m = texture->offset_m;
+    c.mirror = texture->mirror;
   } else {
     return false;
   }

@@ -1,7 +1,7 @@
 #pragma once
 // The baseline a Hapkit user has today: the lab's per-tick code written by hand, the way
 // the reference sketch does it (flip counting on the raw reading, the linear counts fit,
-// the 0.9 / 0.1 velocity filter, one hard-coded force law, torque and duty). Compiled
+// the 0.9 / 0.1 average of the new and previous velocity differences, one hard-coded force law, torque and duty). Compiled
 // into the benchmark so `hapscene bench` can put the engine's cost next to it.
 #include <cstdint>
 
@@ -28,6 +28,7 @@ struct LabBaselineConstants {
   double width_m{};
   double spacing_m{};
   double offset_m{};
+  bool mirror{};           // texture fields mirrored about offset_m
 };
 
 // What the sketch keeps between loop() calls.
@@ -36,7 +37,7 @@ struct LabBaselineState {
   std::int32_t flips{};
   bool started{};
   double last_x_m{};
-  double last_v_m_per_s{};
+  double last_dxh_m_per_s{};  // the previous raw difference
   double duty{};
   bool direction_high{};
 };

@@ -24,6 +24,16 @@ std::optional<Scene> lua_equivalent(const Scene& scene, const std::string& scrip
   if (const auto* spring = std::get_if<Spring>(&e)) {
     effect["file"] = scripts_dir + "/spring.lua";
     effect["params"] = {{"stiffness", spring->stiffness_N_per_m}, {"center", spring->center_m}};
+  } else if (const auto* mirrored = std::get_if<Texture>(&e); mirrored && mirrored->mirror) {
+    // The lab's mirrored texture: fields where |x - x0| mod p < w (scripts/texture.lua has
+    // no mirror).
+    effect["source"] = "needs = { time = false }\n"
+                       "local B, w, x0, p = " + exact(mirrored->damping_N_s_per_m) + ", " + exact(mirrored->width_m) +
+                       ", " + exact(mirrored->offset_m) + ", " + exact(mirrored->period_m) + "\n"
+                       "function force(s)\n"
+                       "  if math.abs(s.x - x0) % p < w then return -B * s.v end\n"
+                       "  return 0\n"
+                       "end\n";
   } else if (const auto* texture = std::get_if<Texture>(&e)) {
     effect["file"] = scripts_dir + "/texture.lua";
     effect["params"] = {{"damping", texture->damping_N_s_per_m}, {"width", texture->width_m},

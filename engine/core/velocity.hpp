@@ -7,10 +7,11 @@
 namespace hapscene {
 
 enum class VelocityEstimatorKind {
-  hapkit2019,  // (x - x1) / T, then 0.9 * new + 0.1 * previous (Hapkit reference sketch, 2019+)
-  hapkit2013,  // double pole at 0.95 on (x - x1) / T (Hapkit reference sketch, 2013)
-  difference,  // (x - x1) / T, unfiltered
-  lowpass,     // (x - x1) / T through a first-order low-pass at cutoff_Hz
+  hapkit2019,   // 0.9 * (x - x1) / T + 0.1 * (x1 - x2) / T: the Hapkit reference sketch
+                // (2019+) averages the new and the previous raw difference
+  hapkit2013,   // double pole at 0.95 on (x - x1) / T (Hapkit reference sketch, 2013)
+  difference,   // (x - x1) / T, unfiltered
+  lowpass,      // (x - x1) / T through a first-order low-pass at cutoff_Hz
 };
 
 struct VelocityEstimatorConfig {
@@ -26,6 +27,7 @@ double lowpass_alpha_for(double cutoff_Hz, double period_s) noexcept;
 struct VelocityState {
   bool started{};
   double previous_x_m{};
+  double previous_difference_m_per_s{};  // (x1 - x2) / T (hapkit2019)
   double v1_m_per_s{};  // previous estimate
   double v2_m_per_s{};  // estimate before that (hapkit2013)
 };
@@ -49,7 +51,7 @@ inline double estimate_velocity(const VelocityEstimatorConfig& config, double pe
   double v_m_per_s = difference_m_per_s;
   switch (config.kind) {
     case VelocityEstimatorKind::hapkit2019:
-      v_m_per_s = 0.9 * difference_m_per_s + 0.1 * state->v1_m_per_s;
+      v_m_per_s = 0.9 * difference_m_per_s + 0.1 * state->previous_difference_m_per_s;
       break;
     case VelocityEstimatorKind::hapkit2013: {
       // The sketch hard-coded T = 100 us; here T is the scene's period.
@@ -64,6 +66,7 @@ inline double estimate_velocity(const VelocityEstimatorConfig& config, double pe
       v_m_per_s = state->v1_m_per_s + config.lowpass_alpha * (difference_m_per_s - state->v1_m_per_s);
       break;
   }
+  state->previous_difference_m_per_s = difference_m_per_s;
   state->v2_m_per_s = state->v1_m_per_s;
   state->v1_m_per_s = v_m_per_s;
   return v_m_per_s;

@@ -4,6 +4,7 @@
 #include "engine/effects/spring.hpp"
 #include "engine/effects/texture.hpp"
 #include "engine/effects/wall.hpp"
+#include "engine/load/json_source.hpp"
 #include "engine/load/object_reader.hpp"
 
 namespace hapscene {
@@ -41,6 +42,10 @@ Texture Texture::parse(ObjectReader& reader) {
       reader.quantity_or("spacing", Quantity::length_m, texture.width_m, Bound::non_negative);
   texture.offset_m = reader.quantity_or("offset", Quantity::length_m, 0.0);
   texture.period_m = texture.width_m + texture.spacing_m;
+  if (const nlohmann::json* mirror = reader.get("mirror")) {
+    if (!mirror->is_boolean()) reader.fail("mirror", "expected a boolean, got " + json_type_name(*mirror));
+    texture.mirror = mirror->get<bool>();
+  }
   return texture;
 }
 

@@ -2,6 +2,8 @@
 // The Hapkit lab texture: damping fields of width w separated by gaps s, repeating over
 // the whole workspace with period p = w + s. The handle is in a field when
 // (x - x0) mod p, taken in [0, p), is below w; there F = -B v, elsewhere 0.
+// With mirror, |x - x0| takes the place of x - x0: the fields below x0 are the mirror
+// image of those above (the lab's solution uses |x|), so the field at x0 is 2 w wide.
 // Constant cost whatever the number of fields: one floor per tick.
 #include <cmath>
 
@@ -20,11 +22,12 @@ struct Texture {
   double offset_m{};
   double damping_N_s_per_m{};
   double period_m{};  // width_m + spacing_m, computed at load
+  bool mirror{};      // fields mirrored about offset_m
 
   static Texture parse(ObjectReader& reader);
 
   bool in_field(double x_m) const noexcept {
-    const double phase_m = x_m - offset_m;
+    const double phase_m = mirror ? std::abs(x_m - offset_m) : x_m - offset_m;
     double within_m = phase_m - period_m * std::floor(phase_m / period_m);
     // Edges written in decimal (x = 0.015 for w = 5 mm) are not exact in binary; positions
     // within a billionth of a period of an edge count as on it, so a field is [x0, x0 + w)

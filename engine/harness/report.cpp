@@ -26,8 +26,8 @@ std::string format_value(double value, const std::string& unit) {
 
 std::string format_report_table(const ValidationReport& report) {
   std::string out = printf_string(
-      "validate %s (%s): %g Hz, passivity bound 2b/T = %.0f N/m, stiffest region %.0f N/m\n",
-      report.scene_name.c_str(), report.source_path.c_str(), report.rate_hz,
+      "validate %s (%s): %g Hz, passivity bound %s = %.0f N/m, stiffest region %.0f N/m\n",
+      report.scene_name.c_str(), report.source_path.c_str(), report.rate_hz, report.passivity_bound_name,
       report.passivity_bound_N_per_m, report.stiffest_region_N_per_m);
   const HarnessOptions& o = report.options;
   out += printf_string("hand %g N/m, %g N*s/m, %g g; sensor noise %s, seed %llu\n\n",
@@ -77,6 +77,7 @@ nlohmann::json report_to_json(const ValidationReport& report) {
       {"schema", kReportSchema},
       {"scene", {{"name", report.scene_name}, {"source", report.source_path}, {"rate_hz", report.rate_hz},
                  {"passivity_bound_N_per_m", report.passivity_bound_N_per_m},
+                 {"passivity_bound", report.passivity_bound_name},
                  {"stiffest_region_N_per_m", report.stiffest_region_N_per_m},
                  {"stiff_regions", regions}}},
       {"options", {{"hand_stiffness_N_per_m", o.hand_stiffness_N_per_m},

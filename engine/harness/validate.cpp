@@ -3,10 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/devices/kinematics.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/run/runner.hpp"
 
 namespace hapscene {
+
+PassivityBound passivity_bound(const DeviceProfile& device, double period_s) {
+  const double sampled_N_per_m = 2.0 * device.plant.viscous_N_s_per_m / period_s;
+  const double count_m = std::abs(counts_to_position_m(device, 1.0) - counts_to_position_m(device, 0.0));
+  const double quantized_N_per_m = 2.0 * device.plant.coulomb_N / count_m;
+  if (quantized_N_per_m < sampled_N_per_m) return {quantized_N_per_m, "2fc/D"};
+  return {sampled_N_per_m, "2b/T"};
+}
 
 ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const Scenario& scenario,
                             const HarnessOptions& options) {
@@ -40,7 +49,9 @@ ValidationReport validate_scene(const Scene& scene, const std::vector<ScenarioKi
   report.scene_name = scene.name;
   report.source_path = scene.source_path;
   report.rate_hz = scene.rate_hz;
-  report.passivity_bound_N_per_m = 2.0 * scene.device.plant.viscous_N_s_per_m / scene.period_s;
+  const PassivityBound bound = passivity_bound(scene.device, scene.period_s);
+  report.passivity_bound_N_per_m = bound.N_per_m;
+  report.passivity_bound_name = bound.name;
   report.options = options;
   report.field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);
   for (const StiffRegion& region : report.field.regions) {

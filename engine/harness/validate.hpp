@@ -24,13 +24,22 @@ struct ValidationReport {
   std::string scene_name;
   std::string source_path;
   double rate_hz{};
-  double passivity_bound_N_per_m{};  // 2 b / T: Colgate's sampled-wall bound for this device
+  double passivity_bound_N_per_m{};  // min(2 b / T, 2 f_c / D) for this device (passivity_bound)
+  const char* passivity_bound_name{"2b/T"};  // which of the two binds
   double stiffest_region_N_per_m{};  // the stiffest region the probe found (0: none)
   HarnessOptions options;
   ForceField field;
   std::vector<ScenarioResult> scenarios;
   bool pass{true};
 };
+
+// The stiffest passive sampled wall for `device` at `period_s` (Abbott and Okamura): the
+// smaller of 2 b / T (Colgate and Schenkel) and 2 f_c / D (D one sensor count), and its name.
+struct PassivityBound {
+  double N_per_m{};
+  const char* name{};
+};
+PassivityBound passivity_bound(const DeviceProfile& device, double period_s);
 
 // Runs one scenario (deterministic: the same inputs give bit-identical records).
 ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const Scenario& scenario,

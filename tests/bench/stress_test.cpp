@@ -37,9 +37,25 @@ TEST_CASE("stress: the largest passive wall at 1 kHz is Colgate's 2b/T, and stab
   REQUIRE(limits.size() == 1);
   const StiffnessLimits& l = limits[0];
   CHECK(l.bound_2b_over_T == doctest::Approx(800.0));
-  CHECK(l.passive_N_per_m > 0.85 * l.bound_2b_over_T);
-  CHECK(l.passive_N_per_m < 1.15 * l.bound_2b_over_T);
-  CHECK(l.stable_N_per_m > l.passive_N_per_m);
+  const WallLimits& with = l.with_coulomb;
+  CHECK(with.coulomb_N == doctest::Approx(0.1));
+  CHECK(std::string(with.bound_name) == "2b/T");
+  CHECK(with.bound_N_per_m == doctest::Approx(800.0));
+  CHECK(with.passive_N_per_m > 0.85 * l.bound_2b_over_T);
+  CHECK(with.passive_N_per_m < 1.15 * l.bound_2b_over_T);
+  CHECK(with.stable_N_per_m > with.passive_N_per_m);
+  // A small limit cycle (more than one count, less than the harness's 0.2 mm) persists
+  // below the stable limit.
+  CHECK(with.quiet_N_per_m >= with.passive_N_per_m);
+  CHECK(with.quiet_N_per_m < with.stable_N_per_m);
+
+  // Coulomb friction holds the stable figure up: without it the stable wall is softer,
+  // and with quantization no wall is passive by Abbott and Okamura's bound.
+  const WallLimits& without = l.without_coulomb;
+  CHECK(without.coulomb_N == 0.0);
+  CHECK(without.bound_N_per_m == 0.0);
+  CHECK(std::string(without.bound_name) == "2fc/D");
+  CHECK(without.stable_N_per_m < 0.5 * with.stable_N_per_m);
 }
 
 TEST_CASE("stress: a filtered velocity estimator allows more damping than the raw difference") {
@@ -54,4 +70,30 @@ TEST_CASE("stress: a filtered velocity estimator allows more damping than the ra
   CHECK(limit_of("difference") > 0.5);                 // the lab's 1 N*s/m damper is in reach
   CHECK(limit_of("lowpass") > limit_of("difference"));
   CHECK(limit_of("hapkit2019") > limit_of("difference"));
+}
+
+TEST_CASE("stress: estimator noise and delay on synthetic positions") {
+  const std::vector<EstimatorQuality> qualities = measure_estimators(1000.0, 0.5);
+  REQUIRE(qualities.size() == 4);
+  const auto of = [&](const std::string& name) {
+    for (const EstimatorQuality& q : qualities) {
+      if (q.estimator == name) return q;
+    }
+    FAIL("no estimator " << name);
+    return EstimatorQuality{};
+  };
+  // The raw difference lags half a tick, the sketch's average of two differences 0.1
+  // tick more; the 2013 double pole (about 8 Hz at 1 kHz) lags 34.5 ticks at 5 Hz and
+  // loses a quarter of the amplitude.
+  CHECK(of("difference").delay_ticks == doctest::Approx(0.5).epsilon(0.01));
+  CHECK(of("hapkit2019").delay_ticks == doctest::Approx(0.6).epsilon(0.01));
+  CHECK(of("hapkit2013").delay_ticks == doctest::Approx(34.5).epsilon(0.01));
+  CHECK(of("hapkit2013").gain == doctest::Approx(0.727).epsilon(0.01));
+  for (const char* name : {"difference", "hapkit2019", "lowpass"}) {
+    CAPTURE(name);
+    CHECK(of(name).gain == doctest::Approx(1.0).epsilon(0.002));
+  }
+  for (const EstimatorQuality& q : qualities) CHECK(q.noise_rms_m_per_s > 0.0);
+  CHECK(of("hapkit2019").noise_rms_m_per_s < of("difference").noise_rms_m_per_s);
+  CHECK(of("hapkit2013").noise_rms_m_per_s < of("lowpass").noise_rms_m_per_s);
 }

@@ -88,13 +88,16 @@ TEST_CASE("velocity: estimators on a constant-velocity ramp") {
   }
 }
 
-TEST_CASE("velocity: hapkit2019 is the reference sketch's 0.9 / 0.1 filter") {
+TEST_CASE("velocity: hapkit2019 is the reference sketch's 0.9 new + 0.1 previous raw difference") {
   VelocityEstimatorConfig config;  // default
   REQUIRE(config.kind == VelocityEstimatorKind::hapkit2019);
   VelocityState state;
   estimate_velocity(config, 0.001, 0.0, &state);
   CHECK(estimate_velocity(config, 0.001, 0.001, &state) == doctest::Approx(0.9 * 1.0));
-  CHECK(estimate_velocity(config, 0.001, 0.001, &state) == doctest::Approx(0.1 * 0.9));
+  // The handle stops: 0.1 of the previous raw difference (1 m/s), not of the previous
+  // estimate (0.9 m/s).
+  CHECK(estimate_velocity(config, 0.001, 0.001, &state) == doctest::Approx(0.1 * 1.0));
+  CHECK(estimate_velocity(config, 0.001, 0.001, &state) == 0.0);  // a finite response: two ticks
 }
 
 TEST_CASE("environment: the velocity block selects the estimator") {
