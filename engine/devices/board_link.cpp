@@ -116,7 +116,9 @@ void BoardLink::update_position_status(std::int64_t now_ns) noexcept {
     case PositionStatus::unmeasured:
       if (state_ != LinkState::running) break;  // reconnecting: its own events say so
       ++counters_.unmeasured_polls;
-      if (now_ns - running_since_ns_ > config_.max_position_age_ns && !no_position_seen_) {
+      // Timed from the first COMMAND: the loop may start well after the handshake.
+      if (first_command_ns_ >= 0 && now_ns - first_command_ns_ > config_.max_position_age_ns &&
+          !no_position_seen_) {
         no_position_seen_ = true;
         record(LinkEventKind::no_position, now_ns);
       }
@@ -155,6 +157,7 @@ void BoardLink::send(const MotorCommand& command, std::int64_t now_ns) noexcept 
   if (command.direction_high) wire.flags |= HS_COMMAND_DIRECTION_HIGH;
   std::uint8_t payload[HS_COMMAND_SIZE];
   hs_put_command(&wire, payload);
+  if (first_command_ns_ < 0) first_command_ns_ = now_ns;
   if (sent_ns_[tx_seq_] >= 0) ++counters_.unanswered;
   sent_ns_[tx_seq_] = now_ns;
   send_frame(HS_TYPE_COMMAND, payload, HS_COMMAND_SIZE, now_ns);
@@ -220,7 +223,7 @@ void BoardLink::on_frame(const hs_frame& frame, std::int64_t now_ns) noexcept {
       if (state_ != LinkState::running) {
         record(LinkEventKind::connected, now_ns);
         state_ = LinkState::running;
-        running_since_ns_ = now_ns;
+        first_command_ns_ = -1;
         measured_ = false;
         rejected_ = false;
         restart_ = true;

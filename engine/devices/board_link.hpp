@@ -82,7 +82,7 @@ enum class LinkEventKind {
   reopened,
   board_reset,
   refused_version,   // the board answered or refused with another protocol version
-  no_position,       // running for max_position_age_ns without a first STATE
+  no_position,       // max_position_age_ns after the first COMMAND, still no STATE
   position_stale,    // no new STATE for max_position_age_ns
   implausible_state, // a STATE rejected (out of range, or an impossible jump)
 };
@@ -189,7 +189,7 @@ class BoardLink {
   bool measured_{};                  // a STATE accepted since the last connection
   bool rejected_{};                  // the last STATE was rejected
   bool no_position_seen_{};
-  std::int64_t running_since_ns_{};
+  std::int64_t first_command_ns_{-1};  // first COMMAND since the connection (-1: none)
   std::int64_t last_state_ns_{};     // arrival of the last accepted STATE
   PositionStatus position_status_{PositionStatus::unmeasured};
   HandshakeSeen seen_{};

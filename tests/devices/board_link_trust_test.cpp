@@ -266,3 +266,21 @@ TEST_CASE("board link: a failed handshake says what arrived: nothing, garbage or
           std::string::npos);
   }
 }
+
+TEST_CASE("board link: a loop that starts long after the handshake is not a board without a position") {
+  LoopbackLink wire;
+  BoardLink link(wire, BoardLinkConfig{});
+  std::int64_t now_ns = 0;
+  // The handshake, as a device's constructor runs it (HELLOs only, no COMMAND).
+  for (int i = 0; i < 3 && link.state() != LinkState::running; ++i) {
+    link.send(MotorCommand{}, now_ns);
+    link.poll(now_ns);
+    now_ns += kTick_ns;
+  }
+  REQUIRE(link.state() == LinkState::running);
+  now_ns += 200 * kTick_ns;  // loading, other scenes ...
+  for (int i = 0; i < 10; ++i) tick(&link, &now_ns);
+  CHECK(link.position_status() == PositionStatus::fresh);
+  CHECK_FALSE(has_event(link, LinkEventKind::no_position));
+  CHECK_FALSE(link.fault_seen());
+}

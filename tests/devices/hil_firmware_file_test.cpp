@@ -41,11 +41,11 @@ std::uint32_t get32(const std::vector<std::uint8_t>& b, std::size_t at) {
   return b[at] | (b[at + 1] << 8) | (b[at + 2] << 16) | (static_cast<std::uint32_t>(b[at + 3]) << 24);
 }
 void put32(std::vector<std::uint8_t>* b, std::size_t at, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) (*b)[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+  for (std::size_t i = 0; i < 4; ++i) b->at(at + i) = static_cast<std::uint8_t>(v >> (8 * i));
 }
 void put16(std::vector<std::uint8_t>* b, std::size_t at, std::uint16_t v) {
-  (*b)[at] = static_cast<std::uint8_t>(v);
-  (*b)[at + 1] = static_cast<std::uint8_t>(v >> 8);
+  b->at(at) = static_cast<std::uint8_t>(v);
+  b->at(at + 1) = static_cast<std::uint8_t>(v >> 8);
 }
 
 // The section header of `name`, by offset in the file.
