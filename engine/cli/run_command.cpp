@@ -297,7 +297,7 @@ int run_command(std::vector<std::string> args) {
     }
     std::fputs(device.report().c_str(), stdout);
     std::fflush(stdout);
-    faulted = faulted || summary.overrun_fault;
+    faulted = faulted || summary.overrun_fault || device.fault_seen();
   }
   return faulted || write_failed ? kExitFailure : kExitOk;
 }

@@ -8,6 +8,9 @@
 //      field stronger than the threshold, force ramps in linearly over soft_start_s;
 //   4. clamp to max_force_N (the lower of the device's and the environment's);
 //   5. slew limit: the output changes by at most slew_limit_N_per_s * T per tick.
+// Before 3, an untrusted position (a device on a link says so, see PositionStatus) holds
+// the force: none at all when nothing trustworthy was measured, else ramped out at the
+// soft-start rate; when the position is trusted again force ramps back in (soft start).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -36,12 +39,21 @@ struct SafetyCounters {
   std::uint64_t soft_start_ticks{};
   std::uint64_t clamped_ticks{};
   std::uint64_t slew_limited_ticks{};
+  std::uint64_t position_hold_ticks{};  // ticks with an untrusted position (force held)
+};
+
+// What the loop knows of this tick's position before step(): set from the device.
+enum class PositionHold : std::uint8_t {
+  none,      // trusted
+  ramp_out,  // stale: the force ramps to zero at the soft-start rate
+  cut,       // never measured, or implausible: no force at all
 };
 
 struct SafetyState {
   bool started{};                // false until the first tick (or after restart_soft_start)
   double ramp_gain{0.0};         // soft-start gain in [0, 1]; 0 until started
   double previous_output_N{};    // for the slew limit
+  PositionHold position_hold{PositionHold::none};  // set by the loop each tick
   SafetyCounters counters;
 };
 
@@ -75,9 +87,21 @@ inline double apply_safety(const SafetyConfig& config, double x_m, double force_
                            SafetyState* state) noexcept {
   double output_N = apply_static_safety(config, x_m, force_N, &state->counters);
 
-  // 3. Soft start: decided on the first tick from the force the scene asks for there,
-  // then ramping; a single comparison once the ramp is done (the gain is 0 until then).
-  if (state->ramp_gain < 1.0) [[unlikely]] {
+  // Untrusted position: hold the force (see PositionHold); trusted again, the soft start
+  // ramps it back in from the gain reached (or decides afresh after a cut).
+  if (state->position_hold != PositionHold::none) [[unlikely]] {
+    ++state->counters.position_hold_ticks;
+    if (state->position_hold == PositionHold::cut || !state->started) {
+      state->started = false;
+      state->ramp_gain = 0.0;
+      output_N = 0.0;
+    } else {
+      state->ramp_gain = std::max(0.0, state->ramp_gain - config.ramp_step_per_tick);
+      output_N *= state->ramp_gain;
+    }
+  } else if (state->ramp_gain < 1.0) [[unlikely]] {
+    // 3. Soft start: decided on the first tick from the force the scene asks for there,
+    // then ramping; a single comparison once the ramp is done (the gain is 0 until then).
     if (!state->started) {
       state->started = true;
       state->ramp_gain = std::abs(output_N) > config.soft_start_threshold_N ? 0.0 : 1.0;

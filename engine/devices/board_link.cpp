@@ -17,7 +17,10 @@ const char* link_event_name(LinkEventKind kind) noexcept {
     case LinkEventKind::vanished: return "vanished (port error): motor off, reopening";
     case LinkEventKind::reopened: return "port reopened";
     case LinkEventKind::board_reset: return "board was reset: handshaking again";
-    case LinkEventKind::refused_version: return "board refused the protocol version";
+    case LinkEventKind::refused_version: return "board speaks another protocol version";
+    case LinkEventKind::no_position: return "no position from the board since the connection: no force";
+    case LinkEventKind::position_stale: return "position stale (no new STATE): force ramped out";
+    case LinkEventKind::implausible_state: return "implausible position from the board (rejected): no force";
   }
   return "?";
 }
@@ -40,6 +43,8 @@ void BoardLink::start_handshake(LinkState state, std::int64_t now_ns) noexcept {
   hello_sent_ = false;
   rx_seq_known_ = false;
   last_frame_ns_ = now_ns;
+  measured_ = false;
+  rejected_ = false;
   sent_ns_.fill(-1);
 }
 
@@ -82,6 +87,7 @@ void BoardLink::poll(std::int64_t now_ns) noexcept {
   receive(now_ns);
   if (state_ == LinkState::running && !new_state_) ++counters_.stale_reads;
   new_state_ = false;
+  update_position_status(now_ns);
 
   // Silent: no valid frame for too long. Motor off explicitly, then handshake again.
   if (state_ == LinkState::running && now_ns - last_frame_ns_ > config_.silence_timeout_ns) {
@@ -89,6 +95,39 @@ void BoardLink::poll(std::int64_t now_ns) noexcept {
     const std::uint8_t off[HS_COMMAND_SIZE] = {0, 0};
     send_frame(HS_TYPE_COMMAND, off, HS_COMMAND_SIZE, now_ns);
     start_handshake(LinkState::silent, now_ns);
+  }
+}
+
+// Whether this tick may use counts(): counted per tick, with an event when a position
+// goes missing or stale (once per episode).
+void BoardLink::update_position_status(std::int64_t now_ns) noexcept {
+  const PositionStatus before = position_status_;
+  if (state_ == LinkState::running && rejected_) {
+    position_status_ = PositionStatus::implausible;
+  } else if (state_ != LinkState::running || !measured_) {
+    position_status_ = PositionStatus::unmeasured;
+  } else if (now_ns - last_state_ns_ > config_.max_position_age_ns) {
+    position_status_ = PositionStatus::stale;
+  } else {
+    position_status_ = PositionStatus::fresh;
+  }
+  switch (position_status_) {
+    case PositionStatus::fresh: break;
+    case PositionStatus::unmeasured:
+      if (state_ != LinkState::running) break;  // reconnecting: its own events say so
+      ++counters_.unmeasured_polls;
+      // Timed from the first COMMAND: the loop may start well after the handshake.
+      if (first_command_ns_ >= 0 && now_ns - first_command_ns_ > config_.max_position_age_ns &&
+          !no_position_seen_) {
+        no_position_seen_ = true;
+        record(LinkEventKind::no_position, now_ns);
+      }
+      break;
+    case PositionStatus::stale:
+      ++counters_.stale_polls;
+      if (before != PositionStatus::stale) record(LinkEventKind::position_stale, now_ns);
+      break;
+    case PositionStatus::implausible: ++counters_.implausible_polls; break;
   }
 }
 
@@ -118,6 +157,7 @@ void BoardLink::send(const MotorCommand& command, std::int64_t now_ns) noexcept 
   if (command.direction_high) wire.flags |= HS_COMMAND_DIRECTION_HIGH;
   std::uint8_t payload[HS_COMMAND_SIZE];
   hs_put_command(&wire, payload);
+  if (first_command_ns_ < 0) first_command_ns_ = now_ns;
   if (sent_ns_[tx_seq_] >= 0) ++counters_.unanswered;
   sent_ns_[tx_seq_] = now_ns;
   send_frame(HS_TYPE_COMMAND, payload, HS_COMMAND_SIZE, now_ns);
@@ -156,19 +196,36 @@ void BoardLink::on_frame(const hs_frame& frame, std::int64_t now_ns) noexcept {
   }
   rx_seq_known_ = true;
   rx_seq_expected_ = static_cast<std::uint8_t>(frame.seq + 1);
+  ++seen_.frames;
+  seen_.last_type = frame.type;
 
   switch (frame.type) {
     case HS_TYPE_HELLO_REPLY:
-      if (frame.length != HS_HELLO_REPLY_SIZE) return;
-      hs_get_hello_reply(frame.payload, &identity_);
-      identified_ = true;
-      if (identity_.protocol_version != HS_PROTOCOL_VERSION) {
-        record(LinkEventKind::refused_version, now_ns);
+      // The first byte is the protocol version in every version; the rest is ours only
+      // when the version is.
+      if (frame.length >= 1 && frame.payload[0] != HS_PROTOCOL_VERSION) {
+        if (!seen_.other_version) record(LinkEventKind::refused_version, now_ns);
+        seen_.other_version = true;
+        seen_.version_known = true;
+        seen_.version = frame.payload[0];
+        if (frame.length == HS_HELLO_REPLY_SIZE) {
+          hs_get_hello_reply(frame.payload, &identity_);
+          identified_ = true;
+        }
         return;
       }
+      if (frame.length != HS_HELLO_REPLY_SIZE) {
+        ++seen_.bad_hello_replies;
+        return;
+      }
+      hs_get_hello_reply(frame.payload, &identity_);
+      identified_ = true;
       if (state_ != LinkState::running) {
         record(LinkEventKind::connected, now_ns);
         state_ = LinkState::running;
+        first_command_ns_ = -1;
+        measured_ = false;
+        rejected_ = false;
         restart_ = true;
         realign_ = have_counts_;
         sent_ns_.fill(-1);
@@ -186,10 +243,14 @@ void BoardLink::on_frame(const hs_frame& frame, std::int64_t now_ns) noexcept {
       return;
     case HS_TYPE_REFUSED:
       if (frame.length != 2) return;
+      seen_.refused = true;
+      seen_.refused_type = frame.payload[0];
+      seen_.refused_reason = frame.payload[1];
       if (frame.payload[1] == HS_REFUSED_NOT_ARMED && state_ == LinkState::running) {
         record(LinkEventKind::board_reset, now_ns);
         start_handshake(LinkState::handshaking, now_ns);
-      } else if (frame.payload[1] == HS_REFUSED_VERSION) {
+      } else if (frame.payload[1] == HS_REFUSED_VERSION && !seen_.other_version) {
+        seen_.other_version = true;  // its version is unknown: it did not say
         record(LinkEventKind::refused_version, now_ns);
       }
       return;
@@ -210,20 +271,56 @@ void BoardLink::on_state(const hs_frame& frame, std::int64_t now_ns) noexcept {
     sent_ns = -1;
   }
 
-  // Position: after a reconnection, shift by whole sensor periods so it stays continuous.
-  if (realign_) {
-    const double behind = static_cast<double>(counts_) -
-                          static_cast<double>(state.unwrapped_counts + offset_counts_);
-    offset_counts_ += static_cast<std::int32_t>(std::lround(behind / config_.span_counts)) *
-                      config_.span_counts;
-    realign_ = false;
+  // Position: checked before it is used (a rejected STATE leaves the last position).
+  if (!accept_counts(state, now_ns)) {
+    ++counters_.implausible_states;
+    if (!rejected_) record(LinkEventKind::implausible_state, now_ns);
+    rejected_ = true;
+  } else {
+    rejected_ = false;
+    measured_ = true;
+    last_state_ns_ = now_ns;
   }
-  counts_ = state.unwrapped_counts + offset_counts_;
-  have_counts_ = true;
   new_state_ = true;
   ++counters_.states_received;
   if (state.status & HS_STATUS_TIMED_OUT) ++counters_.timeouts_reported;
   if (state.status & HS_STATUS_DUTY_LIMITED) ++counters_.duty_limited;
+}
+
+
+// The board's reading becomes counts_ only when it is in range and reachable: every sum
+// is formed in 64 bits from 32-bit inputs (so it cannot overflow) and must fit 32 bits.
+bool BoardLink::accept_counts(const hs_state& state, std::int64_t now_ns) noexcept {
+  constexpr std::uint16_t kMaxRawCounts = 1023;  // 10-bit ADC
+  if (state.raw_counts > kMaxRawCounts) return false;
+  const std::int64_t span = config_.span_counts;
+  const std::int64_t board = state.unwrapped_counts;
+  const std::int64_t board_limit = static_cast<std::int64_t>(config_.max_board_periods) * span;
+  if (board > board_limit || board < -board_limit) return false;
+
+  std::int64_t offset = offset_counts_;
+  std::int64_t counts = board + offset;
+  if (realign_) {
+    // After a reconnection: shift by whole sensor periods so the position stays
+    // continuous with the last one.
+    const std::int64_t behind = static_cast<std::int64_t>(counts_) - counts;
+    const std::int64_t periods = span > 0 ? std::llround(static_cast<double>(behind) / static_cast<double>(span)) : 0;
+    offset += periods * span;
+    counts += periods * span;
+  } else if (have_counts_ && measured_) {
+    // Within one connection: no farther than the handle can move since the last STATE.
+    const double elapsed_s = static_cast<double>(std::max<std::int64_t>(0, now_ns - last_state_ns_) +
+                                                 config_.motion_slack_ns) * 1e-9;
+    const double reach_counts = config_.max_speed_counts_per_s * elapsed_s;
+    if (!(std::abs(static_cast<double>(counts - counts_)) <= reach_counts)) return false;
+  }
+  constexpr std::int64_t kMin = INT32_MIN, kMax = INT32_MAX;
+  if (counts < kMin || counts > kMax || offset < kMin || offset > kMax) return false;
+  offset_counts_ = static_cast<std::int32_t>(offset);
+  counts_ = static_cast<std::int32_t>(counts);
+  realign_ = false;
+  have_counts_ = true;
+  return true;
 }
 
 }  // namespace hapscene

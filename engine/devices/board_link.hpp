@@ -16,11 +16,22 @@
 //   COMMAND refused as not   the board was reset: HELLO again (its motor stays off until
 //   armed                    then); the position is realigned to the nearest sensor
 //                            period of the last one
+//   no STATE since the       the position is "unmeasured": the loop commands no force
+//   (re)connection           until a STATE has arrived
+//   no new STATE for         the position is "stale": the loop ramps force out, and in
+//   max_position_age_ns      again (soft start) when STATEs come back
+//   a STATE out of range or  "implausible": rejected (the position stays the last good
+//   farther from the last    one), counted and reported, and the loop commands no force
+//   than the handle can move until a plausible STATE arrives
 // Whenever the link comes back, take_restart() tells the loop to ramp force in again.
+// Count arithmetic on the board's numbers is done in 64 bits and checked before it
+// becomes a 32-bit position.
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "engine/devices/byte_link.hpp"
+#include "engine/devices/device.hpp"
 #include "engine/devices/kinematics.hpp"
 #include "engine/firmware/protocol.h"
 #include "engine/run/latency_histogram.hpp"
@@ -33,17 +44,48 @@ struct BoardLinkConfig {
   std::int64_t reopen_retry_ns{500'000'000};
   std::int64_t stats_period_ns{250'000'000};  // STATS_REQUEST this often while running
   std::int32_t span_counts{922};              // sensor period, to realign after a reset
+  // A position older than this (no new STATE) is stale: force ramps out. Five ticks at
+  // 1 kHz: a USB serial adapter delivers STATEs in 1 ms batches, so one or two ticks
+  // without one are normal.
+  std::int64_t max_position_age_ns{5'000'000};
+  // The fastest the handle can move, in counts per second (2 m/s at 13 um per count);
+  // a STATE farther from the last one than this allows in the elapsed time plus
+  // motion_slack_ns (arrival jitter) is implausible.
+  double max_speed_counts_per_s{150'000.0};
+  std::int64_t motion_slack_ns{2'000'000};
+  // The board's unwrapped count may be at most this many sensor periods from zero (the
+  // whole travel of a Hapkit is a few periods), and its raw count at most 1023 (10 bits).
+  std::int32_t max_board_periods{64};
 };
 
-// `link` with the sensor period of `profile` (for realigning the position after a reset).
+// The fastest handle motion the link believes, in m/s (see max_speed_counts_per_s).
+inline constexpr double kMaxHandleSpeed_m_per_s = 2.0;
+
+// `link` with the sensor period of `profile` (for realigning the position after a reset)
+// and its speed bound in that profile's counts.
 inline BoardLinkConfig link_config_for(BoardLinkConfig link, const DeviceProfile& profile) {
   link.span_counts = profile.sensor.span_counts;
+  const double m_per_count = std::abs(compile_kinematics(profile).x_m_per_count);
+  if (m_per_count > 0.0 && std::isfinite(m_per_count)) {
+    link.max_speed_counts_per_s = kMaxHandleSpeed_m_per_s / m_per_count;
+  }
   return link;
 }
 
+
 enum class LinkState { handshaking, running, silent, vanished };
 
-enum class LinkEventKind { connected, silent, vanished, reopened, board_reset, refused_version };
+enum class LinkEventKind {
+  connected,
+  silent,
+  vanished,
+  reopened,
+  board_reset,
+  refused_version,   // the board answered or refused with another protocol version
+  no_position,       // max_position_age_ns after the first COMMAND, still no STATE
+  position_stale,    // no new STATE for max_position_age_ns
+  implausible_state, // a STATE rejected (out of range, or an impossible jump)
+};
 
 struct LinkEvent {
   std::int64_t t_ns{};
@@ -59,6 +101,22 @@ struct LinkCounters {
   std::uint64_t frames_dropped_tx{};  // frames the link would not take whole
   std::uint64_t timeouts_reported{};  // STATEs saying the board's timeout fired
   std::uint64_t duty_limited{};       // STATEs saying the board limited the duty
+  std::uint64_t unmeasured_polls{};   // ticks running with no STATE since the connection
+  std::uint64_t stale_polls{};        // ticks whose newest STATE was older than the bound
+  std::uint64_t implausible_polls{};  // ticks after a rejected STATE (until a good one)
+  std::uint64_t implausible_states{}; // STATEs rejected as out of range or impossible jumps
+};
+
+// What the board said when the handshake did not complete (for the error message).
+struct HandshakeSeen {
+  std::uint64_t frames{};             // valid frames of any type
+  bool other_version{};               // a HELLO_REPLY with another protocol version
+  bool version_known{};               // ... and said which (not just a REFUSED)
+  std::uint8_t version{};             // ... that version
+  bool refused{};                     // a REFUSED frame
+  std::uint8_t refused_type{}, refused_reason{};
+  std::uint8_t last_type{};           // type of the last valid frame
+  std::uint64_t bad_hello_replies{};  // HELLO_REPLYs of a wrong length
 };
 
 class BoardLink {
@@ -76,6 +134,10 @@ class BoardLink {
 
   // The latest position in unwrapped counts, continuous across board resets.
   std::int32_t counts() const noexcept { return counts_; }
+  // How far counts() can be trusted, as of the last poll().
+  PositionStatus position_status() const noexcept { return position_status_; }
+  // What the board sent while handshaking (for a failed handshake's message).
+  const HandshakeSeen& handshake_seen() const noexcept { return seen_; }
   LinkState state() const noexcept { return state_; }
   bool identified() const noexcept { return identified_; }
   const hs_hello_reply& identity() const noexcept { return identity_; }
@@ -83,6 +145,7 @@ class BoardLink {
   const hs_stats& board_stats() const noexcept { return board_stats_; }
   const hs_decoder& decoder() const noexcept { return decoder_; }
   const LinkCounters& counters() const noexcept { return counters_; }
+  const BoardLinkConfig& config() const noexcept { return config_; }
   const LatencyHistogram& round_trip_ns() const noexcept { return round_trip_ns_; }
   // Events in order (at most kMaxEvents kept; later ones only counted).
   static constexpr std::size_t kMaxEvents = 32;
@@ -92,10 +155,15 @@ class BoardLink {
 
   // True once after the link came back (or first came up): the loop should ramp in.
   bool take_restart() noexcept;
+  // True when the link saw a fault the run should fail for (an implausible STATE, or a
+  // board that was running and never sent a position).
+  bool fault_seen() const noexcept { return counters_.implausible_states > 0 || no_position_seen_; }
 
  private:
   void on_frame(const hs_frame& frame, std::int64_t now_ns) noexcept;
   void on_state(const hs_frame& frame, std::int64_t now_ns) noexcept;
+  bool accept_counts(const hs_state& state, std::int64_t now_ns) noexcept;
+  void update_position_status(std::int64_t now_ns) noexcept;
   void start_handshake(LinkState state, std::int64_t now_ns) noexcept;
   void send_frame(std::uint8_t type, const std::uint8_t* payload, std::uint8_t length,
                   std::int64_t now_ns) noexcept;
@@ -118,6 +186,13 @@ class BoardLink {
   bool restart_{};
   bool realign_{};                   // next STATE: keep counts continuous
   bool have_counts_{};
+  bool measured_{};                  // a STATE accepted since the last connection
+  bool rejected_{};                  // the last STATE was rejected
+  bool no_position_seen_{};
+  std::int64_t first_command_ns_{-1};  // first COMMAND since the connection (-1: none)
+  std::int64_t last_state_ns_{};     // arrival of the last accepted STATE
+  PositionStatus position_status_{PositionStatus::unmeasured};
+  HandshakeSeen seen_{};
   std::int32_t counts_{};
   std::int32_t offset_counts_{};     // added to the board's unwrapped counts
   bool identified_{};

@@ -10,4 +10,8 @@ namespace hapscene {
 // Event times are shown in seconds since `start_ns` (the clock of the link).
 std::string board_report(const BoardLink& link, std::int64_t start_ns);
 
+// Why the handshake did not complete, from what the board sent: another protocol version
+// (and its identity), a REFUSED, frames of other types, undecodable bytes, or nothing.
+std::string handshake_failure(const BoardLink& link);
+
 }  // namespace hapscene

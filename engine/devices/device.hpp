@@ -8,6 +8,15 @@
 
 namespace hapscene {
 
+// How far the latest reading can be trusted. Devices on a link report it each tick; the
+// loop commands force only on a fresh one (see SafetyState::position_hold).
+enum class PositionStatus : std::uint8_t {
+  fresh,        // measured recently enough
+  unmeasured,   // nothing measured since the device (re)connected: no force
+  stale,        // the newest measurement is older than the device's bound: ramp out
+  implausible,  // the latest measurement was rejected as impossible: no force
+};
+
 class Device {
  public:
   virtual ~Device() = default;
@@ -21,6 +30,12 @@ class Device {
   // True once after the device's link came back (or first came up): the loop ramps
   // force in again, as at the start of a run.
   virtual bool take_restart() noexcept { return false; }
+  // The trust in the reading of the latest read_counts() (always fresh for simulated
+  // devices).
+  virtual PositionStatus position_status() const noexcept { return PositionStatus::fresh; }
+  // True when the device saw a fault that should fail the run (exit 1); its report()
+  // says what.
+  virtual bool fault_seen() const noexcept { return false; }
   // Lines for the run summary (link health, latency, board timing); called outside the
   // loop. Empty for devices with nothing to add.
   virtual std::string report() const { return {}; }

@@ -1,38 +1,80 @@
 #pragma once
 // Unwrapping the Hapkit's MR sensor. Its raw reading repeats every half turn of the motor
-// shaft; a jump between consecutive samples larger than the threshold is a "flip" into
-// the next period, in the direction opposite to the jump. Unwrapped = raw + flips * span.
+// shaft; a jump larger than the threshold is a "flip" into the next period, in the
+// direction opposite to the jump. Unwrapped = raw + flips * span.
+//
+// A real sensor's output does not wrap in an instant: a sample can land on the way from
+// one end of the range to the other (960, 500, 60), and then no jump between consecutive
+// samples is above the threshold. So each sample is compared with the previous one and,
+// when that is no flip, with up to two earlier samples since the last flip (the
+// reference sketch compares with the sample two back for the same reason). A sequence
+// whose consecutive jumps are all below the threshold and whose span over three samples
+// is too unwraps exactly as comparing neighbours does; motion is followed while it moves
+// less than threshold / 3 counts per sample (233 at 700: 3 m/s of handle at 1 kHz, 15 m/s
+// at the board's 5 kHz).
+// The intermediate sample itself reads where the sensor put it: one sample off.
 //
 // Portable on purpose (no library, no allocation, integers only) so the board's firmware
-// and the host share it.
+// and the host share it. Arithmetic is checked: a garbage reading (any int32) never
+// overflows; a jump that does not fit 32 bits is no flip, the flip count saturates, and
+// an unwrapped count beyond int32 saturates; each is counted in `overflows`.
 #include <stdint.h>
 
 namespace hapscene {
 
 struct FlipCounter {
+  // Samples compared: the previous one, then up to two earlier ones since the last flip.
+  static constexpr uint8_t kWindow = 3;
+
   int32_t threshold_counts = 700;
   int32_t span_counts = 922;
-  int32_t previous_raw = 0;
   int32_t flips = 0;
+  int32_t shift_counts = 0;           // flips * span_counts
   bool started = false;
+  uint8_t recent_count = 0;           // valid entries of recent_raw
+  int32_t recent_raw[kWindow] = {};   // recent_raw[0] the previous sample, then older
+  uint32_t overflows = 0;             // arithmetic that would have overflowed
 
-  // Feeds one raw sample; returns the unwrapped count. Garbage readings (any int32) give
-  // garbage positions but never overflow: the jump and the result wrap as unsigned
-  // arithmetic does, and the flip count saturates.
+  // Feeds one raw sample; returns the unwrapped count.
   int32_t update(int32_t raw_counts) {
     if (started) {
-      const int32_t jump = static_cast<int32_t>(static_cast<uint32_t>(raw_counts) -
-                                                static_cast<uint32_t>(previous_raw));
-      if (jump > threshold_counts) {
-        if (flips > -2147483647) --flips;  // wrapped downwards past the bottom
-      } else if (jump < -threshold_counts) {
-        if (flips < 2147483647) ++flips;   // wrapped upwards past the top
+      int8_t direction = 0;
+      for (uint8_t i = 0; i < recent_count && direction == 0; ++i) {
+        int32_t jump;
+        if (__builtin_sub_overflow(raw_counts, recent_raw[i], &jump)) {
+          ++overflows;
+          break;
+        }
+        if (jump > threshold_counts) {
+          direction = -1;  // wrapped downwards past the bottom
+        } else if (jump < -threshold_counts) {
+          direction = 1;   // wrapped upwards past the top
+        }
+      }
+      if (direction != 0) {
+        // The shift is recomputed only here (a multiplication is costly on the AVR).
+        int32_t next_flips, next_shift;
+        if (__builtin_add_overflow(flips, static_cast<int32_t>(direction), &next_flips) ||
+            __builtin_mul_overflow(next_flips, span_counts, &next_shift)) {
+          ++overflows;  // saturated: the count stays
+        } else {
+          flips = next_flips;
+          shift_counts = next_shift;
+        }
+        recent_count = 0;  // a wrap counts once: compare only with samples after it
       }
     }
     started = true;
-    previous_raw = raw_counts;
-    return static_cast<int32_t>(static_cast<uint32_t>(raw_counts) +
-                                static_cast<uint32_t>(flips) * static_cast<uint32_t>(span_counts));
+    for (uint8_t i = kWindow - 1; i > 0; --i) recent_raw[i] = recent_raw[i - 1];
+    recent_raw[0] = raw_counts;
+    if (recent_count < kWindow) ++recent_count;
+
+    int32_t unwrapped;
+    if (__builtin_add_overflow(raw_counts, shift_counts, &unwrapped)) {
+      ++overflows;
+      return shift_counts < 0 ? INT32_MIN : INT32_MAX;
+    }
+    return unwrapped;
   }
 };
 

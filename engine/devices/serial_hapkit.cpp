@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "engine/core/clock.hpp"
+#include "engine/core/format.hpp"
 #include "engine/devices/board_report.hpp"
 
 namespace hapscene {
@@ -18,9 +19,9 @@ SerialHapkit::SerialHapkit(const DeviceProfile& profile, const SerialConfig& con
   while (link_.state() != LinkState::running) {
     const std::int64_t now_ns = monotonic_now_ns();
     if (now_ns > deadline_ns) {
-      throw std::runtime_error("--device serial:" + config.path + ": no answer to the handshake within " +
-                               std::to_string(config.handshake_timeout_s) +
-                               " s (is the hapscene firmware flashed, and the baud rate " +
+      throw std::runtime_error("--device serial:" + config.path + ": the handshake did not complete within " +
+                               printf_string("%g", config.handshake_timeout_s) + " s: " + handshake_failure(link_) +
+                               " (is the hapscene firmware flashed, and the baud rate " +
                                std::to_string(config.baud) + "?)");
     }
     link_.send(MotorCommand{}, now_ns);

@@ -33,6 +33,8 @@ class SerialHapkit final : public Device {
   std::int32_t read_counts() noexcept override;
   void write(const MotorCommand& command) noexcept override;
   bool take_restart() noexcept override { return link_.take_restart(); }
+  PositionStatus position_status() const noexcept override { return link_.position_status(); }
+  bool fault_seen() const noexcept override { return link_.fault_seen(); }
   std::string report() const override;
 
   const BoardLink& link() const noexcept { return link_; }

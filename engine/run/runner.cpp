@@ -12,6 +12,17 @@
 namespace hapscene {
 namespace {
 
+// What the safety stage does with the device's position this tick.
+PositionHold position_hold(PositionStatus status) noexcept {
+  switch (status) {
+    case PositionStatus::fresh: return PositionHold::none;
+    case PositionStatus::stale: return PositionHold::ramp_out;
+    case PositionStatus::unmeasured:
+    case PositionStatus::implausible: return PositionHold::cut;
+  }
+  return PositionHold::cut;
+}
+
 // Sleeps until shortly before `deadline_ns` on an absolute clock, then spins to it.
 void wait_until(std::int64_t deadline_ns) noexcept {
   constexpr std::int64_t kSpin_ns = 50'000;
@@ -67,6 +78,7 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
     const Crossfade* fade = hot_swap.before_tick(&state);
     const std::int32_t raw_counts = device.read_counts();
     if (device.take_restart()) restart_soft_start(&state.safety);  // the link came back
+    state.safety.position_hold = position_hold(device.position_status());
     step(hot_swap.scene(), raw_counts, &state, fade);
     device.write(state.command);
     const std::int64_t end_ns = monotonic_now_ns();

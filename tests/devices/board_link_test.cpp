@@ -13,34 +13,7 @@ using namespace hapscene;
 
 namespace {
 
-// An in-memory wire to a FakeBoard; the board's answers arrive at the next read.
-class LoopbackLink final : public ByteLink {
- public:
-  long read_some(std::uint8_t* data, std::size_t capacity) noexcept override {
-    if (gone) return -1;
-    const std::size_t n = std::min(capacity, to_host.size());
-    std::copy_n(to_host.begin(), n, data);
-    to_host.erase(to_host.begin(), to_host.begin() + static_cast<long>(n));
-    return static_cast<long>(n);
-  }
-  long write_some(const std::uint8_t* data, std::size_t size) noexcept override {
-    if (gone) return -1;
-    board.receive(data, size, &to_host);
-    return static_cast<long>(size);
-  }
-  bool reopen() noexcept override {
-    ++reopen_attempts;
-    if (!can_reopen) return false;
-    gone = false;
-    return true;
-  }
-
-  test::FakeBoard board;
-  std::vector<std::uint8_t> to_host;
-  bool gone{false};
-  bool can_reopen{false};
-  int reopen_attempts{0};
-};
+using test::LoopbackLink;
 
 constexpr std::int64_t kTick_ns = 1'000'000;
 
@@ -114,9 +87,11 @@ TEST_CASE("board link: a silent board gets zero force, then HELLOs until it answ
   wire.board.muted = true;
   for (int i = 0; i < 60; ++i) tick(&link, &now_ns);
   CHECK(link.state() == LinkState::silent);
-  REQUIRE(link.event_count() == 2);
-  CHECK(link.event(1).kind == LinkEventKind::silent);
-  CHECK(link.event(1).t_ns > 50 * kTick_ns);
+  // Events: connected, position stale (after 5 ms), silent (after 50 ms).
+  REQUIRE(link.event_count() == 3);
+  CHECK(link.event(1).kind == LinkEventKind::position_stale);
+  CHECK(link.event(2).kind == LinkEventKind::silent);
+  CHECK(link.event(2).t_ns > 50 * kTick_ns);
   // The last command the board saw while muted cannot be checked (it was muted), so
   // unmute and check the motor-off command and the HELLOs go out and bring it back.
   wire.board.muted = false;

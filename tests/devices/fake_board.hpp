@@ -5,6 +5,9 @@
 #include <cstdint>
 #include <vector>
 
+#include <algorithm>
+
+#include "engine/devices/byte_link.hpp"
 #include "engine/firmware/protocol.h"
 
 namespace hapscene::test {
@@ -26,6 +29,9 @@ class FakeBoard {
   std::int32_t unwrapped_counts{500};
   bool muted{false};
   bool armed{false};
+  bool states_muted{false};   // answer COMMANDs with STATS: alive, but no position
+  std::uint8_t protocol_version{HS_PROTOCOL_VERSION};
+  int raw_counts_override{-1};  // >= 0: the raw count sent in STATEs
   int hellos{0};
   int commands{0};
   hs_command last_command{};
@@ -54,7 +60,7 @@ class FakeBoard {
     if (frame.type == HS_TYPE_HELLO) {
       ++hellos;
       armed = true;
-      hs_hello_reply reply{HS_PROTOCOL_VERSION, 0, 1, 0, HS_BOARD_HAPKIT3, {0x1E, 0x95, 0x0F},
+      hs_hello_reply reply{protocol_version, 0, 1, 0, HS_BOARD_HAPKIT3, {0x1E, 0x95, 0x0F},
                            5000, 242, 20, 1, boot_id, 0};
       std::uint8_t payload[HS_HELLO_REPLY_SIZE];
       hs_put_hello_reply(&reply, payload);
@@ -67,7 +73,16 @@ class FakeBoard {
       }
       ++commands;
       hs_get_command(frame.payload, &last_command);
-      hs_state state{frame.seq, HS_STATUS_ARMED, static_cast<std::uint16_t>(unwrapped_counts & 1023),
+      if (states_muted) {
+        hs_stats stats{300, 1500, decoder_.frames_ok, 0, 0, 0, 0, 0};
+        std::uint8_t payload[HS_STATS_SIZE];
+        hs_put_stats(&stats, payload);
+        send(HS_TYPE_STATS, payload, HS_STATS_SIZE, out);
+        return;
+      }
+      const auto raw = static_cast<std::uint16_t>(raw_counts_override >= 0 ? raw_counts_override
+                                                                           : (unwrapped_counts & 1023));
+      hs_state state{frame.seq, HS_STATUS_ARMED, raw,
                      unwrapped_counts, 0, boot_id, 0};
       std::uint8_t payload[HS_STATE_SIZE];
       hs_put_state(&state, payload);
@@ -82,6 +97,35 @@ class FakeBoard {
 
   hs_decoder decoder_{};
   std::uint8_t tx_seq_{};
+};
+
+// An in-memory wire to a FakeBoard; the board's answers arrive at the next read.
+class LoopbackLink final : public ByteLink {
+ public:
+  long read_some(std::uint8_t* data, std::size_t capacity) noexcept override {
+    if (gone) return -1;
+    const std::size_t n = std::min(capacity, to_host.size());
+    std::copy_n(to_host.begin(), n, data);
+    to_host.erase(to_host.begin(), to_host.begin() + static_cast<long>(n));
+    return static_cast<long>(n);
+  }
+  long write_some(const std::uint8_t* data, std::size_t size) noexcept override {
+    if (gone) return -1;
+    board.receive(data, size, &to_host);
+    return static_cast<long>(size);
+  }
+  bool reopen() noexcept override {
+    ++reopen_attempts;
+    if (!can_reopen) return false;
+    gone = false;
+    return true;
+  }
+
+  FakeBoard board;
+  std::vector<std::uint8_t> to_host;
+  bool gone{false};
+  bool can_reopen{false};
+  int reopen_attempts{0};
 };
 
 }  // namespace hapscene::test

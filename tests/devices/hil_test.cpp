@@ -197,9 +197,12 @@ TEST_CASE("hil: corrupt bytes, dropped bytes, garbage and a board reset are surv
   CHECK(std::abs(last.x_m - last.x_true_m) < 2e-5);
   CHECK(last.output_N == doctest::Approx(-1.333).epsilon(0.05));
   // No jolt, faults or not: the force never rises by more than 0.1 N in a tick (after
-  // the reset it drops to zero and ramps in again over the soft start).
+  // the reset it drops to zero and ramps in again over the soft start). From tick 50 on:
+  // before that the hand pushes the handle from 0 into the wall, and the wall's force
+  // rises with the handle (the run starts outside the wall, so without a soft start,
+  // now that the first tick uses the measured position rather than a default one).
   double largest_rise_N = 0.0;
-  for (std::size_t i = 1; i < samples.size(); ++i) {
+  for (std::size_t i = 50; i < samples.size(); ++i) {
     largest_rise_N = std::max(largest_rise_N, std::abs(samples[i].output_N) - std::abs(samples[i - 1].output_N));
   }
   CHECK(largest_rise_N < 0.1);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/core/format.hpp"
 #include "engine/devices/board_report.hpp"
 #include "engine/devices/kinematics.hpp"
 
@@ -22,9 +23,9 @@ HilHapkit::HilHapkit(const DeviceProfile& profile, const HilConfig& config)
     substep(h_s, /*move_plant=*/false);
   }
   if (link_.state() != LinkState::running) {
-    throw std::runtime_error("--device hil: the simulated board did not answer the handshake within " +
-                             std::to_string(config.handshake_timeout_s) + " s (" + config.firmware_elf +
-                             " is not the hapscene firmware?)");
+    throw std::runtime_error("--device hil: the simulated board did not complete the handshake within " +
+                             printf_string("%g", config.handshake_timeout_s) + " s: " + handshake_failure(link_) + " (" +
+                             config.firmware_elf + " is not the hapscene firmware?)");
   }
   start_cycle_ = board_.cycle();
 }

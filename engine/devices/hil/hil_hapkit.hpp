@@ -41,6 +41,8 @@ class HilHapkit final : public Device {
   void write(const MotorCommand& command) noexcept override;
   void advance(double dt_s) noexcept override;
   bool take_restart() noexcept override { return link_.take_restart(); }
+  PositionStatus position_status() const noexcept override { return link_.position_status(); }
+  bool fault_seen() const noexcept override { return link_.fault_seen(); }
   std::string report() const override;
 
   // The plant and the board pins, for tests.

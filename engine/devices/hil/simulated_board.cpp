@@ -5,7 +5,12 @@
 #include <cstring>
 #include <filesystem>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "engine/core/errors.hpp"
+#include "engine/devices/hil/firmware_image.hpp"
 
 extern "C" {
 #include <avr_adc.h>
@@ -36,6 +41,71 @@ void quiet_logger(avr_t* /*avr*/, const int level, const char* format, va_list a
 
 // The simulated board never waits in real time.
 void no_sleep(avr_t* /*avr*/, avr_cycle_count_t /*how_long*/) {}
+
+// Loads and boots `firmware_elf` in a child process first, so that anything the checks
+// missed and simavr cannot take (a crash, an abort, a hang) ends the child, not hapscene.
+// What simavr printed there is kept for the message.
+void trial_boot(const std::string& firmware_elf) {
+  constexpr std::uint64_t kTrialCycles = 16'000'000 / 100;  // 10 ms of the board's life
+  constexpr unsigned kTrialSeconds = 10;                     // wall-clock bound of the child
+  int channel[2];
+  if (pipe(channel) != 0) return;  // no isolation available: the checks must do
+  const pid_t child = fork();
+  if (child < 0) {
+    close(channel[0]);
+    close(channel[1]);
+    return;
+  }
+  if (child == 0) {
+    close(channel[0]);
+    dup2(channel[1], STDERR_FILENO);
+    alarm(kTrialSeconds);
+    avr_global_logger_set(quiet_logger);
+    static elf_firmware_t firmware;
+    std::memset(&firmware, 0, sizeof firmware);
+    if (elf_read_firmware(firmware_elf.c_str(), &firmware) != 0) _exit(3);
+    avr_t* avr = avr_make_mcu_by_name("atmega328p");
+    if (avr == nullptr) _exit(4);
+    avr_init(avr);
+    avr->frequency = SimulatedBoard::kClock_Hz;
+    avr->log = LOG_ERROR;
+    avr->sleep = no_sleep;
+    avr_load_firmware(avr, &firmware);
+    while (avr->cycle < kTrialCycles) {
+      const int state = avr_run(avr);
+      if (state == cpu_Done || state == cpu_Crashed) break;
+    }
+    _exit(0);
+  }
+  close(channel[1]);
+  std::string said;
+  char buffer[512];
+  for (;;) {
+    const ssize_t n = read(channel[0], buffer, sizeof buffer);
+    if (n <= 0) break;
+    if (said.size() < 2000) said.append(buffer, static_cast<std::size_t>(n));
+  }
+  close(channel[0]);
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0) {
+  }
+  while (!said.empty() && (said.back() == '\n' || said.back() == '\r')) said.pop_back();
+  const std::string detail = said.empty() ? "" : " (simavr said: " + said + ")";
+  if (WIFSIGNALED(status)) {
+    const int signal_number = WTERMSIG(status);
+    throw InputError("--device hil:" + firmware_elf + ": not a valid ATmega328P firmware: " +
+                     (signal_number == SIGALRM ? std::string("simavr did not finish loading it")
+                                               : "it crashed simavr while loading (" +
+                                                     std::string(strsignal(signal_number)) + ")") +
+                     detail);
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 3) {
+    throw InputError("--device hil:" + firmware_elf + ": not a readable AVR firmware image" + detail);
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw InputError("--device hil:" + firmware_elf + ": simavr could not load it" + detail);
+  }
+}
 
 }  // namespace
 
@@ -84,6 +154,8 @@ SimulatedBoard::SimulatedBoard(const std::string& firmware_elf) : impl_(std::mak
     throw InputError("--device hil: firmware " + firmware_elf + " not found (build it with cmake; "
                      "it needs gcc-avr and avr-libc)");
   }
+  check_avr_firmware(firmware_elf);
+  trial_boot(firmware_elf);
   avr_global_logger_set(quiet_logger);
   impl_->firmware = std::make_unique<elf_firmware_t>();
   std::memset(impl_->firmware.get(), 0, sizeof(elf_firmware_t));

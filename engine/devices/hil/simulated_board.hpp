@@ -19,7 +19,9 @@ class SimulatedBoard {
  public:
   static constexpr std::uint32_t kClock_Hz = 16'000'000;
 
-  // Loads and boots the firmware. Throws InputError for a missing or unreadable .elf.
+  // Loads and boots the firmware. Throws InputError for a missing or unreadable .elf, one
+  // that fails check_avr_firmware(), or one that simavr cannot load in a trial boot in a
+  // child process (a crash or an abort there is this error, not a crash of hapscene).
   explicit SimulatedBoard(const std::string& firmware_elf);
   ~SimulatedBoard();
   SimulatedBoard(const SimulatedBoard&) = delete;
