@@ -53,20 +53,21 @@ TEST_CASE("run: a reload pointing the device at a looser profile of the same nam
   profile = std::regex_replace(profile, std::regex(R"("max_force": "6 N")"), R"("max_force": "60 N")");
   profile = std::regex_replace(profile, std::regex(R"("slew_limit": "4 N/ms")"), R"("slew_limit": "8 N/ms")");
   scratch.write("b/hapkit3.json", profile);
-  // A spring asking for about 100 N at the held handle.
-  const std::string effects = R"("effects": [{"type": "spring", "stiffness": "10 N/mm", "center": "10 mm"}])";
+  // A spring asking for about 400 N at a handle held stiffly near 0 mm: the 6 N limit
+  // is what the hand feels (before this was refused, 60 N was commanded).
+  const std::string effects = R"("effects": [{"type": "spring", "stiffness": "10 N/mm", "center": "40 mm"}])";
   const auto env = scratch.write("env.json", R"({"device": "a/hapkit3.json", )" + effects + "}");
   std::thread attacker([&] {
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     scratch.write("env.json", R"({"device": "b/hapkit3.json", )" + effects + "}");
   });
-  const test::CliOutcome run = test::run_cli("run " + env.string() + " --duration 1.5s --hand hold --quiet");
+  const test::CliOutcome run = test::run_cli("run " + env.string() + " --duration 1.5s --hand hold --hand-stiffness 20000 --quiet");
   attacker.join();
   CHECK_MESSAGE(run.err.find("reload refused, keeping the running version: " + env.string() +
                              ": the device cannot change during a run (profile limits.max_force_N 6 -> 60") !=
                     std::string::npos,
                 run.err);
-  CHECK(commanded_N(run.out) <= 6.0);
+  CHECK(commanded_N(run.out) == doctest::Approx(6.0));
   CHECK(run.out.find("(limit 6 N)") != std::string::npos);
   CHECK(run.out.find("reloads") == std::string::npos);
 }
