@@ -10,6 +10,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <thread>
 
@@ -125,6 +126,28 @@ class StatusLine {
 
 double us(std::uint64_t ns) { return static_cast<double>(ns) * 1e-3; }
 
+// The force line with the limit in force at the end, and every limit a reload tightened.
+void print_force_limits(const RunSummary& summary) {
+  const SafetyConfig& start = summary.limits_at_start;
+  const SafetyConfig& end = summary.limits_at_end;
+  std::printf("  max force        asked %.3f N, commanded %.3f N (limit %g N)\n",
+              summary.max_abs_requested_N, summary.max_abs_output_N, end.max_force_N);
+  std::string tightened;
+  const auto note = [&](const char* name, double before, double after, const char* unit) {
+    if (before == after) return;
+    char item[128];
+    std::snprintf(item, sizeof item, "%s%s %g -> %g %s", tightened.empty() ? "" : ", ", name, before, after, unit);
+    tightened += item;
+  };
+  note("max force", start.max_force_N, end.max_force_N, "N");
+  note("slew limit", start.slew_limit_N_per_s, end.slew_limit_N_per_s, "N/s");
+  note("workspace min", start.workspace_min_m * 1e3, end.workspace_min_m * 1e3, "mm");
+  note("workspace max", start.workspace_max_m * 1e3, end.workspace_max_m * 1e3, "mm");
+  note("soft start", start.soft_start_s, end.soft_start_s, "s");
+  note("soft-start threshold", start.soft_start_threshold_N, end.soft_start_threshold_N, "N");
+  if (!tightened.empty()) std::printf("  limits           tightened by a reload: %s\n", tightened.c_str());
+}
+
 void print_summary(const Scene& scene, const RunSettings& settings, const RunSummary& summary) {
   const bool real_time = settings.options.pacing == Pacing::real_time;
   std::printf("%s (%s) on %s:%s, %g Hz, %s, hand %s\n", scene.name.c_str(),
@@ -134,8 +157,7 @@ void print_summary(const Scene& scene, const RunSettings& settings, const RunSum
   std::printf("  ticks            %llu in %.3f s of device time, loop rate %.1f Hz\n",
               static_cast<unsigned long long>(summary.ticks), summary.device_time_s,
               summary.achieved_rate_hz);
-  std::printf("  max force        asked %.3f N, commanded %.3f N (limit %g N)\n",
-              summary.max_abs_requested_N, summary.max_abs_output_N, scene.safety.max_force_N);
+  print_force_limits(summary);
   const SafetyCounters& safety = summary.safety;
   std::printf("  time clamped     %.3f s (%llu ticks); slew-limited %llu, soft start %llu, "
               "outside workspace %llu ticks\n",
@@ -258,10 +280,12 @@ int run_command(std::vector<std::string> args) {
       StatusLine line(status, scene.period_s, show_status);
       std::unique_ptr<ReloadWatcher> watcher;
       if (settings.reload) {
+        ReloadWatcherOptions watch;
+        watch.before_destroy = [&status](LoadedScene& retired) { status.drain_retired(retired); };
         watcher = std::make_unique<ReloadWatcher>(
             files[i], scene, &exchange, [show_status](const std::string& message) {
               std::fprintf(stderr, "%s%s\n", show_status ? "\r\033[K" : "", message.c_str());
-            });
+            }, std::move(watch));
       }
       summary = run_scene(scene, device, options, &observers);
     }
@@ -298,6 +322,13 @@ int run_command(std::vector<std::string> args) {
     std::fputs(device.report().c_str(), stdout);
     std::fflush(stdout);
     faulted = faulted || summary.overrun_fault || device.fault_seen();
+  }
+  // A reload load that never finished may still hold a thread: end without running
+  // static destructors under it.
+  if (ReloadWatcher::abandoned_loads() > 0) {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    std::_Exit(faulted || write_failed ? kExitFailure : kExitOk);
   }
   return faulted || write_failed ? kExitFailure : kExitOk;
 }

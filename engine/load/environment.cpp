@@ -199,7 +199,7 @@ Scene load_environment_file(const std::string& path) {
   const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
   // A .lua file is a one-effect environment with the script's default parameters.
   if (file.extension() == ".lua") {
-    if (!std::ifstream(path)) throw InputError(path + ": cannot open file");
+    check_readable_file(path);  // never opened here: a named pipe would block
     const nlohmann::json script = nlohmann::json::object({{"type", "script"}, {"file", file.filename().string()}});
     const nlohmann::json root = nlohmann::json::object(
         {{"name", file.stem().string()}, {"effects", nlohmann::json::array({script})}});

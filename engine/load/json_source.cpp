@@ -1,12 +1,16 @@
 #include "engine/load/json_source.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cctype>
 #include <cerrno>
-#include <cmath>
-#include <cstdlib>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
-#include <fstream>
+#include <cstdlib>
+#include <cstring>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -183,21 +187,73 @@ std::string parser_message(const std::string& what) {
   return what;
 }
 
+// What a path that is not a regular file is, for the message.
+std::string file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a named pipe";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+// "PATH: cannot open file", with the reason unless the file is simply not there.
+std::string cannot_open(const std::string& path, int error) {
+  return path + ": cannot open file" +
+         (error == ENOENT ? std::string() : " (" + std::string(std::strerror(error)) + ")");
+}
+
+std::string too_large(const std::string& path, std::size_t max_bytes) {
+  return path + ": file larger than " + std::to_string(max_bytes) + " bytes";
+}
+
 }  // namespace
 
+// Never blocks: the path is checked to be a regular file before it is opened, opened
+// with O_NONBLOCK (a FIFO swapped in between the check and the open does not wait for a
+// writer) and checked again on the open descriptor; the size is checked before reading
+// and the read stops one byte past the cap (a file that grows while being read).
 std::string read_text_file(const std::string& path, std::size_t max_bytes) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open file");
+  struct stat before {};
+  if (::stat(path.c_str(), &before) != 0) {
+    throw InputError(cannot_open(path, errno));
+  }
+  if (!S_ISREG(before.st_mode)) {
+    throw InputError(path + ": cannot read " + file_kind(before.st_mode) + ", expected a regular file");
+  }
+  if (static_cast<std::uintmax_t>(before.st_size) > max_bytes) throw InputError(too_large(path, max_bytes));
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) throw InputError(cannot_open(path, errno));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat opened {};
+  if (::fstat(fd, &opened) != 0 || !S_ISREG(opened.st_mode)) {
+    throw InputError(path + ": cannot read " + file_kind(opened.st_mode) + ", expected a regular file");
+  }
+  if (static_cast<std::uintmax_t>(opened.st_size) > max_bytes) throw InputError(too_large(path, max_bytes));
   std::string text;
   char buffer[16384];
-  while (file.read(buffer, sizeof buffer) || file.gcount() > 0) {
-    text.append(buffer, static_cast<std::size_t>(file.gcount()));
-    if (text.size() > max_bytes) {
-      throw InputError(path + ": file larger than " + std::to_string(max_bytes) + " bytes");
-    }
+  for (;;) {
+    const ssize_t got = ::read(fd, buffer, sizeof buffer);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) throw InputError(path + ": cannot read file (" + std::strerror(errno) + ")");
+    if (got == 0) break;
+    text.append(buffer, static_cast<std::size_t>(got));
+    if (text.size() > max_bytes) throw InputError(too_large(path, max_bytes));
   }
-  if (file.bad()) throw InputError(path + ": cannot read file");
   return text;
+}
+
+void check_readable_file(const std::string& path) {
+  struct stat status {};
+  if (::stat(path.c_str(), &status) != 0) {
+    throw InputError(cannot_open(path, errno));
+  }
+  if (!S_ISREG(status.st_mode)) {
+    throw InputError(path + ": cannot read " + file_kind(status.st_mode) + ", expected a regular file");
+  }
 }
 
 nlohmann::json parse_json_text(std::string_view text, const std::string& display_name) {

@@ -19,8 +19,14 @@ nlohmann::json read_json_file(const std::string& path);
 // Parses JSON text; `display_name` is the file name used in messages. Throws InputError.
 nlohmann::json parse_json_text(std::string_view text, const std::string& display_name);
 
-// Reads a whole text file of at most `max_bytes`. Throws InputError naming the file.
+// Reads a whole text file of at most `max_bytes`. Every file hapscene reads goes through
+// here: a directory, named pipe, device or socket is refused ("PATH: cannot read a named
+// pipe, expected a regular file") and so is a file over the cap, before anything is
+// read; it never blocks. Throws InputError naming the file.
 std::string read_text_file(const std::string& path, std::size_t max_bytes);
+
+// The same checks without reading: throws InputError unless `path` is a regular file.
+void check_readable_file(const std::string& path);
 
 // "/effects/1/stiffness" from a parent pointer and a key (escaping "~" and "/").
 std::string json_pointer_append(const std::string& parent, std::string_view key);

@@ -32,12 +32,13 @@ bool SceneExchange::retire(LoadedScene* done) noexcept {
   return retired_.compare_exchange_strong(expected, done, std::memory_order_acq_rel);
 }
 
-HotSwap::HotSwap(const Scene& initial, SceneExchange* exchange, TickState* state)
-    : exchange_(exchange), scene_(&initial) {
+HotSwap::HotSwap(const Scene& initial, SceneExchange* exchange, TickState* state,
+                 TickObserver* observer)
+    : exchange_(exchange), observer_(observer), scene_(&initial) {
+  publish(*state);
   if (exchange_ == nullptr) return;
   // The first scene gets a carrier too (its scripts stay in the state), so every scene
   // the loop lets go of can be retired the same way.
-  (void)state;
   initial_ = std::make_unique<LoadedScene>();
 }
 
@@ -47,13 +48,26 @@ HotSwap::~HotSwap() {
   }
 }
 
+void HotSwap::publish(const TickState& state) noexcept {
+  if (observer_ == nullptr) return;
+  const LoadedScene* other = fading_from_ != nullptr ? fading_from_ : to_retire_;
+  observer_->on_scripts(ScriptSpan(state.scripts),
+                        other != nullptr ? ScriptSpan(other->scripts) : ScriptSpan());
+}
+
 // Invariant: the current scene's instances live in state->scripts; a carrier's `scripts`
 // holds the instances of the scene it carries only once that scene is let go of.
 const Crossfade* HotSwap::before_tick(TickState* state) noexcept {
   if (exchange_ == nullptr) return nullptr;
 
-  // Hand back the scene let go of, once the reload thread has collected the last one.
-  if (to_retire_ != nullptr && exchange_->retire(to_retire_)) to_retire_ = nullptr;
+  // Hand back the scene let go of, once the reload thread has collected the last one:
+  // first out of the published list, then into the slot (only this thread fills it).
+  if (to_retire_ != nullptr && exchange_->retire_slot_free()) {
+    LoadedScene* done = to_retire_;
+    to_retire_ = nullptr;
+    publish(*state);
+    exchange_->retire(done);
+  }
 
   if (!fading_) {
     LoadedScene* next = to_retire_ == nullptr ? exchange_->take_offer() : nullptr;
@@ -71,16 +85,17 @@ const Crossfade* HotSwap::before_tick(TickState* state) noexcept {
     const double fade_s = std::max(0.1, scene_->safety.soft_start_s);
     fade_step_ = scene_->period_s / fade_s;
     fading_ = true;
+    publish(*state);
     return &fade_;
   }
 
-  // Advance the fade; when it is complete, let the old scene go.
+  // Advance the fade; when it is complete, let the old scene go. The first scene's
+  // carrier (its Scene belongs to the caller) holds only its instances: it goes back too.
   fade_.weight_to = std::min(1.0, fade_.weight_to + fade_step_);
   if (fade_.weight_to < 1.0) return &fade_;
   fading_ = false;
-  // The first scene belongs to the caller; its old instances wait in initial_ until the
-  // run ends. Any later one goes back to the reload thread.
-  if (fading_from_ != initial_.get()) to_retire_ = fading_from_;
+  to_retire_ = fading_from_;
+  if (fading_from_ == initial_.get()) (void)initial_.release();
   fading_from_ = nullptr;
   return nullptr;
 }

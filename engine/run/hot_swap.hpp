@@ -4,12 +4,18 @@
 // tick boundary and cross-fades from the old scene's force to the new one's over the
 // new scene's soft-start time, then hands the old one back to be destroyed off the loop.
 // The hand-over is two atomic pointer slots: the loop never allocates, frees or waits.
+//
+// Script log messages are drained by another thread (the live status) while the loop
+// swaps instances: the HotSwap tells the run's observer which instances are alive
+// (TickObserver::on_scripts) whenever that changes, and a scene is handed back to be
+// destroyed only after it was left out of that list.
 #include <atomic>
 #include <memory>
 
 #include "engine/core/scene.hpp"
 #include "engine/core/step.hpp"
 #include "engine/core/tick_state.hpp"
+#include "engine/run/tick_observer.hpp"
 
 namespace hapscene {
 
@@ -34,6 +40,7 @@ class SceneExchange {
 
   // Loop thread.
   LoadedScene* take_offer() noexcept;
+  bool retire_slot_free() const noexcept { return retired_.load(std::memory_order_acquire) == nullptr; }
   bool retire(LoadedScene* done) noexcept;  // false while the slot is still full
 
  private:
@@ -45,8 +52,10 @@ class SceneExchange {
 // The loop's view: which scene to step this tick, and the cross-fade, if any.
 class HotSwap {
  public:
-  // Outside the loop. With no exchange, scene() is always `initial`.
-  HotSwap(const Scene& initial, SceneExchange* exchange, TickState* state);
+  // Outside the loop. With no exchange, scene() is always `initial`. `observer` (may be
+  // null) is told the live script instances now and on every change.
+  HotSwap(const Scene& initial, SceneExchange* exchange, TickState* state,
+          TickObserver* observer = nullptr);
   // Outside the loop: frees whatever the loop still holds.
   ~HotSwap();
   HotSwap(const HotSwap&) = delete;
@@ -58,12 +67,16 @@ class HotSwap {
   const Scene& scene() const noexcept { return *scene_; }
 
  private:
+  // Tells the observer the instances alive: the running scene's, and the one let go of.
+  void publish(const TickState& state) noexcept;
+
   SceneExchange* exchange_;
+  TickObserver* observer_;
   const Scene* scene_;
-  std::unique_ptr<LoadedScene> initial_;  // the first scene's carrier once a swap happened
+  std::unique_ptr<LoadedScene> initial_;  // the first scene's carrier until it is handed back
   LoadedScene* current_{nullptr};         // carrier of scene_ (null: the caller's initial)
   LoadedScene* fading_from_{nullptr};     // carrier of the scene being faded out
-  LoadedScene* to_retire_{nullptr};       // waiting for a free retired slot
+  LoadedScene* to_retire_{nullptr};       // faded out, waiting for a free retired slot
   Crossfade fade_;
   double fade_step_{};                    // weight added per tick
   bool fading_{false};

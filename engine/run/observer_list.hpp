@@ -20,6 +20,9 @@ class ObserverList final : public TickObserver {
   void on_tick(const TickState& state) noexcept override {
     for (std::size_t i = 0; i < count_; ++i) observers_[i]->on_tick(state);
   }
+  void on_scripts(ScriptSpan running, ScriptSpan replaced) noexcept override {
+    for (std::size_t i = 0; i < count_; ++i) observers_[i]->on_scripts(running, replaced);
+  }
   void on_finish(const TickState& state) override {
     for (std::size_t i = 0; i < count_; ++i) observers_[i]->on_finish(state);
   }

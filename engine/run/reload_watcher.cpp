@@ -1,27 +1,45 @@
 #include "engine/run/reload_watcher.hpp"
 
-#include <chrono>
 #include <system_error>
 
-#include "engine/core/errors.hpp"
 #include "engine/load/environment.hpp"
+#include "engine/load/object_reader.hpp"
+#include "engine/run/reload_guard.hpp"
 
 namespace hapscene {
 
+std::atomic<std::uint64_t> ReloadWatcher::abandoned_{0};
+
+namespace {
+
+// After this many loads were abandoned, watching stops (each may still hold a thread).
+constexpr int kMaxAbandonedLoads = 2;
+
+std::unique_ptr<LoadedScene> load_scene(const std::string& path) {
+  auto next = std::make_unique<LoadedScene>();
+  next->scene = load_environment_file(path);
+  next->scripts = make_script_instances(next->scene);
+  return next;
+}
+
+}  // namespace
+
 ReloadWatcher::ReloadWatcher(std::string environment_path, const Scene& running,
-                             SceneExchange* exchange, Report report, double poll_period_s)
+                             SceneExchange* exchange, Report report, ReloadWatcherOptions options)
     : environment_path_(std::move(environment_path)),
-      rate_hz_(running.rate_hz),
-      device_name_(running.device.name),
       exchange_(exchange),
       report_(std::move(report)),
-      poll_period_s_(poll_period_s) {
-  watch_files_of(running);
-  if (poll_period_s_ <= 0.0) return;
+      options_(std::move(options)) {
+  if (!options_.load) options_.load = load_scene;
+  limits_.rate_hz = running.rate_hz;
+  limits_.device = running.device;
+  limits_.safety = running.safety;
+  watch_files_of(running, {});
+  if (options_.poll_period_s <= 0.0) return;
   thread_ = std::thread([this] {
     while (!stop_.load()) {
-      std::this_thread::sleep_for(std::chrono::duration<double>(poll_period_s_));
-      poll();
+      std::this_thread::sleep_for(std::chrono::duration<double>(options_.poll_period_s));
+      if (!stop_.load()) poll();
     }
   });
 }
@@ -29,61 +47,165 @@ ReloadWatcher::ReloadWatcher(std::string environment_path, const Scene& running,
 ReloadWatcher::~ReloadWatcher() {
   stop_.store(true);
   if (thread_.joinable()) thread_.join();
-}
-
-// The environment file and every script file it uses.
-void ReloadWatcher::watch_files_of(const Scene& scene) {
-  files_ = {environment_path_};
-  for (const Effect& effect : scene.effects) {
-    if (const auto* script = std::get_if<ScriptEffect>(&effect); script != nullptr && !script->file.empty()) {
-      files_.push_back(script->file);
+  if (job_ != nullptr) {
+    bool done = false;
+    {
+      std::lock_guard lock(job_->mutex);
+      done = job_->done;
+    }
+    if (done) {
+      job_thread_.join();
+    } else {
+      abandon_load("the run ended while it was still loading");
     }
   }
-  stamps_ = stamps();
 }
 
-// Modification time and size of each watched file (zero for one that is missing).
-std::vector<ReloadWatcher::Stamp> ReloadWatcher::stamps() const {
-  std::vector<Stamp> out;
-  for (const std::string& file : files_) {
-    std::error_code error;
-    Stamp stamp;
-    stamp.time = std::filesystem::last_write_time(file, error);
-    if (!error) stamp.size = std::filesystem::file_size(file, error);
-    out.push_back(error ? Stamp{} : stamp);
+ReloadWatcher::Stamp ReloadWatcher::stamp_of(const std::string& path) {
+  std::error_code error;
+  Stamp stamp;
+  stamp.time = std::filesystem::last_write_time(path, error);
+  if (!error) stamp.size = std::filesystem::file_size(path, error);
+  return error ? Stamp{} : stamp;
+}
+
+// The environment file and every script file it uses. A file that was watched when the
+// load started keeps the stamp it had then, so an edit made during the load is seen.
+void ReloadWatcher::watch_files_of(const Scene& scene, const std::vector<Watched>& at_load_start) {
+  std::vector<std::string> paths{environment_path_};
+  for (const Effect& effect : scene.effects) {
+    if (const auto* script = std::get_if<ScriptEffect>(&effect); script != nullptr && !script->file.empty()) {
+      paths.push_back(script->file);
+    }
   }
-  return out;
+  files_.clear();
+  for (const std::string& path : paths) {
+    Watched watched{path, stamp_of(path)};
+    for (const Watched& before : at_load_start) {
+      if (before.path == path) watched.stamp = before.stamp;
+    }
+    files_.push_back(std::move(watched));
+  }
+}
+
+bool ReloadWatcher::changed() const {
+  for (const Watched& watched : files_) {
+    if (!(stamp_of(watched.path) == watched.stamp)) return true;
+  }
+  return false;
 }
 
 void ReloadWatcher::poll() {
   // Destroy what the loop let go of.
-  exchange_->take_retired().reset();
+  // Destroy what the loop let go of; a fault of a replaced version is reported here
+  // (the run's summary covers only the version running at the end).
+  if (std::unique_ptr<LoadedScene> retired = exchange_->take_retired()) {
+    if (options_.before_destroy) options_.before_destroy(*retired);
+    for (const auto& script : retired->scripts) {
+      if (script->disabled()) {
+        report_("a replaced version's script had been disabled: " + std::string(script->fault_message()));
+      }
+    }
+  }
+  // A load in flight: take its result, or give up on it when overdue.
+  if (job_ != nullptr) collect_load();
   // Offer what is compiled and waiting.
   if (waiting_ != nullptr && exchange_->offer(waiting_)) {
     report_("reloaded " + environment_path_ + ": cross-fading to the new version");
   }
-  // Look for changes.
-  const std::vector<Stamp> now = stamps();
-  if (now == stamps_) return;
-  stamps_ = now;
-  try_reload();
+  if (job_ != nullptr || stopped_watching_ || !changed()) return;
+  start_load();
+  if (options_.poll_period_s > 0.0) return;
+  // Without a thread: wait for the load here, at most the compile timeout.
+  {
+    std::unique_lock lock(job_->mutex);
+    const std::shared_ptr<Job> job = job_;
+    job->finished.wait_for(lock, std::chrono::duration<double>(options_.compile_timeout_s),
+                           [&] { return job->done; });
+  }
+  collect_load();
 }
 
-void ReloadWatcher::try_reload() {
-  try {
-    auto next = std::make_unique<LoadedScene>();
-    next->scene = load_environment_file(environment_path_);
-    if (next->scene.rate_hz != rate_hz_ || next->scene.device.name != device_name_) {
-      throw InputError(environment_path_ + ": rate_hz and device cannot change during a run");
+void ReloadWatcher::start_load() {
+  for (Watched& watched : files_) watched.stamp = stamp_of(watched.path);
+  load_start_files_ = files_;
+  job_ = std::make_shared<Job>();
+  job_started_ = std::chrono::steady_clock::now();
+  // The thread holds its own references: it may outlive this watcher when abandoned.
+  job_thread_ = std::thread([job = job_, load = options_.load, path = environment_path_] {
+    std::unique_ptr<LoadedScene> scene;
+    std::string error;
+    try {
+      scene = load(path);
+      if (scene == nullptr) error = path + ": the load gave no scene";
+    } catch (const std::exception& caught) {
+      error = caught.what();
+    } catch (...) {
+      error = "unknown error";
     }
-    next->scripts = make_script_instances(next->scene);
-    watch_files_of(next->scene);
-    waiting_ = std::move(next);
-    if (exchange_->offer(waiting_)) {
-      report_("reloaded " + environment_path_ + ": cross-fading to the new version");
+    std::lock_guard lock(job->mutex);
+    job->scene = std::move(scene);
+    job->error = std::move(error);
+    job->done = true;
+    job->finished.notify_all();
+  });
+}
+
+void ReloadWatcher::collect_load() {
+  std::unique_ptr<LoadedScene> next;
+  std::string error;
+  bool done = false;
+  {
+    std::lock_guard lock(job_->mutex);
+    done = job_->done;
+    if (done) {
+      next = std::move(job_->scene);
+      error = std::move(job_->error);
     }
-  } catch (const std::exception& error) {
-    report_(std::string("reload failed, keeping the running version: ") + error.what());
+  }
+  if (!done) {
+    const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - job_started_;
+    if (elapsed.count() < options_.compile_timeout_s) return;
+    abandon_load("it did not finish within " + format_number(options_.compile_timeout_s) + " s");
+    return;
+  }
+  job_thread_.join();
+  job_.reset();
+  if (next == nullptr) {
+    report_("reload failed, keeping the running version: " + error);
+    return;
+  }
+  accept(std::move(next));
+}
+
+// A load that does not end: its thread is left to finish on its own (it holds only its
+// own data) and no later load waits for it.
+void ReloadWatcher::abandon_load(const std::string& why) {
+  job_thread_.detach();
+  job_.reset();
+  abandoned_.fetch_add(1);
+  ++abandoned_here_;
+  std::string message = "reload of " + environment_path_ + " abandoned, keeping the running version: " + why;
+  if (abandoned_here_ >= kMaxAbandonedLoads && !stop_.load()) {
+    stopped_watching_ = true;
+    message += "; hot reload is off for the rest of this run (" + std::to_string(abandoned_here_) +
+               " loads did not finish)";
+  }
+  report_(message);
+}
+
+// A compiled version: refused when it would change the device or loosen a limit.
+void ReloadWatcher::accept(std::unique_ptr<LoadedScene> next) {
+  const std::string refusal = reload_refusal(limits_, next->scene);
+  if (!refusal.empty()) {
+    report_("reload refused, keeping the running version: " + environment_path_ + ": " + refusal);
+    return;
+  }
+  limits_.safety = next->scene.safety;
+  watch_files_of(next->scene, load_start_files_);
+  waiting_ = std::move(next);
+  if (exchange_->offer(waiting_)) {
+    report_("reloaded " + environment_path_ + ": cross-fading to the new version");
   }
 }
 

@@ -2,11 +2,23 @@
 // Hot reload, the reload thread's side: watches an environment file and the script files
 // it uses; when one changes, loads and compiles the new version off the loop, makes its
 // script instances and offers it to the loop (engine/run/hot_swap.hpp). A broken new
-// version is reported and the running one keeps going. Scenes the loop lets go of are
-// destroyed here.
+// version, or one that would change the device or loosen a safety limit
+// (engine/run/reload_guard.hpp), is reported and the running one keeps going. Scenes the
+// loop lets go of are destroyed here.
+//
+// Nothing here waits unboundedly on a load: each load runs on a thread of its own, and
+// the watcher only looks at it when it polls. A load still running after the compile
+// timeout is reported and abandoned (its thread detached; it ends when its own limits
+// stop it), and so is one still running when the watcher is destroyed, so the run
+// always ends.
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -15,16 +27,29 @@
 
 namespace hapscene {
 
+struct ReloadWatcherOptions {
+  // How often the files are looked at; 0: no thread, the owner calls poll() (which then
+  // waits for the load it starts, at most compile_timeout_s).
+  double poll_period_s{0.2};
+  // A load taking longer is reported and abandoned.
+  double compile_timeout_s{10.0};
+  // Called on the watcher's thread with each scene the loop let go of, just before it is
+  // destroyed (the live status drains its scripts' log messages here).
+  std::function<void(LoadedScene& retired)> before_destroy;
+  // Loads a new version (tests replace it); the default loads the environment file and
+  // makes its script instances.
+  std::function<std::unique_ptr<LoadedScene>(const std::string& path)> load;
+};
+
 class ReloadWatcher {
  public:
   using Report = std::function<void(const std::string& message)>;
 
   // Starts watching. `running` is the scene the run starts with; `report` is called from
-  // the watcher's thread with one line per reload or failed reload. With a poll period of
-  // 0 no thread is started and the owner calls poll() itself.
+  // the watcher's thread with one line per reload or failed reload.
   ReloadWatcher(std::string environment_path, const Scene& running, SceneExchange* exchange,
-                Report report, double poll_period_s = 0.2);
-  // Stops the thread.
+                Report report, ReloadWatcherOptions options = {});
+  // Stops the thread; abandons a load still running (never waits for it).
   ~ReloadWatcher();
   ReloadWatcher(const ReloadWatcher&) = delete;
   ReloadWatcher& operator=(const ReloadWatcher&) = delete;
@@ -32,28 +57,54 @@ class ReloadWatcher {
   // Checks once (the thread calls this every poll period; without a thread, the owner).
   void poll();
 
+  // Loads abandoned by every watcher of this process (their threads may still run: the
+  // process should then end with std::_Exit after flushing its output).
+  static std::uint64_t abandoned_loads() noexcept { return abandoned_.load(); }
+
  private:
   struct Stamp {
     std::filesystem::file_time_type time{};
     std::uintmax_t size{};
     bool operator==(const Stamp&) const = default;
   };
+  struct Watched {
+    std::string path;
+    Stamp stamp;
+  };
+  // One load on its own thread; shared with that thread so it may outlive the watcher.
+  struct Job {
+    std::mutex mutex;
+    std::condition_variable finished;
+    bool done{false};
+    std::unique_ptr<LoadedScene> scene;
+    std::string error;
+  };
 
-  void watch_files_of(const Scene& scene);
-  std::vector<Stamp> stamps() const;
-  void try_reload();
+  static Stamp stamp_of(const std::string& path);
+  void watch_files_of(const Scene& scene, const std::vector<Watched>& at_load_start);
+  bool changed() const;
+  void start_load();
+  void collect_load();
+  void abandon_load(const std::string& why);
+  void accept(std::unique_ptr<LoadedScene> next);
 
   std::string environment_path_;
-  double rate_hz_;
-  std::string device_name_;
+  Scene limits_;  // rate, device and safety in force (the last version accepted)
   SceneExchange* exchange_;
   Report report_;
-  std::vector<std::string> files_;
-  std::vector<Stamp> stamps_;
-  std::unique_ptr<LoadedScene> waiting_;  // compiled, not yet taken by the loop
+  ReloadWatcherOptions options_;
+  std::vector<Watched> files_;
+  std::vector<Watched> load_start_files_;  // the stamps the running load started from
+  std::unique_ptr<LoadedScene> waiting_;   // compiled, not yet taken by the loop
+  std::shared_ptr<Job> job_;               // the load in flight, if any
+  std::thread job_thread_;
+  std::chrono::steady_clock::time_point job_started_;
+  int abandoned_here_{0};
+  bool stopped_watching_{false};
   std::atomic<bool> stop_{false};
-  double poll_period_s_;
   std::thread thread_;
+
+  static std::atomic<std::uint64_t> abandoned_;
 };
 
 }  // namespace hapscene

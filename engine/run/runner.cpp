@@ -44,7 +44,7 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
                      TickObserver* observer) {
   RunSummary summary;
   TickState state = make_tick_state(initial_scene);
-  HotSwap hot_swap(initial_scene, options.reload, &state);
+  HotSwap hot_swap(initial_scene, options.reload, &state, observer);
   // Rate and device stay for the whole run (a reload that changes them is refused).
   const Scene& scene = initial_scene;
   const auto total_ticks = static_cast<std::uint64_t>(std::llround(options.duration_s * scene.rate_hz));
@@ -139,6 +139,8 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
       }
     }
   }
+  summary.limits_at_start = initial_scene.safety;
+  summary.limits_at_end = hot_swap.scene().safety;
   summary.ticks = state.tick;
   summary.safety = state.safety.counters;
   summary.device_time_s = static_cast<double>(state.tick) * scene.period_s;

@@ -17,6 +17,7 @@
 #include "engine/devices/device.hpp"
 #include "engine/run/hot_swap.hpp"
 #include "engine/run/latency_histogram.hpp"
+#include "engine/run/tick_observer.hpp"
 
 namespace hapscene {
 
@@ -35,17 +36,6 @@ struct RunOptions {
   // fault: the device is commanded zero force and the run ends.
   std::uint32_t overrun_warn_ticks{3};
   std::uint32_t overrun_fault_ticks{10};
-};
-
-// Sees every tick after the device write: on_tick must not allocate, lock or do I/O.
-// on_start and on_finish run on the loop's thread just before the first tick and after
-// the last one, outside the timed loop.
-class TickObserver {
- public:
-  virtual ~TickObserver() = default;
-  virtual void on_start(const TickState& state) { (void)state; }
-  virtual void on_tick(const TickState& state) noexcept = 0;
-  virtual void on_finish(const TickState& state) { (void)state; }
 };
 
 // What happened to one script effect during a run.
@@ -79,6 +69,10 @@ struct RunSummary {
   double first_overrun_warning_s{-1.0}; // device time of the first warning (-1: none)
   bool overrun_fault{};                 // the run ended on sustained overruns
   double overrun_fault_s{};             // device time of the fault
+  // The safety limits at the start and at the end of the run (a hot reload may tighten
+  // them, never loosen them): what the summary reports as in force.
+  SafetyConfig limits_at_start;
+  SafetyConfig limits_at_end;
 };
 
 // Runs `scene` on `device` for options.duration_s of device time, then commands zero

@@ -1,0 +1,15 @@
+#pragma once
+// What a hot reload may not do: change the rate, change the device (its profile's
+// content, whatever file or name it comes from), or loosen any safety limit of the scene
+// in force. Checked by the reload thread before a new version is offered to the loop.
+#include <string>
+
+#include "engine/core/scene.hpp"
+
+namespace hapscene {
+
+// "" when `next` may replace `running`; otherwise one message naming every change that
+// is refused ("device profile content changed: limits.max_force_N 6 -> 60; ...").
+std::string reload_refusal(const Scene& running, const Scene& next);
+
+}  // namespace hapscene

@@ -1,0 +1,32 @@
+#pragma once
+// What sees a run tick by tick: telemetry, the live status, test traces.
+#include <memory>
+#include <span>
+
+#include "engine/core/tick_state.hpp"
+
+namespace hapscene {
+
+// A run of script instances (a scene's, in scene order).
+using ScriptSpan = std::span<const std::unique_ptr<ScriptInstance>>;
+
+// Sees every tick after the device write: on_tick must not allocate, lock or do I/O.
+// on_start and on_finish run on the loop's thread just before the first tick and after
+// the last one, outside the timed loop.
+class TickObserver {
+ public:
+  virtual ~TickObserver() = default;
+  virtual void on_start(const TickState& state) { (void)state; }
+  virtual void on_tick(const TickState& state) noexcept = 0;
+  virtual void on_finish(const TickState& state) { (void)state; }
+  // The script instances alive (whose log another thread may drain): the running
+  // scene's, and during and after a hot-reload fade the replaced scene's until it is
+  // handed back to be destroyed. Called on the loop's thread before the first tick and
+  // at each change (inside the loop: same rules as on_tick).
+  virtual void on_scripts(ScriptSpan running, ScriptSpan replaced) noexcept {
+    (void)running;
+    (void)replaced;
+  }
+};
+
+}  // namespace hapscene
