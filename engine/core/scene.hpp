@@ -43,6 +43,10 @@ struct Scene {
   std::size_t script_count{};       // ScriptEffects among them (instance_index 0..n-1)
 
   ValidateThresholds validate;      // the optional "validate" block (the harness only)
+
+  // Warnings found at load (printed to stderr by the loader; `validate` fails a check on
+  // them): "environments/x.json: /effects/1 (wall): ... never acts ...".
+  std::vector<std::string> load_warnings;
 };
 
 // Appends `effect` to the scene's list and, when it can act inside the workspace (safety
