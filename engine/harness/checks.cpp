@@ -100,7 +100,7 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scen
                                printf_string("%llu errors, %llu budget overruns",
                                              static_cast<unsigned long long>(m.script_errors),
                                              static_cast<unsigned long long>(m.script_budget_overruns)));
-  for (std::size_t i = 0; i < m.script_faults.size(); ++i) script.detail += (i == 0 ? ": " : "; ") + m.script_faults[i];
+  for (std::size_t i = 0; i < m.script_faults.size(); ++i) script.detail += (i == 0 ? ": " : "; ") + m.script_faults[i].text();
   checks.push_back(script);
   const double max_compute_s = t.max_tick_compute_s > 0.0 ? t.max_tick_compute_s : 0.5 * scene.period_s;
   checks.push_back(at_most("tick_compute", m.compute_p99_s, max_compute_s, "s",

@@ -169,9 +169,9 @@ ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
     // that does not read time).
     if (script.skipped_calls < records.size()) {
       const TickRecord& at = records[records.size() - 1 - script.skipped_calls];
-      m.script_faults.push_back(script.fault + printf_string(" (t %.3f s, x %.2f mm)", at.t_s, at.x_true_m * 1e3));
+      m.script_faults.push_back({script.fault, printf_string("t %.3f s, x %.2f mm", at.t_s, at.x_true_m * 1e3)});
     } else {
-      m.script_faults.push_back(script.fault);
+      m.script_faults.push_back({script.fault, ""});
     }
   }
   m.compute_p50_s = static_cast<double>(summary.compute_ns.percentile_ns(0.50)) * 1e-9;

@@ -69,9 +69,14 @@ struct ScenarioMetrics {
   // Scripts (filled once scripts exist) and timing.
   std::uint64_t script_errors{};
   std::uint64_t script_budget_overruns{};
-  // Each disabled script's message, with when and where it faulted:
-  // "scripts/x.lua:3: attempt to ... (t 0.512 s, x 10.02 mm)".
-  std::vector<std::string> script_faults;
+  // Each disabled script's message ("scripts/x.lua:3: attempt to ..."), with when and
+  // where it faulted ("t 0.512 s, x 10.02 mm"; empty when unknown).
+  struct ScriptFaultSeen {
+    std::string message;
+    std::string where;
+    std::string text() const { return where.empty() ? message : message + " (" + where + ")"; }
+  };
+  std::vector<ScriptFaultSeen> script_faults;
   double compute_p50_s{};
   double compute_p99_s{};
   double compute_max_s{};

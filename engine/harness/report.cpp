@@ -157,6 +157,8 @@ nlohmann::json report_to_json(const ValidationReport& report) {
                      {"applicable", s.scenario.applicable}, {"duration_s", s.scenario.duration_s},
                      {"pass", s.pass}};
     if (s.scenario.applicable) {
+      json script_faults = json::array();
+      for (const auto& f : m.script_faults) script_faults.push_back({{"message", f.message}, {"where", f.where}});
       json metrics = {
           {"ticks", m.ticks},
           {"max_requested_N", m.max_requested_N},
@@ -184,7 +186,7 @@ nlohmann::json report_to_json(const ValidationReport& report) {
           {"max_penetration_x_m", m.max_penetration_x_m},
           {"script_errors", m.script_errors},
           {"script_budget_overruns", m.script_budget_overruns},
-          {"script_faults", m.script_faults},
+          {"script_faults", script_faults},
           {"tick_compute_s", {{"p50", m.compute_p50_s}, {"p99", m.compute_p99_s}, {"max", m.compute_max_s}}},
           {"safety", {{"nonfinite_faults", m.safety.nonfinite_faults},
                       {"outside_workspace_ticks", m.safety.outside_workspace_ticks},
