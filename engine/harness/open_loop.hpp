@@ -26,6 +26,7 @@ class ScriptFaultLog {
   void add(const std::string& message, const std::string& where, double order_key = 0.0);
   void merge(const ScriptFaultLog& other);
   const std::vector<std::string>& lines() const { return lines_; }
+  const std::vector<std::string>& messages() const { return messages_; }
   bool empty() const { return lines_.empty(); }
 
  private:
