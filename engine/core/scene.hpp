@@ -38,6 +38,7 @@ struct Scene {
   std::string source_path;          // the file it was loaded from, for messages
 
   DeviceProfile device;
+  std::string device_file;          // the profile's file ("environments/devices/big.json"), or its shipped name
 
   std::vector<Effect> effects;      // as written in the file
   std::size_t script_count{};       // ScriptEffects among them (instance_index 0..n-1)

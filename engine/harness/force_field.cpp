@@ -36,10 +36,10 @@ void require_sampleable_workspace(const Scene& scene, double step_m) {
   const double max_span_m = static_cast<double>(kMaxFieldPoints - 1) * step_m;
   if (std::isfinite(span_m) && span_m <= max_span_m * (1.0 + 1e-9)) return;
   throw InputError(printf_string(
-      "%s: /device: the workspace [%g, %g] m (device profile \"%s\", lowered by \"safety\") spans %g m; "
-      "the harness samples it every %g um and takes at most %g m",
-      scene.source_path.c_str(), scene.safety.workspace_min_m, scene.safety.workspace_max_m,
-      scene.device.name.c_str(), span_m, step_m * 1e6, max_span_m));
+      "%s: /device: %s: the workspace [%g, %g] m spans %g m; the harness samples it every %g um "
+      "and takes at most %g m",
+      scene.source_path.c_str(), scene.device_file.c_str(), scene.safety.workspace_min_m,
+      scene.safety.workspace_max_m, span_m, step_m * 1e6, max_span_m));
 }
 
 ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m, double step_m) {

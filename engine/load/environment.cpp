@@ -160,6 +160,10 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
     reader.fail("device", error.what());  // errors inside a profile file name that file
   }
 
+  const bool device_is_path = device_name.find('/') != std::string::npos || device_name.ends_with(".json");
+  scene.device_file = device_is_path && std::filesystem::path(device_name).is_relative()
+                          ? (std::filesystem::path(base_dir) / device_name).lexically_normal().string()
+                          : device_name;
   scene.kinematics = compile_kinematics(scene.device);
 
   // Safety: the device's limits, lowered by the environment's.

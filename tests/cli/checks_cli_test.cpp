@@ -137,3 +137,25 @@ TEST_CASE("cli: a wall that never acts warns on every command and fails validate
   CHECK(validate.out.find("failed: scene/effects") != std::string::npos);
   CHECK(run_cli("run " + env + " --sim-time --duration 10ms --quiet").err.starts_with(warning));
 }
+
+TEST_CASE("cli: a workspace too wide to sample is refused (exit 2), naming the environment and the profile") {
+  const TempFolder folder("huge");
+  std::string profile = hapscene::test::slurp_file(HAPSCENE_SOURCE_DIR "/environments/devices/hapkit3.json");
+  const std::string from = R"("workspace": ["-50 mm", "45 mm"])";
+  REQUIRE(profile.find(from) != std::string::npos);
+  profile.replace(profile.find(from), from.size(), R"("workspace": ["-1000 m", "1000 m"])");
+  const std::string profile_path = folder.write("big.json", profile);
+  const std::string env = folder.write("env.json", R"({"device": "big.json", "effects": [{"type": "spring", "stiffness": 100}]})");
+  const std::string message = "error: " + env + ": /device: " + profile_path +
+                              ": the workspace [-1000, 1000] m spans 2000 m; the harness samples it every 20 um "
+                              "and takes at most 1 m\n";
+  for (const std::string command : {"validate ", "plot --output /dev/null "}) {
+    const auto outcome = run_cli(command + env);
+    CHECK(outcome.exit_code == 2);
+    CHECK(outcome.err == message);
+  }
+  const std::string spec = folder.write("env.test.json", R"({"forces": [{"x": 0, "force": 0}]})");
+  const auto tested = run_cli("test " + spec);
+  CHECK(tested.exit_code == 2);
+  CHECK(tested.err == "error: " + spec + ": /environment: " + message.substr(7));
+}

@@ -123,6 +123,6 @@ TEST_CASE("force field: a workspace too wide to sample is refused, naming the fi
   scene.safety.workspace_min_m = -1000.0;
   scene.safety.workspace_max_m = 1000.0;
   const std::string message = test::input_error_of([&] { probe_force_field(scene, 200.0); });
-  CHECK(message.starts_with("test.json: /device: the workspace [-1000, 1000] m"));
+  CHECK(message.starts_with("test.json: /device: hapkit3: the workspace [-1000, 1000] m spans 2000 m"));
   CHECK(message.find("at most 1 m") != std::string::npos);
 }
