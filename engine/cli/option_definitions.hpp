@@ -38,6 +38,8 @@ inline constexpr QuantityOption probe_step{"x", Quantity::length_m, -1000.0, 100
 inline constexpr double kMinProbeStep_m = 1e-9;
 inline constexpr long long kMaxProbePoints = 1'000'000;
 inline constexpr QuantityOption probe_velocity{"v", Quantity::velocity_m_per_s, -1000.0, 1000.0};
+// probe --t: the run time each point is evaluated at (from fresh script instances)
+inline constexpr QuantityOption probe_time{"t", Quantity::time_s, 0.0, kDay_s};
 
 // bench (tick cost tables)
 inline constexpr QuantityOption bench_seconds{"seconds", Quantity::time_s, 0.0, 600.0, true};

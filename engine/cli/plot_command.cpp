@@ -1,11 +1,15 @@
 // `hapscene plot ENV [--scenario NAME] [--output FILE.svg]`: the force-displacement curve and
-// one scenario's time series (default: sweep) as an SVG figure.
+// one scenario's time series (default: sweep) as an SVG figure. Script faults met on the
+// way (open loop or in the run) go to stderr, each once, after the figure is written;
+// then the exit code is 1.
+#include <cmath>
 #include <cstdio>
 
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/harness_options.hpp"
 #include "engine/cli/output_file.hpp"
+#include "engine/core/errors.hpp"
 #include "engine/harness/figures.hpp"
 #include "engine/load/environment.hpp"
 
@@ -24,12 +28,19 @@ int plot_command(std::vector<std::string> args) {
   const ForceField field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);
   const ScenarioKind kind = kinds.empty() ? ScenarioKind::sweep : kinds[0];
   const ScenarioResult result = run_scenario(scene, field, build_scenario(kind, scene, field, options), options);
-  const std::string svg = scene_figure_svg(scene, result);
+  // Script faults: the field scan's, the curve's and the run's, each once.
+  ScriptFaultLog faults = field.faults;
+  const std::string svg = scene_figure_svg(scene, result, &faults);
+  for (const auto& fault : result.metrics.script_faults) {
+    faults.add(fault.message, fault.where + " of the " + result.scenario.name + " run", INFINITY);
+  }
   // Default output: the environment's name with .svg in the working directory.
   const std::string path = out_path.value_or(scene.name + ".svg");
   write_output_file(path, svg);
   std::printf("wrote %s\n", path.c_str());
-  return 0;
+  std::fflush(stdout);
+  for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
+  return faults.empty() ? kExitOk : kExitFailure;
 }
 
 }  // namespace hapscene

@@ -1,7 +1,10 @@
-// `hapscene probe ENV --x START:STOP:STEP [--v V]`: the open-loop force-displacement
-// curve as CSV. force_N is what the environment asks for at (x, v); output_N is what
-// the device would be commanded after the static safety rules (non-finite -> 0, outside
-// the workspace -> 0, clamp to the force limit).
+// `hapscene probe ENV --x START:STOP:STEP [--v V] [--t T]`: the open-loop
+// force-displacement curve as CSV. force_N is what the environment asks for at (x, v);
+// output_N is what the device would be commanded after the static safety rules
+// (non-finite -> 0, outside the workspace -> 0, clamp to the force limit). Every point
+// is computed from fresh, reset script instances at run time T (default 0), so points
+// do not depend on each other or on their order. Script faults go to stderr, each once
+// ("scripts/x.lua:3: message (first at x ...)"), after the CSV; then the exit code is 1.
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -10,7 +13,8 @@
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
-#include "engine/core/step.hpp"
+#include "engine/core/errors.hpp"
+#include "engine/harness/open_loop.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/load/object_reader.hpp"
 
@@ -65,30 +69,38 @@ int probe_command(std::vector<std::string> args) {
   Arguments arguments(std::move(args), "hapscene probe");
   const std::optional<std::string> x_text = arguments.take_value("x");
   const double v_m_per_s = arguments.take(option::probe_velocity).value_or(0.0);
+  const double t_s = arguments.take(option::probe_time).value_or(0.0);
   const std::vector<std::string> files = arguments.positionals();
   if (files.size() != 1) arguments.fail("expected one environment file");
   if (!x_text) arguments.fail("--x START:STOP:STEP is required");
   const ProbeRange range = parse_range(arguments, *x_text);
 
   const Scene scene = load_environment_file(files[0]);
-  TickState state = make_tick_state(scene);
-  std::string out = "x_m,v_m_per_s,force_N,output_N\n";
   // x = (start / step + i) * step lands on round values (0.01, not 0.009999999999999998)
   // whenever start is a whole number of steps.
   const double start_in_steps = range.start_m / range.step_m;
-  for (long long i = 0; i < range.points; ++i) {
-    EffectInput input;
-    input.x_m = (start_in_steps + static_cast<double>(i)) * range.step_m + 0.0;  // no "-0"
-    input.v_m_per_s = v_m_per_s;
-    input.dt_s = scene.period_s;
-    const double force_N = sum_effects_N(scene, input, state.scripts);
-    const double output_N =
-        apply_static_safety(scene.safety, input.x_m, force_N, &state.safety.counters);
-    out += shortest(input.x_m) + "," + shortest(v_m_per_s) + "," + shortest(force_N) + "," +
-           shortest(output_N) + "\n";
+  std::vector<double> x_m(static_cast<std::size_t>(range.points));
+  for (std::size_t i = 0; i < x_m.size(); ++i) {
+    x_m[i] = (start_in_steps + static_cast<double>(i)) * range.step_m + 0.0;  // no "-0"
+  }
+  OpenLoop open_loop(scene, t_s);
+  const OpenLoopScan scan = open_loop.scan(x_m, v_m_per_s);
+  std::string out = "x_m,v_m_per_s,force_N,output_N\n";
+  for (std::size_t i = 0; i < x_m.size(); ++i) {
+    const double force_N = scan.force_N[i];
+    out += shortest(x_m[i]) + "," + shortest(v_m_per_s) + "," + shortest(force_N) + "," +
+           shortest(open_loop.output_N(x_m[i], force_N)) + "\n";
   }
   std::fwrite(out.data(), 1, out.size(), stdout);
-  return 0;
+  std::fflush(stdout);
+
+  // What the points mean for scripts with state or time, and every fault, once.
+  if (!scan.behaviour.static_field()) {
+    std::fprintf(stderr, "note: %s; each point is from fresh instances at t = %g s\n", scan.behaviour.note.c_str(),
+                 t_s);
+  }
+  for (const std::string& fault : open_loop.faults().lines()) std::fprintf(stderr, "%s\n", fault.c_str());
+  return open_loop.faults().empty() ? kExitOk : kExitFailure;
 }
 
 }  // namespace hapscene

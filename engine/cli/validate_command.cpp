@@ -1,7 +1,8 @@
 // `hapscene validate ENV [ENV...]`: runs each environment closed loop on the simulated
 // Hapkit through the virtual-hand scenarios in simulated time, prints a table of
-// verdicts, optionally writes a JSON report and an SVG figure. Exit 0 when every check
-// passes, 1 when any fails, 2 for invalid input.
+// verdicts (--quiet: one line per file), optionally writes a JSON report and an SVG
+// figure. Exit 0 when every check passes or is not judged, 1 when any fails (a script
+// fault always fails the "script" check), 2 for invalid input.
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -38,7 +39,11 @@ int validate_command(std::vector<std::string> args) {
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const ValidationReport report = validate_scene(scenes[i], kinds, options);
     all_pass = all_pass && report.pass;
-    if (!quiet) std::printf("%s%s", i > 0 ? "\n" : "", format_report_table(report).c_str());
+    if (quiet) {
+      std::printf("%s", format_report_line(report).c_str());
+    } else {
+      std::printf("%s%s", i > 0 ? "\n" : "", format_report_table(report).c_str());
+    }
     if (report_path) write_output_file(*report_path, report_to_json(report).dump(2) + "\n");
     if (plot_path) write_output_file(*plot_path, validation_figure_svg(scenes[i], report));
   }

@@ -38,11 +38,16 @@ struct Scene {
   std::string source_path;          // the file it was loaded from, for messages
 
   DeviceProfile device;
+  std::string device_file;          // the profile's file ("environments/devices/big.json"), or its shipped name
 
   std::vector<Effect> effects;      // as written in the file
   std::size_t script_count{};       // ScriptEffects among them (instance_index 0..n-1)
 
   ValidateThresholds validate;      // the optional "validate" block (the harness only)
+
+  // Warnings found at load (printed to stderr by the loader; `validate` fails a check on
+  // them): "environments/x.json: /effects/1 (wall): ... never acts ...".
+  std::vector<std::string> load_warnings;
 };
 
 // Appends `effect` to the scene's list and, when it can act inside the workspace (safety

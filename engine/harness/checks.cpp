@@ -13,7 +13,15 @@ CheckResult at_most(std::string name, double value, double threshold, std::strin
                      std::move(detail)};
 }
 
+// Where and when, for a failing check.
+std::string where_when(double x_m, double t_s) { return printf_string("at %.2f mm, t %.3f s", x_m * 1e3, t_s); }
+
 }  // namespace
+
+const char* verdict_text(const CheckResult& check) {
+  if (!check.judged) return "not judged";
+  return check.pass ? "pass" : "FAIL";
+}
 
 std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scenario,
                                         const ForceField& field, const ScenarioMetrics& m) {
@@ -34,13 +42,15 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scen
                                     static_cast<unsigned long long>(m.safety.slew_limited_ticks)));
   slew.pass = m.max_slew_N_per_s < max_slew * (1.0 - 1e-9);  // reaching the limiter fails
   checks.push_back(slew);
-  checks.push_back(at_most(
+  CheckResult slip = at_most(
       "slip", static_cast<double>(m.slip_force_ticks + m.slip_step_ticks),
       static_cast<double>(t.max_slip_ticks), "ticks",
       printf_string("%llu ticks above %g N, %llu with a 1-ms step above %g N (largest %.3f N)",
              static_cast<unsigned long long>(m.slip_force_ticks), scene.device.limits.slip_force_N,
              static_cast<unsigned long long>(m.slip_step_ticks), scene.device.limits.slip_step_N,
-             m.max_step_1ms_N)));
+             m.max_step_1ms_N));
+  if (!slip.pass && m.slip_first_t_s >= 0.0) slip.detail += "; first " + where_when(m.slip_first_x_m, m.slip_first_t_s);
+  checks.push_back(slip);
 
   // Energy: created by the rendering against what the device dissipates on its own.
   const PassivityMetrics& p = m.passivity;
@@ -48,7 +58,16 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scen
       "passivity", p.ratio, t.max_passivity_ratio, "",
       printf_string("created %.3g mJ, dissipated %.3g mJ, net %.3g mJ%s", p.created_J * 1e3,
              p.dissipated_J * 1e3, p.net_J * 1e3, p.grows ? ", growing" : ""));
-  passivity.pass = p.created_J <= t.min_judged_energy_J || (p.ratio <= t.max_passivity_ratio && !p.grows);
+  // Too little energy created to weigh (a negative ratio: the rendering absorbed energy):
+  // not judged, which does not fail, and says so.
+  passivity.judged = p.created_J > t.min_judged_energy_J;
+  passivity.pass = !passivity.judged || (p.ratio <= t.max_passivity_ratio && !p.grows);
+  if (!passivity.judged) {
+    passivity.detail += printf_string("; not judged: created at most %g mJ", t.min_judged_energy_J * 1e3);
+  }
+  if (!field.behaviour.static_field()) {
+    passivity.detail += "; stored energy from the field at rest (" + field.behaviour.note + ")";
+  }
   checks.push_back(passivity);
 
   // Oscillation in the watch window (after the hand lets go, or while it holds still).
@@ -70,13 +89,19 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scen
   }
 
   // Grit, scripts and timing.
-  checks.push_back(at_most("jitter", m.force_jitter_N, t.max_force_jitter_N, "N",
-                           "rms second difference of the commanded force"));
-  checks.push_back(at_most("script", static_cast<double>(m.script_errors + m.script_budget_overruns),
-                           static_cast<double>(t.max_script_faults), "faults",
-                           printf_string("%llu errors, %llu budget overruns",
-                                  static_cast<unsigned long long>(m.script_errors),
-                                  static_cast<unsigned long long>(m.script_budget_overruns))));
+  CheckResult jitter = at_most("jitter", m.force_jitter_N, t.max_force_jitter_N, "N",
+                               "rms second difference of the commanded force");
+  if (!jitter.pass) {
+    jitter.detail += printf_string("; largest %.3f N ", m.jitter_peak_N) + where_when(m.jitter_peak_x_m, m.jitter_peak_t_s);
+  }
+  checks.push_back(jitter);
+  CheckResult script = at_most("script", static_cast<double>(m.script_errors + m.script_budget_overruns),
+                               static_cast<double>(t.max_script_faults), "faults",
+                               printf_string("%llu errors, %llu budget overruns",
+                                             static_cast<unsigned long long>(m.script_errors),
+                                             static_cast<unsigned long long>(m.script_budget_overruns)));
+  for (std::size_t i = 0; i < m.script_faults.size(); ++i) script.detail += (i == 0 ? ": " : "; ") + m.script_faults[i].text();
+  checks.push_back(script);
   const double max_compute_s = t.max_tick_compute_s > 0.0 ? t.max_tick_compute_s : 0.5 * scene.period_s;
   checks.push_back(at_most("tick_compute", m.compute_p99_s, max_compute_s, "s",
                            printf_string("p50 %.2f us, p99 %.2f us, max %.2f us", m.compute_p50_s * 1e6,

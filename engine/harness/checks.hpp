@@ -17,12 +17,18 @@ struct CheckResult {
   std::string unit;        // "N", "N/s", "m", "s", "" (ratio), "ticks"
   bool pass{};
   std::string detail;      // where/when, and the numbers behind the value
+  // false: the measurement was too small to judge (passivity below min_judged_energy):
+  // shown as "not judged"; it does not fail the run (pass stays true).
+  bool judged{true};
 };
 
 // The names of every check, in report order.
 inline constexpr const char* kCheckNames[] = {
     "max_force", "time_at_limit", "slew",   "slip",   "passivity",      "limit_cycle",
     "growth",    "penetration",   "jitter", "script", "tick_compute"};
+
+// "pass", "FAIL" or "not judged".
+const char* verdict_text(const CheckResult& check);
 
 std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scenario,
                                         const ForceField& field, const ScenarioMetrics& metrics);

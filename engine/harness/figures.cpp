@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "engine/core/step.hpp"
+#include "engine/harness/open_loop.hpp"
 
 namespace hapscene {
 namespace {
@@ -19,7 +19,7 @@ std::vector<PlotLine> limit_lines(const Scene& scene) {
 
 }  // namespace
 
-PlotPanel force_displacement_panel(const Scene& scene) {
+PlotPanel force_displacement_panel(const Scene& scene, ScriptFaultLog* faults) {
   PlotPanel panel;
   panel.title = "force-displacement (open loop, after the safety clamp)";
   panel.x_label = "handle position x (mm)";
@@ -32,29 +32,34 @@ PlotPanel force_displacement_panel(const Scene& scene) {
   const double margin_m = 0.002;
   const double low_m = scene.safety.workspace_min_m - margin_m;
   const double high_m = scene.safety.workspace_max_m + margin_m;
-  const double step_m = 5e-5;
-  TickState state = make_tick_state(scene);
+  // Every 50 um, or coarser in a wide workspace: at most 4001 points per curve.
+  const double step_m = std::max(5e-5, (high_m - low_m) / 4000.0);
+  std::vector<double> x_m;
+  for (std::size_t i = 0;; ++i) {
+    const double x = low_m + static_cast<double>(i) * step_m;
+    if (x > high_m + 1e-12 || i > 4001) break;
+    x_m.push_back(x);
+  }
+  // Each point as fresh script instances give it (see open_loop.hpp).
+  OpenLoop open_loop(scene);
   PlotSeries asked{"asked (before the clamp), v = 0", "#999999", {}, {}, true};
   for (std::size_t i = 0; i < velocities.size(); ++i) {
     char label[64];
     std::snprintf(label, sizeof label, "v = %g m/s", velocities[i]);
     PlotSeries series{label, kColors[i % std::size(kColors)], {}, {}, false};
-    SafetyCounters counters;
-    for (double x_m = low_m; x_m <= high_m + 1e-12; x_m += step_m) {
-      EffectInput input;
-      input.x_m = x_m;
-      input.v_m_per_s = velocities[i];
-      input.dt_s = scene.period_s;
-      const double force_N = sum_effects_N(scene, input, state.scripts);
-      series.x.push_back(x_m * 1e3);
-      series.y.push_back(apply_static_safety(scene.safety, x_m, force_N, &counters));
+    const OpenLoopScan scan = open_loop.scan(x_m, velocities[i]);
+    for (std::size_t k = 0; k < x_m.size(); ++k) {
+      const double force_N = scan.force_N[k];
+      series.x.push_back(x_m[k] * 1e3);
+      series.y.push_back(open_loop.output_N(x_m[k], force_N));
       if (velocities[i] == 0.0) {
-        asked.x.push_back(x_m * 1e3);
+        asked.x.push_back(x_m[k] * 1e3);
         asked.y.push_back(std::isfinite(force_N) ? force_N : 0.0);
       }
     }
     panel.series.push_back(std::move(series));
   }
+  if (faults != nullptr) faults->merge(open_loop.faults());
   // Show what the scene asked for only where the clamp or the workspace cut it.
   bool differs = false;
   for (std::size_t i = 0; i < asked.y.size(); ++i) {
@@ -98,8 +103,8 @@ std::vector<PlotPanel> time_series_panels(const Scene& scene, const std::vector<
   return {position, velocity, force};
 }
 
-std::string scene_figure_svg(const Scene& scene, const ScenarioResult& scenario) {
-  std::vector<PlotPanel> panels{force_displacement_panel(scene)};
+std::string scene_figure_svg(const Scene& scene, const ScenarioResult& scenario, ScriptFaultLog* faults) {
+  std::vector<PlotPanel> panels{force_displacement_panel(scene, faults)};
   if (scenario.scenario.applicable) {
     for (PlotPanel& p : time_series_panels(scene, scenario.records,
                                            scenario.scenario.name + " (" + scenario.scenario.description + ")")) {

@@ -6,21 +6,24 @@
 #include <vector>
 
 #include "engine/core/scene.hpp"
+#include "engine/harness/open_loop.hpp"
 #include "engine/harness/recorder.hpp"
 #include "engine/harness/svg_plot.hpp"
 #include "engine/harness/validate.hpp"
 
 namespace hapscene {
 
-// Force (after the static safety rules) against position across the workspace.
-PlotPanel force_displacement_panel(const Scene& scene);
+// Force (after the static safety rules) against position across the workspace, every
+// 50 um (at most 4001 points), each point from fresh script instances; script faults
+// are added to *faults when given.
+PlotPanel force_displacement_panel(const Scene& scene, ScriptFaultLog* faults = nullptr);
 
 // Three panels: position, velocity and force against time.
 std::vector<PlotPanel> time_series_panels(const Scene& scene, const std::vector<TickRecord>& records,
                                           const std::string& what);
 
 // `hapscene plot`: the force-displacement curve and one scenario's time series.
-std::string scene_figure_svg(const Scene& scene, const ScenarioResult& scenario);
+std::string scene_figure_svg(const Scene& scene, const ScenarioResult& scenario, ScriptFaultLog* faults = nullptr);
 
 // `validate --plot`: the curve and the first failing scenario (else the first one run).
 std::string validation_figure_svg(const Scene& scene, const ValidationReport& report);

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/core/step.hpp"
+#include "engine/core/errors.hpp"
+#include "engine/core/format.hpp"
 
 namespace hapscene {
 
@@ -30,23 +31,67 @@ double ForceField::penetration_m(double x_m) const noexcept {
   return depth_m;
 }
 
+void require_sampleable_workspace(const Scene& scene, double step_m) {
+  const double span_m = scene.safety.workspace_max_m - scene.safety.workspace_min_m;
+  const double max_span_m = static_cast<double>(kMaxFieldPoints - 1) * step_m;
+  if (std::isfinite(span_m) && span_m <= max_span_m * (1.0 + 1e-9)) return;
+  throw InputError(printf_string(
+      "%s: /device: %s: the workspace [%g, %g] m spans %g m; the harness samples it every %g um "
+      "and takes at most %g m",
+      scene.source_path.c_str(), scene.device_file.c_str(), scene.safety.workspace_min_m,
+      scene.safety.workspace_max_m, span_m, step_m * 1e6, max_span_m));
+}
+
 ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m, double step_m) {
+  require_sampleable_workspace(scene, step_m);
   ForceField field;
   field.min_m = scene.safety.workspace_min_m;
   field.step_m = step_m;
   const double span_m = scene.safety.workspace_max_m - field.min_m;
   const auto points = static_cast<std::size_t>(std::floor(span_m / step_m)) + 1;
 
-  // Sample the field at rest, before and after the static safety rules.
-  TickState state = make_tick_state(scene);
-  SafetyCounters counters;
+  // Sample the field at rest, before and after the static safety rules, each point as
+  // fresh script instances give it.
+  OpenLoop open_loop(scene);
+  std::vector<double> x_m(points);
+  for (std::size_t i = 0; i < points; ++i) x_m[i] = field.min_m + static_cast<double>(i) * step_m;
+  OpenLoopScan scan = open_loop.scan(x_m, 0.0, false);
+  field.faults = open_loop.faults();
+  field.behaviour = scan.behaviour;
+
+  // A script with state or time has no fixed field: no walls are inferred from it. The
+  // energy it stores is estimated from the field fresh instances render at rest (a
+  // virtual mass settled where the handle is), on a grid of at most 201 points.
+  if (!field.behaviour.static_field()) {
+    const std::size_t coarse_points = std::min<std::size_t>(points, 201);
+    const double coarse_step_m = coarse_points > 1 ? span_m / static_cast<double>(coarse_points - 1) : step_m;
+    std::vector<double> coarse_x_m(coarse_points);
+    for (std::size_t i = 0; i < coarse_points; ++i) coarse_x_m[i] = field.min_m + static_cast<double>(i) * coarse_step_m;
+    const OpenLoopScan coarse = open_loop.scan(coarse_x_m, 0.0, true);
+    field.faults = open_loop.faults();
+    std::vector<double> coarse_J(coarse_points, 0.0);
+    for (std::size_t i = 1; i < coarse_points; ++i) {
+      coarse_J[i] = coarse_J[i - 1] - 0.5 *
+                                          (open_loop.output_N(coarse_x_m[i - 1], coarse.force_N[i - 1]) +
+                                           open_loop.output_N(coarse_x_m[i], coarse.force_N[i])) *
+                                          coarse_step_m;
+    }
+    field.potential_J.resize(points);
+    for (std::size_t i = 0; i < points; ++i) {
+      const double position = coarse_points > 1 ? (x_m[i] - field.min_m) / coarse_step_m : 0.0;
+      const std::size_t j = std::min(static_cast<std::size_t>(position), coarse_points > 1 ? coarse_points - 2 : 0);
+      const double fraction = coarse_points > 1 ? position - static_cast<double>(j) : 0.0;
+      field.potential_J[i] =
+          coarse_points > 1 ? coarse_J[j] + fraction * (coarse_J[j + 1] - coarse_J[j]) : 0.0;
+    }
+    return field;
+  }
+  field.force_N.reserve(points);
+  field.output_N.reserve(points);
   for (std::size_t i = 0; i < points; ++i) {
-    EffectInput input;
-    input.x_m = field.min_m + static_cast<double>(i) * step_m;
-    input.dt_s = scene.period_s;
-    const double force_N = sum_effects_N(scene, input, state.scripts);
-    field.force_N.push_back(std::isfinite(force_N) ? force_N : 0.0);
-    field.output_N.push_back(apply_static_safety(scene.safety, input.x_m, force_N, &counters));
+    const double raw_N = scan.force_N[i];
+    field.force_N.push_back(std::isfinite(raw_N) ? raw_N : 0.0);
+    field.output_N.push_back(open_loop.output_N(x_m[i], raw_N));
   }
 
   // Stored energy: U(x) = -integral of F dx (trapezoids), 0 at the workspace's low end.

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "engine/core/scene.hpp"
+#include "engine/harness/open_loop.hpp"
 
 namespace hapscene {
 
@@ -24,7 +25,11 @@ struct ForceField {
   std::vector<double> force_N;    // what the scene asks for at rest, per grid point
   std::vector<double> output_N;   // after the static safety rules (clamp, workspace)
   std::vector<double> potential_J;  // -integral of output_N from min_m: energy stored
-  std::vector<StiffRegion> regions;
+  std::vector<StiffRegion> regions;   // empty unless the field is static
+  // Scripts that keep state or read time have no fixed field: then no stiff regions are
+  // inferred and no stored energy is credited (behaviour.note says why).
+  ScriptBehaviour behaviour;
+  ScriptFaultLog faults;              // script faults met while probing
 
   // Linear interpolation of the stored energy at x (clamped to the grid).
   double potential_at_J(double x_m) const noexcept;
@@ -33,7 +38,15 @@ struct ForceField {
   double penetration_m(double x_m) const noexcept;
 };
 
-// Probes the scene over its safety workspace every step_m.
+// At most this many grid points: a workspace wider than kMaxFieldPoints * step_m is
+// refused (InputError naming the device profile), so memory and time stay bounded.
+inline constexpr std::size_t kMaxFieldPoints = 50'001;
+
+// Throws InputError when the scene's workspace needs more than kMaxFieldPoints at step_m.
+void require_sampleable_workspace(const Scene& scene, double step_m = 20e-6);
+
+// Probes the scene over its safety workspace every step_m, each point from fresh
+// script instances (see open_loop.hpp).
 ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m,
                              double step_m = 20e-6);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/core/format.hpp"
 #include "engine/devices/kinematics.hpp"
 
 namespace hapscene {
@@ -109,7 +110,11 @@ ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
       m.max_output_t_s = r.t_s;
     }
     if (abs_output_N >= limit_N * (1.0 - 1e-12)) ++at_limit_ticks;
-    if (abs_output_N > scene.device.limits.slip_force_N) ++m.slip_force_ticks;
+    bool slip = false;
+    if (abs_output_N > scene.device.limits.slip_force_N) {
+      ++m.slip_force_ticks;
+      slip = true;
+    }
     if (k > 0) {
       m.max_slew_N_per_s = std::max(m.max_slew_N_per_s,
                                     std::abs(r.output_N - records[k - 1].output_N) / scene.period_s);
@@ -117,11 +122,23 @@ ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
     if (k >= ticks_per_ms) {
       const double step_N = std::abs(r.output_N - records[k - ticks_per_ms].output_N);
       m.max_step_1ms_N = std::max(m.max_step_1ms_N, step_N);
-      if (step_N > scene.device.limits.slip_step_N) ++m.slip_step_ticks;
+      if (step_N > scene.device.limits.slip_step_N) {
+        ++m.slip_step_ticks;
+        slip = true;
+      }
+    }
+    if (slip && m.slip_first_t_s < 0.0) {
+      m.slip_first_t_s = r.t_s;
+      m.slip_first_x_m = r.x_true_m;
     }
     if (k > 0 && k + 1 < records.size()) {
       const double second_N = r.output_N - 0.5 * (records[k - 1].output_N + records[k + 1].output_N);
       jitter_sum_N2 += second_N * second_N;
+      if (std::abs(second_N) > m.jitter_peak_N) {
+        m.jitter_peak_N = std::abs(second_N);
+        m.jitter_peak_x_m = r.x_true_m;
+        m.jitter_peak_t_s = r.t_s;
+      }
     }
     const double depth_m = field.penetration_m(r.x_true_m);
     if (depth_m > m.max_penetration_m) {
@@ -145,6 +162,18 @@ ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
   // Scripts and timing from the run summary.
   m.script_errors = summary.script_errors;
   m.script_budget_overruns = summary.script_budget_overruns;
+  for (const ScriptReport& script : summary.scripts) {
+    if (!script.disabled) continue;
+    // When and where: the faulting call was the last one before the skipped ones (one
+    // call per tick; the script's own fault time is its s.t, which is 0 for a script
+    // that does not read time).
+    if (script.skipped_calls < records.size()) {
+      const TickRecord& at = records[records.size() - 1 - script.skipped_calls];
+      m.script_faults.push_back({script.fault, printf_string("t %.3f s, x %.2f mm", at.t_s, at.x_true_m * 1e3)});
+    } else {
+      m.script_faults.push_back({script.fault, ""});
+    }
+  }
   m.compute_p50_s = static_cast<double>(summary.compute_ns.percentile_ns(0.50)) * 1e-9;
   m.compute_p99_s = static_cast<double>(summary.compute_ns.percentile_ns(0.99)) * 1e-9;
   m.compute_max_s = static_cast<double>(summary.compute_ns.max_ns()) * 1e-9;

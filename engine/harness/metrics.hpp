@@ -3,6 +3,7 @@
 // outside the loop).
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "engine/core/scene.hpp"
@@ -54,6 +55,11 @@ struct ScenarioMetrics {
   std::uint64_t slip_force_ticks{};  // |output| > slip force
   std::uint64_t slip_step_ticks{};   // |output change within 1 ms| > slip step
   double max_step_1ms_N{};
+  double slip_first_x_m{};      // where (true position) and when the first slip tick was
+  double slip_first_t_s{-1.0};  // (-1: none)
+  double jitter_peak_N{};       // the largest |second difference| of the command,
+  double jitter_peak_x_m{};     // where and when
+  double jitter_peak_t_s{};
   // Energy and oscillation.
   PassivityMetrics passivity;
   std::optional<OscillationMetrics> oscillation;
@@ -63,6 +69,14 @@ struct ScenarioMetrics {
   // Scripts (filled once scripts exist) and timing.
   std::uint64_t script_errors{};
   std::uint64_t script_budget_overruns{};
+  // Each disabled script's message ("scripts/x.lua:3: attempt to ..."), with when and
+  // where it faulted ("t 0.512 s, x 10.02 mm"; empty when unknown).
+  struct ScriptFaultSeen {
+    std::string message;
+    std::string where;
+    std::string text() const { return where.empty() ? message : message + " (" + where + ")"; }
+  };
+  std::vector<ScriptFaultSeen> script_faults;
   double compute_p50_s{};
   double compute_p99_s{};
   double compute_max_s{};

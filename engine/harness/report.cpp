@@ -12,7 +12,62 @@ std::string padded(std::string text, std::size_t width) {
   return text;
 }
 
+std::string check_row(const CheckResult& c) {
+  const char* relation = c.name == "slew" ? "< " : "<= ";
+  const std::string verdict = verdict_text(c);
+  return padded("", 10) + padded(c.name, 15) + padded(format_value(c.value, c.unit), 16) +
+         padded(relation + format_value(c.threshold, c.unit), 17) + padded(verdict, 9) +
+         (verdict.size() >= 9 ? " " : "") + c.detail + "\n";
+}
+
+// Counts of a report's checks: all, failed (with their names) and not judged.
+struct Tally {
+  int total{};
+  int failed{};
+  int not_judged{};
+  std::string failures;
+  void add(const std::string& where, const CheckResult& c) {
+    ++total;
+    if (!c.judged) ++not_judged;
+    if (!c.pass) {
+      ++failed;
+      failures += (failures.empty() ? "" : ", ") + where + "/" + c.name;
+    }
+  }
+};
+
+Tally tally(const ValidationReport& report) {
+  Tally t;
+  for (const CheckResult& c : report.scene_checks) t.add("scene", c);
+  for (const ScenarioResult& s : report.scenarios) {
+    for (const CheckResult& c : s.checks) t.add(s.scenario.name, c);
+  }
+  return t;
+}
+
+// "60 checks", "60 checks, 2 not judged".
+std::string counted(const Tally& t) {
+  std::string text = printf_string("%d checks", t.total);
+  if (t.not_judged > 0) text += printf_string(", %d not judged", t.not_judged);
+  return text;
+}
+
+// "1 of 9 checks failed: press/passivity", then "; 2 not judged" when some were not.
+std::string failed_text(const Tally& t) {
+  std::string text = printf_string("%d of %d checks failed: %s", t.failed, t.total, t.failures.c_str());
+  if (t.not_judged > 0) text += printf_string("; %d not judged", t.not_judged);
+  return text;
+}
+
 }  // namespace
+
+std::string format_report_line(const ValidationReport& report) {
+  const Tally t = tally(report);
+  std::string line = printf_string("%s %s (%s): ", t.failed == 0 ? "PASS" : "FAIL", report.scene_name.c_str(),
+                                   report.source_path.c_str());
+  if (t.failed == 0) return line + counted(t) + "\n";
+  return line + failed_text(t) + "\n";
+}
 
 std::string format_value(double value, const std::string& unit) {
   if (!std::isfinite(value)) return value > 0 ? "inf" : "nan";
@@ -34,35 +89,36 @@ std::string format_report_table(const ValidationReport& report) {
                        o.hand_stiffness_N_per_m, o.hand_damping_N_s_per_m, o.hand_mass_kg * 1e3,
                        o.noise_counts < 0 ? "from the profile" : printf_string("%g counts", o.noise_counts).c_str(),
                        static_cast<unsigned long long>(o.seed));
+  if (!report.field.behaviour.static_field()) {
+    out += "force field: " + report.field.behaviour.note + "; no walls inferred from it\n\n";
+  }
   out += "scenario  check          value           threshold        verdict  detail\n";
 
-  int failed = 0;
-  int total = 0;
-  std::string failures;
+  if (!report.scene_checks.empty()) {
+    out += padded("scene", 10) + "the environment as loaded and probed open loop\n";
+    for (const CheckResult& c : report.scene_checks) out += check_row(c);
+  }
   for (const ScenarioResult& s : report.scenarios) {
     out += padded(s.scenario.name, 10) + s.scenario.description + "\n";
     if (!s.scenario.applicable) {
       out += padded("", 10) + "(not applicable)\n";
       continue;
     }
-    for (const CheckResult& c : s.checks) {
-      ++total;
-      if (!c.pass) {
-        ++failed;
-        failures += (failures.empty() ? "" : ", ") + s.scenario.name + "/" + c.name;
-      }
-      const char* relation = c.name == "slew" ? "< " : "<= ";
-      out += padded("", 10) + padded(c.name, 15) + padded(format_value(c.value, c.unit), 16) +
-             padded(relation + format_value(c.threshold, c.unit), 17) +
-             padded(c.pass ? "pass" : "FAIL", 9) + c.detail + "\n";
-    }
+    for (const CheckResult& c : s.checks) out += check_row(c);
   }
-  if (failed == 0) {
-    out += printf_string("\nresult: pass (%d checks)\n", total);
+  const Tally t = tally(report);
+  if (t.failed == 0) {
+    out += "\nresult: pass (" + counted(t) + ")\n";
   } else {
-    out += printf_string("\nresult: FAIL (%d of %d checks failed: %s)\n", failed, total, failures.c_str());
+    out += "\nresult: FAIL (" + failed_text(t) + ")\n";
   }
   return out;
+}
+
+nlohmann::json check_to_json(const CheckResult& c) {
+  return {{"name", c.name}, {"value", c.value}, {"threshold", c.threshold}, {"unit", c.unit},
+          {"pass", c.pass}, {"verdict", c.judged ? (c.pass ? "pass" : "fail") : "not judged"},
+          {"detail", c.detail}};
 }
 
 nlohmann::json report_to_json(const ValidationReport& report) {
@@ -79,7 +135,11 @@ nlohmann::json report_to_json(const ValidationReport& report) {
                  {"passivity_bound_N_per_m", report.passivity_bound_N_per_m},
                  {"passivity_bound", report.passivity_bound_name},
                  {"stiffest_region_N_per_m", report.stiffest_region_N_per_m},
-                 {"stiff_regions", regions}}},
+                 {"stiff_regions", regions},
+                 {"static_field", report.field.behaviour.static_field()},
+                 {"field_note", report.field.behaviour.note},
+                 {"field_script_faults", report.field.faults.lines()},
+                 {"load_warnings", nlohmann::json::array()}}},
       {"options", {{"hand_stiffness_N_per_m", o.hand_stiffness_N_per_m},
                    {"hand_damping_N_s_per_m", o.hand_damping_N_s_per_m},
                    {"hand_mass_kg", o.hand_mass_kg},
@@ -87,7 +147,10 @@ nlohmann::json report_to_json(const ValidationReport& report) {
                    {"seed", o.seed},
                    {"free_start_m", o.free_start_m}}},
       {"pass", report.pass},
+      {"scene_checks", json::array()},
       {"scenarios", json::array()}};
+  for (const std::string& w : report.load_warnings) out["scene"]["load_warnings"].push_back(w);
+  for (const CheckResult& c : report.scene_checks) out["scene_checks"].push_back(check_to_json(c));
 
   for (const ScenarioResult& s : report.scenarios) {
     const ScenarioMetrics& m = s.metrics;
@@ -95,6 +158,8 @@ nlohmann::json report_to_json(const ValidationReport& report) {
                      {"applicable", s.scenario.applicable}, {"duration_s", s.scenario.duration_s},
                      {"pass", s.pass}};
     if (s.scenario.applicable) {
+      json script_faults = json::array();
+      for (const auto& f : m.script_faults) script_faults.push_back({{"message", f.message}, {"where", f.where}});
       json metrics = {
           {"ticks", m.ticks},
           {"max_requested_N", m.max_requested_N},
@@ -108,6 +173,11 @@ nlohmann::json report_to_json(const ValidationReport& report) {
           {"slip_force_ticks", m.slip_force_ticks},
           {"slip_step_ticks", m.slip_step_ticks},
           {"max_step_1ms_N", m.max_step_1ms_N},
+          {"slip_first_x_m", m.slip_first_t_s < 0.0 ? json(nullptr) : json(m.slip_first_x_m)},
+          {"slip_first_t_s", m.slip_first_t_s < 0.0 ? json(nullptr) : json(m.slip_first_t_s)},
+          {"jitter_peak_N", m.jitter_peak_N},
+          {"jitter_peak_x_m", m.jitter_peak_x_m},
+          {"jitter_peak_t_s", m.jitter_peak_t_s},
           {"passivity", {{"motor_work_J", m.passivity.motor_work_J}, {"stored_J", m.passivity.stored_J},
                          {"created_J", m.passivity.created_J}, {"dissipated_J", m.passivity.dissipated_J},
                          {"net_J", m.passivity.net_J}, {"ratio", m.passivity.ratio},
@@ -117,6 +187,7 @@ nlohmann::json report_to_json(const ValidationReport& report) {
           {"max_penetration_x_m", m.max_penetration_x_m},
           {"script_errors", m.script_errors},
           {"script_budget_overruns", m.script_budget_overruns},
+          {"script_faults", script_faults},
           {"tick_compute_s", {{"p50", m.compute_p50_s}, {"p99", m.compute_p99_s}, {"max", m.compute_max_s}}},
           {"safety", {{"nonfinite_faults", m.safety.nonfinite_faults},
                       {"outside_workspace_ticks", m.safety.outside_workspace_ticks},
@@ -134,8 +205,7 @@ nlohmann::json report_to_json(const ValidationReport& report) {
       scenario["metrics"] = metrics;
       json checks = json::array();
       for (const CheckResult& c : s.checks) {
-        checks.push_back({{"name", c.name}, {"value", c.value}, {"threshold", c.threshold},
-                          {"unit", c.unit}, {"pass", c.pass}, {"detail", c.detail}});
+        checks.push_back(check_to_json(c));
       }
       scenario["checks"] = checks;
     }

@@ -14,6 +14,14 @@ inline constexpr const char* kReportSchema = "hapscene-validate/1";
 // The terminal table, one line per check, and a result line.
 std::string format_report_table(const ValidationReport& report);
 
+// `validate --quiet`: one line per file with its verdict ("PASS wall (environments/wall.json):
+// 60 checks", "FAIL ...: 1 of 9 checks failed: press/passivity").
+std::string format_report_line(const ValidationReport& report);
+
+// One check as JSON ("verdict": "pass", "fail" or "not judged"; "pass" is false only
+// for "fail").
+nlohmann::json check_to_json(const CheckResult& check);
+
 // The JSON report (nlohmann writes non-finite numbers as null).
 nlohmann::json report_to_json(const ValidationReport& report);
 

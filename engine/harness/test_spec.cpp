@@ -6,7 +6,8 @@
 #include <optional>
 
 #include "engine/core/format.hpp"
-#include "engine/core/step.hpp"
+#include "engine/core/errors.hpp"
+#include "engine/harness/open_loop.hpp"
 #include "engine/harness/validate.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/load/json_source.hpp"
@@ -139,16 +140,6 @@ Spec parse_spec(const std::string& path) {
   return spec;
 }
 
-// The force the device would be commanded at (x, v): effects, then the static rules.
-double static_output_N(const Scene& scene, double x_m, double v_m_per_s, TickState* state) {
-  EffectInput input;
-  input.x_m = x_m;
-  input.v_m_per_s = v_m_per_s;
-  input.dt_s = scene.period_s;
-  SafetyCounters counters;
-  return apply_static_safety(scene.safety, x_m, sum_effects_N(scene, input, state->scripts), &counters);
-}
-
 const ScenarioResult* find_result(const ValidationReport& report, ScenarioKind kind) {
   for (const ScenarioResult& s : report.scenarios) {
     if (s.scenario.kind == kind) return &s;
@@ -163,8 +154,18 @@ SpecResult run_test_spec(const std::string& spec_path) {
   SpecResult result;
   result.spec_path = spec_path;
   result.environment_path = spec.environment_path;
-  const Scene scene = load_environment_file(spec.environment_path);
-  TickState state = make_tick_state(scene);
+  // The environment, and everything its content can make invalid, named from the spec's
+  // "/environment" (the message itself names the environment file and the place).
+  const std::string referrer = spec_path + ": /environment: ";
+  std::optional<Scene> loaded;
+  try {
+    loaded.emplace(load_environment_file(spec.environment_path));
+    require_sampleable_workspace(*loaded);
+  } catch (const InputError& error) {
+    throw InputError(referrer + error.what());
+  }
+  const Scene& scene = *loaded;
+  OpenLoop open_loop(scene);
   const auto add = [&](std::string what, bool pass, std::string message) {
     result.outcomes.push_back({std::move(what), pass, std::move(message)});
     result.pass = result.pass && pass;
@@ -172,7 +173,7 @@ SpecResult run_test_spec(const std::string& spec_path) {
 
   // Forces at given positions and velocities.
   for (const ForceExpectation& e : spec.forces) {
-    const double got_N = static_output_N(scene, e.x_m, e.v_m_per_s, &state);
+    const double got_N = open_loop.output_N(e.x_m, open_loop.force_N(e.x_m, e.v_m_per_s));
     add(e.pointer, std::abs(got_N - e.force_N) <= e.tolerance_N,
         printf_string("force at x %g mm, v %g m/s: expected %g N +/- %g N, got %.6g N", e.x_m * 1e3,
                       e.v_m_per_s, e.force_N, e.tolerance_N, got_N));
@@ -181,14 +182,16 @@ SpecResult run_test_spec(const std::string& spec_path) {
   // Zero outside [a, b]: every 0.1 mm of the workspace, at rest and at +/-0.1 m/s.
   if (spec.zero_outside_m) {
     const auto [a_m, b_m] = *spec.zero_outside_m;
-    std::string first_bad;
+    std::vector<double> outside_m;
     for (double x_m = scene.safety.workspace_min_m; x_m <= scene.safety.workspace_max_m; x_m += 1e-4) {
-      if (x_m >= a_m && x_m <= b_m) continue;
-      for (const double v : {0.0, -0.1, 0.1}) {
-        const double f_N = static_output_N(scene, x_m, v, &state);
-        if (f_N != 0.0 && first_bad.empty()) {
-          first_bad = printf_string("%.6g N at x %.2f mm, v %g m/s", f_N, x_m * 1e3, v);
-        }
+      if (x_m < a_m || x_m > b_m) outside_m.push_back(x_m);
+    }
+    std::string first_bad;
+    for (const double v : {0.0, -0.1, 0.1}) {
+      const std::vector<double> force_N = open_loop.scan(outside_m, v).force_N;
+      for (std::size_t i = 0; i < outside_m.size() && first_bad.empty(); ++i) {
+        const double f_N = open_loop.output_N(outside_m[i], force_N[i]);
+        if (f_N != 0.0) first_bad = printf_string("%.6g N at x %.2f mm, v %g m/s", f_N, outside_m[i] * 1e3, v);
       }
     }
     add("/zero_outside", first_bad.empty(),
@@ -196,10 +199,36 @@ SpecResult run_test_spec(const std::string& spec_path) {
             (first_bad.empty() ? std::string("yes") : "no, " + first_bad));
   }
 
+  // A script fault fails the spec, with its message, unless a scenario expects the
+  // "script" check to fail. Faults seen open loop first, then those of the runs.
+  bool faults_expected = false;
+  for (const ScenarioExpectation& e : spec.scenarios) {
+    faults_expected = faults_expected || std::find(e.fail.begin(), e.fail.end(), "script") != e.fail.end();
+  }
+  // Each fault once: those of the points asked, then of the whole workspace open loop
+  // (a fault no expectation reaches still fails the spec), then of the runs.
+  ScriptFaultLog seen;
+  const auto add_fault = [&](const std::string& message, const std::string& line) {
+    const std::size_t before = seen.lines().size();
+    seen.add(message, "");
+    if (seen.lines().size() > before && !faults_expected) add("/environment", false, "script fault: " + line);
+  };
+  const auto add_faults = [&](const ScriptFaultLog& log) {
+    for (std::size_t i = 0; i < log.lines().size(); ++i) add_fault(log.messages()[i], log.lines()[i]);
+  };
+  add_faults(open_loop.faults());
+
   // Everything that needs closed-loop runs: one validation of all scenarios.
   const bool needs_runs = spec.never_exceeds_N || spec.passes_validate || !spec.scenarios.empty();
-  if (!needs_runs) return result;
+  if (!needs_runs) {
+    if (scene.script_count > 0) add_faults(probe_force_field(scene, scene.validate.stiff_threshold_N_per_m).faults);
+    return result;
+  }
   const ValidationReport report = validate_scene(scene, {}, spec.options);
+  add_faults(report.field.faults);
+  for (const ScenarioResult& s : report.scenarios) {
+    for (const auto& f : s.metrics.script_faults) add_fault(f.message, f.text() + " in the " + s.scenario.name + " run");
+  }
 
   if (spec.never_exceeds_N) {
     double largest_N = 0.0;
@@ -216,6 +245,9 @@ SpecResult run_test_spec(const std::string& spec_path) {
   }
   if (spec.passes_validate) {
     std::string failed;
+    for (const CheckResult& c : report.scene_checks) {
+      if (!c.pass) failed += std::string(failed.empty() ? "" : ", ") + "scene/" + c.name;
+    }
     for (const ScenarioResult& s : report.scenarios) {
       for (const CheckResult& c : s.checks) {
         if (!c.pass) failed += (failed.empty() ? "" : ", ") + s.scenario.name + "/" + c.name;

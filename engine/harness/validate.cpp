@@ -58,6 +58,24 @@ ValidationReport validate_scene(const Scene& scene, const std::vector<ScenarioKi
     report.stiffest_region_N_per_m = std::max(report.stiffest_region_N_per_m, region.stiffness_N_per_m);
   }
 
+  // The scene as a whole: effects that never act, and faults met by the field scan.
+  report.load_warnings = scene.load_warnings;
+  if (!scene.load_warnings.empty()) {
+    std::string detail;
+    for (const std::string& warning : scene.load_warnings) detail += (detail.empty() ? "" : "; ") + warning;
+    report.scene_checks.push_back(CheckResult{"effects", static_cast<double>(scene.load_warnings.size()), 0.0,
+                                              "effects", false, detail});
+  }
+  if (!report.field.faults.empty()) {
+    const std::vector<std::string>& faults = report.field.faults.lines();
+    std::string detail = "in the force-field scan: " + faults[0];
+    for (std::size_t i = 1; i < faults.size(); ++i) detail += "; " + faults[i];
+    const auto count = static_cast<double>(faults.size());
+    const auto allowed = static_cast<double>(scene.validate.max_script_faults);
+    report.scene_checks.push_back(CheckResult{"script", count, allowed, "faults", count <= allowed, detail});
+  }
+  for (const CheckResult& check : report.scene_checks) report.pass = report.pass && check.pass;
+
   std::vector<ScenarioKind> chosen = kinds;
   if (chosen.empty()) {
     for (std::size_t i = 0; i < std::size(kScenarioNames); ++i) chosen.push_back(static_cast<ScenarioKind>(i));

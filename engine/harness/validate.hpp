@@ -30,6 +30,11 @@ struct ValidationReport {
   HarnessOptions options;
   ForceField field;
   std::vector<ScenarioResult> scenarios;
+  // Checks of the scene as a whole, listed only when they fail: "effects" (an effect that
+  // can never act inside the workspace, see Scene::load_warnings) and "script" (a script
+  // fault met by the open-loop force-field scan).
+  std::vector<CheckResult> scene_checks;
+  std::vector<std::string> load_warnings;  // the scene's, for the JSON report
   bool pass{true};
 };
 

@@ -1,6 +1,7 @@
 #include "engine/load/environment.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -115,6 +116,28 @@ VelocityEstimatorConfig parse_velocity(ObjectReader& reader) {
   return config;
 }
 
+// Why an effect can never act inside the workspace, with the likely unit slip; empty when
+// it can act, or when it is off by an explicit zero gain (that reads as intentional).
+std::string unreachable_effect_warning(const Effect& effect, const SafetyConfig& safety) {
+  const Wall* wall = std::get_if<Wall>(&effect);
+  if (wall == nullptr || wall->stiffness_N_per_m == 0.0 ||
+      wall->can_act_within(safety.workspace_min_m, safety.workspace_max_m)) {
+    return "";
+  }
+  std::string message = "(wall): position " + format_number(wall->position_m) + " m puts the solid side (" +
+                        (wall->solid_above ? "above" : "below") + ") wholly outside the workspace [" +
+                        format_number(safety.workspace_min_m) + ", " + format_number(safety.workspace_max_m) +
+                        "] m, so the wall never acts";
+  // A length written as a plain number is metres: 20 meant as 20 mm is 20 m.
+  const auto inside = [&](double x_m) { return x_m > safety.workspace_min_m && x_m < safety.workspace_max_m; };
+  if (inside(wall->position_m * 1e-3)) {
+    message += "; did you mean \"" + format_number(wall->position_m) + " mm\"?";
+  } else if (inside(wall->position_m * 1e-2)) {
+    message += "; did you mean \"" + format_number(wall->position_m) + " cm\"?";
+  }
+  return message;
+}
+
 Scene compile(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
   ObjectReader reader(root, "", file);
   Scene scene;
@@ -138,6 +161,10 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
     reader.fail("device", error.what());
   }
 
+  const bool device_is_path = device_name.find('/') != std::string::npos || device_name.ends_with(".json");
+  scene.device_file = device_is_path && std::filesystem::path(device_name).is_relative()
+                          ? (std::filesystem::path(base_dir) / device_name).lexically_normal().string()
+                          : device_name;
   scene.kinematics = compile_kinematics(scene.device);
 
   // Safety: the device's limits, lowered by the environment's.
@@ -168,6 +195,8 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
     Effect effect;
     const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
     if (parse_effect((*effects)[i], pointer, file, base_dir, &effect)) {
+      std::string warning = unreachable_effect_warning(effect, scene.safety);
+      if (!warning.empty()) scene.load_warnings.push_back(file + ": " + pointer + " " + warning);
       add_effect(&scene, std::move(effect));
     }
   }
@@ -178,6 +207,8 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
     parse_validate_block(validate_reader, &scene.validate);
   }
   reader.finish();
+  // Warnings go to stderr at every load, whatever the command.
+  for (const std::string& warning : scene.load_warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   return scene;
 }
 

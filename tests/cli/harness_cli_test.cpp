@@ -14,7 +14,8 @@ TEST_CASE("cli: validate passes the lab wall and writes a JSON report") {
   const auto outcome = run_cli("validate environments/wall.json --report " + report.string());
   CHECK(outcome.exit_code == 0);
   CHECK(outcome.out.find("validate wall (environments/wall.json): 1000 Hz, passivity bound 2b/T = 800 N/m") == 0);
-  CHECK(outcome.out.find("result: pass (60 checks)") != std::string::npos);
+  // Three passivity checks see too little energy to weigh: said, not counted as passes.
+  CHECK(outcome.out.find("result: pass (60 checks, 3 not judged)") != std::string::npos);
   const nlohmann::json json = nlohmann::json::parse(slurp_file(report));
   std::filesystem::remove(report);
   CHECK(json["schema"] == "hapscene-validate/1");

@@ -180,12 +180,17 @@ TEST_CASE("validate: a script that errors, loops forever or jolts fails for the 
                                     ScenarioKind::hold);
   CHECK_FALSE(check(erring, "script").pass);
   CHECK(check(erring, "script").value == 1.0);
-  CHECK(check(erring, "script").detail == "1 errors, 0 budget overruns");
+  // The message says what, where in the script, and when and where the handle was.
+  CHECK(check(erring, "script").detail ==
+        "1 errors, 0 budget overruns: test.json#/effects/0/source:1: attempt to index a nil value (local 'y') "
+        "(t 0.501 s, x 8.02 mm)");
   // An endless loop after a while: stopped by the instruction budget, counted as an overrun.
   const ScenarioResult looping = run(scene_from(R"({"effects": [{"type": "script", "source":
     "function force(s) while s.t > 0.3 do end return 0 end"}]})"),
                                      ScenarioKind::hold);
-  CHECK(check(looping, "script").detail == "0 errors, 1 budget overruns");
+  CHECK(check(looping, "script").detail.starts_with(
+      "0 errors, 1 budget overruns: test.json#/effects/0/source:1: instruction budget exceeded"));
+  CHECK(check(looping, "script").detail.ends_with("(t 0.301 s, x 10.02 mm)"));
   // A script that jolts: 4 N switched on and off every 50 ms trips the capstan-slip check.
   const ScenarioResult jolting = run(scene_from(R"({"effects": [{"type": "script", "source":
     "function force(s) if math.floor(s.t / 0.05) % 2 == 1 then return 4 end return 0 end"}]})"),

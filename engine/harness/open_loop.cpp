@@ -1,0 +1,177 @@
+#include "engine/harness/open_loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/core/format.hpp"
+#include "engine/core/step.hpp"
+
+namespace hapscene {
+namespace {
+
+// Two forces are the same when bit-equal or both NaN (a script is deterministic).
+bool same_force(double a_N, double b_N) { return a_N == b_N || (std::isnan(a_N) && std::isnan(b_N)); }
+
+// The script effects of the scene by name, for notes.
+std::string script_names(const Scene& scene) {
+  std::string names;
+  for (const Effect& effect : scene.effects) {
+    if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
+      names += (names.empty() ? "" : ", ") + script->program->display_name;
+    }
+  }
+  return names;
+}
+
+}  // namespace
+
+std::string describe_point(double x_m, double v_m_per_s, double t_s) {
+  return printf_string("x %.2f mm, v %g m/s, t %g s", x_m * 1e3, v_m_per_s, t_s);
+}
+
+void ScriptFaultLog::add(const std::string& message, const std::string& where, double order_key) {
+  const auto found = std::find(messages_.begin(), messages_.end(), message);
+  const std::string line = where.empty() ? message : message + " (first at " + where + ")";
+  if (found == messages_.end()) {
+    messages_.push_back(message);
+    lines_.push_back(line);
+    keys_.push_back(order_key);
+    return;
+  }
+  // Seen before: keep the lowest point, so the line does not depend on the probing order.
+  const auto i = static_cast<std::size_t>(found - messages_.begin());
+  if (order_key < keys_[i]) {
+    lines_[i] = line;
+    keys_[i] = order_key;
+  }
+}
+
+void ScriptFaultLog::collect(const ScriptList& scripts, const std::string& where, double order_key) {
+  for (const auto& script : scripts) {
+    if (script->disabled()) add(std::string(script->fault_message()), where, order_key);
+  }
+}
+
+void ScriptFaultLog::merge(const ScriptFaultLog& other) {
+  for (std::size_t i = 0; i < other.messages_.size(); ++i) {
+    if (std::find(messages_.begin(), messages_.end(), other.messages_[i]) != messages_.end()) continue;
+    messages_.push_back(other.messages_[i]);
+    lines_.push_back(other.lines_[i]);
+    keys_.push_back(other.keys_[i]);
+  }
+}
+
+OpenLoop::OpenLoop(const Scene& scene, double t_s) : scene_(scene), t_s_(t_s) {}
+
+double OpenLoop::fresh_force_N(double x_m, double v_m_per_s, double t_s, bool record) {
+  EffectInput input;
+  input.x_m = x_m;
+  input.v_m_per_s = v_m_per_s;
+  input.t_s = t_s;
+  input.dt_s = scene_.period_s;
+  if (!has_scripts()) return sum_effects_N(scene_, input, none_);
+  // New instances, each reset, as at the start of a run: nothing carries over.
+  ScriptList scripts = make_script_instances(scene_);
+  const double force_N = sum_effects_N(scene_, input, scripts);
+  if (record) faults_.collect(scripts, describe_point(x_m, v_m_per_s, t_s), x_m);
+  return force_N;
+}
+
+double OpenLoop::force_N(double x_m, double v_m_per_s) { return fresh_force_N(x_m, v_m_per_s, t_s_, true); }
+
+double OpenLoop::output_N(double x_m, double force_N) const {
+  SafetyCounters counters;
+  return apply_static_safety(scene_.safety, x_m, force_N, &counters);
+}
+
+std::vector<double> OpenLoop::sequential_N(const std::vector<double>& x_m, double v_m_per_s, bool upward,
+                                           std::vector<bool>* live) {
+  const std::size_t n = x_m.size();
+  std::vector<double> force_N(n);
+  live->assign(n, true);
+  ScriptList scripts = make_script_instances(scene_);
+  bool faulted = false;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = upward ? k : n - 1 - k;
+    EffectInput input;
+    input.x_m = x_m[i];
+    input.v_m_per_s = v_m_per_s;
+    input.t_s = t_s_;
+    input.dt_s = scene_.period_s;
+    force_N[i] = sum_effects_N(scene_, input, scripts);
+    faulted = faulted || std::any_of(scripts.begin(), scripts.end(), [](const auto& s) { return s->disabled(); });
+    (*live)[i] = !faulted;
+  }
+  return force_N;
+}
+
+OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bool values_if_not_static) {
+  OpenLoopScan result;
+  const std::size_t n = x_m.size();
+  if (!has_scripts() || n == 0) {
+    EffectInput input;
+    input.v_m_per_s = v_m_per_s;
+    input.t_s = t_s_;
+    input.dt_s = scene_.period_s;
+    for (const double x : x_m) {
+      input.x_m = x;
+      result.force_N.push_back(sum_effects_N(scene_, input, none_));
+    }
+    return result;
+  }
+
+  // State: one instance upwards, one downwards, fresh ones at up to 9 spread points.
+  // Points after a script faulted are not compared (a disabled script answers 0).
+  std::vector<bool> live_up;
+  std::vector<bool> live_down;
+  std::vector<double> up_N = sequential_N(x_m, v_m_per_s, true, &live_up);
+  const std::vector<double> down_N = sequential_N(x_m, v_m_per_s, false, &live_down);
+  bool faulted = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    faulted = faulted || !live_up[i] || !live_down[i];
+    if (live_up[i] && live_down[i] && !same_force(up_N[i], down_N[i])) result.behaviour.stateful = true;
+  }
+  const std::size_t stride = std::max<std::size_t>(1, (n - 1) / 8);
+  std::vector<std::size_t> spread;
+  for (std::size_t i = 0; i < n; i += stride) spread.push_back(i);
+  if (spread.back() != n - 1) spread.push_back(n - 1);
+  for (const std::size_t i : spread) {
+    if (result.behaviour.stateful) break;
+    const double fresh_N = fresh_force_N(x_m[i], v_m_per_s, t_s_, false);
+    if (live_up[i] && !same_force(fresh_N, up_N[i])) result.behaviour.stateful = true;
+  }
+
+  // Time: fresh instances at other run times, at the spread points.
+  if (scene_.needs.time) {
+    constexpr double kOtherTimes_s[] = {0.0137, 0.25, 0.7071, 1.9};
+    for (const std::size_t i : spread) {
+      if (result.behaviour.time_varying) break;
+      const double at_t_N = fresh_force_N(x_m[i], v_m_per_s, t_s_, false);
+      for (const double dt_s : kOtherTimes_s) {
+        if (!same_force(fresh_force_N(x_m[i], v_m_per_s, t_s_ + dt_s, false), at_t_N)) {
+          result.behaviour.time_varying = true;
+          break;
+        }
+      }
+    }
+  }
+  if (!result.behaviour.static_field()) {
+    const ScriptBehaviour& b = result.behaviour;
+    result.behaviour.note = script_names(scene_) + " " +
+                            (b.stateful && b.time_varying ? "keeps state between calls and reads time"
+                             : b.stateful                 ? "keeps state between calls"
+                                                          : "reads time") +
+                            ": not a fixed force field";
+  }
+
+  // The values: the upward pass when it is what fresh instances give, else fresh ones.
+  if (!faulted && !result.behaviour.stateful) {
+    result.force_N = std::move(up_N);
+  } else if (faulted || values_if_not_static) {
+    result.force_N.resize(n);
+    for (std::size_t i = 0; i < n; ++i) result.force_N[i] = fresh_force_N(x_m[i], v_m_per_s, t_s_, true);
+  }
+  return result;
+}
+
+}  // namespace hapscene

@@ -1,0 +1,91 @@
+#pragma once
+// Open-loop evaluation of a scene, as `probe`, test specs' `forces`/`zero_outside` and
+// the harness's force-field scan use it. What a point means for a script that keeps
+// state or reads time: every point is computed from fresh, reset script instances at
+// one run time t (default 0), so the result never depends on which points were asked
+// before or in what order. A script that faults is recorded (each message once, with the
+// first point that raised it), never hidden behind the 0 N that a disabled script gives.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "engine/core/scene.hpp"
+#include "engine/core/tick_state.hpp"
+
+namespace hapscene {
+
+// Script faults seen while evaluating a scene: each distinct message once, in the order
+// first seen ("scripts/x.lua:3: attempt to ... (first at x 12.00 mm, v 0 m/s, t 0 s)").
+// Of the places one message was seen, the one with the lowest order key (the position,
+// in an open-loop scan; the time, in a run) is kept.
+class ScriptFaultLog {
+ public:
+  // Records the faults of `scripts` (disabled instances), with where they were seen.
+  void collect(const ScriptList& scripts, const std::string& where, double order_key = 0.0);
+  // Records one message with where it was seen (empty: nowhere in particular).
+  void add(const std::string& message, const std::string& where, double order_key = 0.0);
+  void merge(const ScriptFaultLog& other);
+  const std::vector<std::string>& lines() const { return lines_; }
+  const std::vector<std::string>& messages() const { return messages_; }
+  bool empty() const { return lines_.empty(); }
+
+ private:
+  std::vector<std::string> messages_;  // the bare messages, for deduplication
+  std::vector<std::string> lines_;     // message plus where
+  std::vector<double> keys_;
+};
+
+// What the script effects of a scene do beyond a fixed function of (x, v).
+struct ScriptBehaviour {
+  bool stateful{};      // a call's force depends on earlier calls (a virtual mass, a ball)
+  bool time_varying{};  // the force depends on the run time s.t (a vibration)
+  std::string note;     // which script and what, for reports ("" when neither)
+  bool static_field() const { return !stateful && !time_varying; }
+};
+
+// Forces at many points, as fresh instances give them.
+struct OpenLoopScan {
+  std::vector<double> force_N;  // per point, what the effects ask for (may be non-finite)
+  ScriptBehaviour behaviour;
+};
+
+class OpenLoop {
+ public:
+  // `t_s`: the run time every point is evaluated at (s.t of scripts that read time).
+  explicit OpenLoop(const Scene& scene, double t_s = 0.0);
+
+  // What the effects ask for at (x, v): built-in effects, plus every script from a fresh,
+  // reset instance (faults recorded in faults()).
+  double force_N(double x_m, double v_m_per_s);
+  // force_N after the static safety rules (non-finite -> 0, workspace, clamp).
+  double output_N(double x_m, double force_N) const;
+
+  // force_N at every x (at v), and whether the scripts behave like a fixed field. Fresh
+  // instances per point cost about 0.3 ms each, so the scan first calls one instance at
+  // every point upwards and another downwards, and fresh ones at a few points: when all
+  // agree and nothing faulted, those values are what fresh instances give. Otherwise
+  // (state, or a fault) every point is computed from fresh instances, unless
+  // `values_if_not_static` is false and the scripts keep state (then force_N is empty).
+  // Time: fresh instances at several other run times, at a few points.
+  OpenLoopScan scan(const std::vector<double>& x_m, double v_m_per_s, bool values_if_not_static = true);
+
+  bool has_scripts() const { return scene_.script_count > 0; }
+  const ScriptFaultLog& faults() const { return faults_; }
+
+ private:
+  double fresh_force_N(double x_m, double v_m_per_s, double t_s, bool record);
+  // One instance per script called at the points in the given order; `live[i]` is false
+  // where a script had faulted before or at that call.
+  std::vector<double> sequential_N(const std::vector<double>& x_m, double v_m_per_s, bool upward,
+                                   std::vector<bool>* live);
+
+  const Scene& scene_;
+  double t_s_{};
+  ScriptList none_;
+  ScriptFaultLog faults_;
+};
+
+// "x 12.00 mm, v 0 m/s, t 0 s": a point, for messages.
+std::string describe_point(double x_m, double v_m_per_s, double t_s);
+
+}  // namespace hapscene
