@@ -273,6 +273,7 @@ int run_command(std::vector<std::string> args) {
     }
     observers.add(trace.get());
     RunSummary summary;
+    std::uint64_t replaced_script_faults = 0;
     SceneExchange exchange;
     RunOptions options = settings.options;
     if (settings.reload) options.reload = &exchange;
@@ -288,6 +289,7 @@ int run_command(std::vector<std::string> args) {
             }, std::move(watch));
       }
       summary = run_scene(scene, device, options, &observers);
+      if (watcher) replaced_script_faults = watcher->replaced_script_faults();
     }
     std::vector<std::string> log_lines;
     status.drain_log(&log_lines);
@@ -321,7 +323,13 @@ int run_command(std::vector<std::string> args) {
     }
     std::fputs(device.report().c_str(), stdout);
     std::fflush(stdout);
-    faulted = faulted || summary.overrun_fault || device.fault_seen();
+    // A script disabled by a fault (in the version running at the end or in one a reload
+    // replaced) is a fault the run saw: exit 1, like a device fault or a sustained overrun.
+    const bool script_faulted =
+        replaced_script_faults > 0 ||
+        std::any_of(summary.scripts.begin(), summary.scripts.end(),
+                    [](const ScriptReport& script) { return script.disabled; });
+    faulted = faulted || summary.overrun_fault || device.fault_seen() || script_faulted;
   }
   // A reload load that never finished may still hold a thread: end without running
   // static destructors under it.

@@ -8,7 +8,7 @@ namespace hapscene {
 struct EffectInput {
   double x_m{};           // handle position
   double v_m_per_s{};     // estimated velocity; 0 when no effect needs it
-  double t_s{};           // time since the run started; 0 when no effect needs it
+  double t_s{};           // time since the run started (a script sees it as s.t only if it declares time)
   double dt_s{};          // tick period
 };
 

@@ -104,7 +104,7 @@ template <bool kFading, bool kScripts>
   EffectInput input;
   input.x_m = state->x_m;
   input.v_m_per_s = state->v_m_per_s;
-  input.t_s = needs.time ? state->t_s : 0.0;
+  input.t_s = state->t_s;
   input.dt_s = scene.period_s;
   double effects_N = add_effects_N<kScripts>(scene, input, state->scripts, &state->script_calls);
   if constexpr (kFading) {

@@ -165,8 +165,7 @@ ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
   for (const ScriptReport& script : summary.scripts) {
     if (!script.disabled) continue;
     // When and where: the faulting call was the last one before the skipped ones (one
-    // call per tick; the script's own fault time is its s.t, which is 0 for a script
-    // that does not read time).
+    // call per tick), so the trace gives the true position as well as the time.
     if (script.skipped_calls < records.size()) {
       const TickRecord& at = records[records.size() - 1 - script.skipped_calls];
       m.script_faults.push_back({script.fault, printf_string("t %.3f s, x %.2f mm", at.t_s, at.x_true_m * 1e3)});

@@ -96,7 +96,6 @@ bool ReloadWatcher::changed() const {
 }
 
 void ReloadWatcher::poll() {
-  // Destroy what the loop let go of.
   // Destroy what the loop let go of; a fault of a replaced version is reported here
   // (the run's summary covers only the version running at the end).
   if (std::unique_ptr<LoadedScene> retired = exchange_->take_retired()) {
@@ -104,6 +103,7 @@ void ReloadWatcher::poll() {
     for (const auto& script : retired->scripts) {
       if (script->disabled()) {
         report_("a replaced version's script had been disabled: " + std::string(script->fault_message()));
+        replaced_script_faults_.fetch_add(1);
       }
     }
   }

@@ -61,6 +61,9 @@ class ReloadWatcher {
   // process should then end with std::_Exit after flushing its output).
   static std::uint64_t abandoned_loads() noexcept { return abandoned_.load(); }
 
+  // Scripts of replaced versions that had been disabled by a fault (each was reported).
+  std::uint64_t replaced_script_faults() const noexcept { return replaced_script_faults_.load(); }
+
  private:
   struct Stamp {
     std::filesystem::file_time_type time{};
@@ -98,6 +101,7 @@ class ReloadWatcher {
   std::unique_ptr<LoadedScene> waiting_;   // compiled, not yet taken by the loop
   std::shared_ptr<Job> job_;               // the load in flight, if any
   std::thread job_thread_;
+  std::atomic<std::uint64_t> replaced_script_faults_{0};
   std::chrono::steady_clock::time_point job_started_;
   int abandoned_here_{0};
   bool stopped_watching_{false};

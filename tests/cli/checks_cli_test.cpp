@@ -159,3 +159,19 @@ TEST_CASE("cli: a workspace too wide to sample is refused (exit 2), naming the e
   CHECK(tested.exit_code == 2);
   CHECK(tested.err == "error: " + spec + ": /environment: " + message.substr(7));
 }
+
+TEST_CASE("cli: run reports a script fault with the time it happened and exits 1") {
+  // The hand sweeps from the left end of the workspace: the script faults when it first
+  // passes 10 mm, well after the start, and does not declare time.
+  const TempFolder folder("run");
+  const std::string script = folder.write("faulting.lua", kFaulting);
+  const auto outcome = run_cli("run " + script + " --sim-time --quiet --no-reload --duration 2s");
+  CHECK(outcome.exit_code == 1);
+  const std::size_t at = outcome.out.find("script disabled  " + script + ":3: undefined global 'k' (at t = ");
+  REQUIRE(at != std::string::npos);
+  const double fault_time_s = std::stod(outcome.out.substr(outcome.out.find("at t = ", at) + 7));
+  CHECK(fault_time_s > 0.1);
+  CHECK(fault_time_s < 2.0);
+  // A clean script still exits 0.
+  CHECK(run_cli("run scripts/spring.lua --sim-time --quiet --no-reload --duration 0.5s").exit_code == 0);
+}

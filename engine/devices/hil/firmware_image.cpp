@@ -1,13 +1,15 @@
 #include "engine/devices/hil/firmware_image.hpp"
 
+#include "engine/load/json_source.hpp"
+
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <string_view>
 #include <vector>
 
 #include "engine/core/errors.hpp"
+#include "engine/load/json_source.hpp"
 
 namespace hapscene {
 namespace {
@@ -77,19 +79,15 @@ bool within(std::uint64_t begin, std::uint64_t size, std::uint64_t low, std::uin
 }  // namespace
 
 void check_avr_firmware(const std::string& path) {
-  // Read it whole (bounded).
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw InputError("--device hil:" + path + ": cannot open the firmware file");
-  const std::streamoff length = in.tellg();
-  if (length < 0 || static_cast<unsigned long long>(length) > kMaxFirmwareFileBytes) {
-    throw InputError("--device hil:" + path + ": not a valid ATmega328P firmware: the file is larger than " +
-                     std::to_string(kMaxFirmwareFileBytes) + " bytes");
+  // Read it whole, through the reader every file goes through: bounded, and a named
+  // pipe, directory or device is refused instead of blocking.
+  std::string text;
+  try {
+    text = read_text_file(path, kMaxFirmwareFileBytes);
+  } catch (const InputError& error) {
+    throw InputError(std::string("--device hil:") + error.what());
   }
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(length));
-  in.seekg(0);
-  if (length > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), length)) {
-    throw InputError("--device hil:" + path + ": cannot read the firmware file");
-  }
+  std::vector<std::uint8_t> bytes(text.begin(), text.end());
   const Image image(std::move(bytes), path);
 
   // The ELF header: 32-bit, little-endian, an AVR executable.
