@@ -8,24 +8,11 @@
 #include <fstream>
 
 #include "tests/cli/cli_support.hpp"
+#include "tests/scratch_folder.hpp"
 
 using hapscene::test::run_cli;
 
 namespace {
-
-// A folder of files for one test, removed at the end.
-struct TempFolder {
-  std::filesystem::path path;
-  explicit TempFolder(const std::string& name)
-      : path(std::filesystem::temp_directory_path() / ("hapscene_checks_" + std::to_string(getpid()) + "_" + name)) {
-    std::filesystem::create_directories(path);
-  }
-  ~TempFolder() { std::filesystem::remove_all(path); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(path / name) << text;
-    return (path / name).string();
-  }
-};
 
 // Reads an undefined global only beyond 10 mm.
 const char* kFaulting =
@@ -44,7 +31,7 @@ std::size_t count(const std::string& text, const std::string& what) {
 }  // namespace
 
 TEST_CASE("cli: probe writes the CSV, prints a script fault once with file:line and exits 1") {
-  const TempFolder folder("probe");
+  const hapscene::test::ScratchFolder folder("checks_probe");
   const std::string script = folder.write("faulting.lua", kFaulting);
   const auto outcome = run_cli("probe " + script + " --x 0:20mm:5mm");
   CHECK(outcome.exit_code == 1);
@@ -82,9 +69,9 @@ TEST_CASE("cli: probe --t evaluates a time-based script at that run time") {
 }
 
 TEST_CASE("cli: plot still writes the figure, prints the fault once and exits 1") {
-  const TempFolder folder("plot");
+  const hapscene::test::ScratchFolder folder("checks_plot");
   const std::string script = folder.write("faulting.lua", kFaulting);
-  const std::string svg = (folder.path / "out.svg").string();
+  const std::string svg = (folder.dir / "out.svg").string();
   const auto outcome = run_cli("plot " + script + " --output " + svg);
   CHECK(outcome.exit_code == 1);
   CHECK(std::filesystem::exists(svg));
@@ -93,7 +80,7 @@ TEST_CASE("cli: plot still writes the figure, prints the fault once and exits 1"
 }
 
 TEST_CASE("cli: test fails a spec whose script faults, printing the message") {
-  const TempFolder folder("spec");
+  const hapscene::test::ScratchFolder folder("checks_spec");
   folder.write("faulting.lua", kFaulting);
   const std::string spec = folder.write("faulting.test.json",
                                         R"({"environment": "faulting.lua", "forces": [{"x": "5 mm", "force": "-0.5 N"}]})");
@@ -105,11 +92,11 @@ TEST_CASE("cli: test fails a spec whose script faults, printing the message") {
 }
 
 TEST_CASE("cli: errors of a spec's environment name the spec, /environment and the environment") {
-  const TempFolder folder("missing");
+  const hapscene::test::ScratchFolder folder("checks_missing");
   const std::string spec = folder.write("a.test.json", R"({"environment": "nothere.json"})");
   const auto outcome = run_cli("test " + spec);
   CHECK(outcome.exit_code == 2);
-  CHECK(outcome.err == "error: " + spec + ": /environment: " + (folder.path / "nothere.json").string() +
+  CHECK(outcome.err == "error: " + spec + ": /environment: " + (folder.dir / "nothere.json").string() +
                            ": cannot open file\n");
 }
 
@@ -123,7 +110,7 @@ TEST_CASE("cli: validate --quiet prints one line per file with its verdict") {
 }
 
 TEST_CASE("cli: a wall that never acts warns on every command and fails validate") {
-  const TempFolder folder("far");
+  const hapscene::test::ScratchFolder folder("checks_far");
   const std::string env = folder.write(
       "far.json", R"({"effects": [{"type": "wall", "position": 20, "stiffness": "500 N/m", "solid": "above"}]})");
   const std::string warning = "warning: " + env + ": /effects/0 (wall): position 20 m puts the solid side";
@@ -139,7 +126,7 @@ TEST_CASE("cli: a wall that never acts warns on every command and fails validate
 }
 
 TEST_CASE("cli: a workspace too wide to sample is refused (exit 2), naming the environment and the profile") {
-  const TempFolder folder("huge");
+  const hapscene::test::ScratchFolder folder("checks_huge");
   std::string profile = hapscene::test::slurp_file(HAPSCENE_SOURCE_DIR "/environments/devices/hapkit3.json");
   const std::string from = R"("workspace": ["-50 mm", "45 mm"])";
   REQUIRE(profile.find(from) != std::string::npos);
@@ -163,7 +150,7 @@ TEST_CASE("cli: a workspace too wide to sample is refused (exit 2), naming the e
 TEST_CASE("cli: run reports a script fault with the time it happened and exits 1") {
   // The hand sweeps from the left end of the workspace: the script faults when it first
   // passes 10 mm, well after the start, and does not declare time.
-  const TempFolder folder("run");
+  const hapscene::test::ScratchFolder folder("checks_run");
   const std::string script = folder.write("faulting.lua", kFaulting);
   const auto outcome = run_cli("run " + script + " --sim-time --quiet --no-reload --duration 2s");
   CHECK(outcome.exit_code == 1);

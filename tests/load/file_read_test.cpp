@@ -13,39 +13,18 @@
 #include "engine/devices/profile.hpp"
 #include "engine/load/json_source.hpp"
 #include "engine/run/reload_watcher.hpp"
+#include "tests/run/reload_support.hpp"
+#include "tests/scratch_folder.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;
 
 namespace {
-// No watcher thread: the test calls poll(), which waits for the load it starts.
-[[maybe_unused]] ReloadWatcherOptions test_manual_polling() {
-  ReloadWatcherOptions options;
-  options.poll_period_s = 0.0;
-  return options;
-}
-}  // namespace
-
-namespace {
-
-struct Scratch {
-  std::filesystem::path dir;
-  Scratch() : dir(std::filesystem::temp_directory_path() / ("hapscene_files_" + std::to_string(getpid()))) {
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-  }
-  ~Scratch() { std::filesystem::remove_all(dir); }
-  std::string fifo(const std::string& name) const {
-    const std::string path = (dir / name).string();
-    REQUIRE(::mkfifo(path.c_str(), 0600) == 0);
-    return path;
-  }
-};
 
 }  // namespace
 
 TEST_CASE("file reading: named pipes, directories, devices and huge files are refused at once") {
-  Scratch scratch;
+  test::ScratchFolder scratch("files");
   const auto started = std::chrono::steady_clock::now();
   const std::string pipe = scratch.fifo("env.json");
   CHECK(test::input_error_of([&] { read_text_file(pipe, 1000); }) ==
@@ -64,7 +43,7 @@ TEST_CASE("file reading: named pipes, directories, devices and huge files are re
 }
 
 TEST_CASE("file reading: every kind of file hapscene loads refuses a named pipe") {
-  Scratch scratch;
+  test::ScratchFolder scratch("files");
   // An environment, a .lua environment, a script file, a device profile, a test spec.
   const std::string env = scratch.fifo("env.json");
   CHECK(test::input_error_of([&] { load_environment_file(env); }).ends_with("env.json: cannot read a named pipe, expected a regular file"));
@@ -83,7 +62,7 @@ TEST_CASE("file reading: every kind of file hapscene loads refuses a named pipe"
 }
 
 TEST_CASE("reload watcher: an environment file replaced by a named pipe is reported, not waited on") {
-  Scratch scratch;
+  test::ScratchFolder scratch("files");
   const auto env = scratch.dir / "env.json";
   std::ofstream(env) << R"({"effects": []})";
   const Scene running = load_environment_file(env.string());
@@ -91,7 +70,7 @@ TEST_CASE("reload watcher: an environment file replaced by a named pipe is repor
   std::vector<std::string> reports;
   ReloadWatcher watcher(env.string(), running, &exchange,
                         [&](const std::string& message) { reports.push_back(message); },
-                        test_manual_polling());
+                        test::manual_polling());
   std::filesystem::remove(env);
   scratch.fifo("env.json");
   const auto started = std::chrono::steady_clock::now();

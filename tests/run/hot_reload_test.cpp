@@ -11,19 +11,11 @@
 
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/run/reload_watcher.hpp"
+#include "tests/run/reload_support.hpp"
 #include "engine/run/runner.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;
-
-namespace {
-// No watcher thread: the test calls poll(), which waits for the load it starts.
-[[maybe_unused]] ReloadWatcherOptions test_manual_polling() {
-  ReloadWatcherOptions options;
-  options.poll_period_s = 0.0;
-  return options;
-}
-}  // namespace
 
 namespace {
 
@@ -117,7 +109,7 @@ TEST_CASE("reload watcher: a changed file is compiled off the loop and offered; 
   std::vector<std::string> reports;
   ReloadWatcher watcher(env.string(), running, &exchange,
                         [&](const std::string& message) { reports.push_back(message); },
-                        test_manual_polling());
+                        test::manual_polling());
 
   // Nothing changed: nothing offered.
   watcher.poll();

@@ -12,30 +12,12 @@
 #include <thread>
 
 #include "tests/cli/cli_support.hpp"
+#include "tests/scratch_folder.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;
 
 namespace {
-
-struct Scratch {
-  std::filesystem::path dir;
-  explicit Scratch(const std::string& tag)
-      : dir(std::filesystem::temp_directory_path() / ("hapscene_" + tag + "_" + std::to_string(getpid()))) {
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-  }
-  ~Scratch() { std::filesystem::remove_all(dir); }
-  std::filesystem::path write(const std::string& name, const std::string& text) const {
-    const auto path = dir / name;
-    std::filesystem::create_directories(path.parent_path());
-    const bool existed = std::filesystem::exists(path);
-    const auto before = existed ? std::filesystem::last_write_time(path) : std::filesystem::file_time_type{};
-    std::ofstream(path) << text;
-    if (existed) std::filesystem::last_write_time(path, before + std::chrono::seconds(1));
-    return path;
-  }
-};
 
 // The largest force the summary says was commanded.
 double commanded_N(const std::string& out) {
@@ -47,7 +29,7 @@ double commanded_N(const std::string& out) {
 }  // namespace
 
 TEST_CASE("run: a reload pointing the device at a looser profile of the same name is refused mid-run") {
-  Scratch scratch("run_profile");
+  test::ScratchFolder scratch("run_profile");
   std::string profile = test::slurp_file(test::source_path("environments/devices/hapkit3.json"));
   scratch.write("a/hapkit3.json", profile);
   profile = std::regex_replace(profile, std::regex(R"("max_force": "6 N")"), R"("max_force": "60 N")");
@@ -73,7 +55,7 @@ TEST_CASE("run: a reload pointing the device at a looser profile of the same nam
 }
 
 TEST_CASE("run: a reload tightening the force limit is taken, and the summary reports the limit in force") {
-  Scratch scratch("run_tighten");
+  test::ScratchFolder scratch("run_tighten");
   const std::string effects = R"("effects": [{"type": "spring", "stiffness": "10 N/mm", "center": "10 mm"}])";
   const auto env = scratch.write("env.json", "{" + effects + "}");
   std::thread editor([&] {
@@ -89,7 +71,7 @@ TEST_CASE("run: a reload tightening the force limit is taken, and the summary re
 }
 
 TEST_CASE("run: a reload whose load does not end does not hold the run past its duration") {
-  Scratch scratch("run_hang");
+  test::ScratchFolder scratch("run_hang");
   scratch.write("field.lua", "function force(s) return 0 end\n");
   const auto env = scratch.write(
       "env.json", R"({"effects": [{"type": "script", "file": "field.lua", "limits": {"instructions_at_load": 1000000000}}]})");

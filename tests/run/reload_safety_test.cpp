@@ -17,43 +17,14 @@
 
 #include "engine/run/reload_guard.hpp"
 #include "engine/run/reload_watcher.hpp"
+#include "tests/run/reload_support.hpp"
 #include "tests/cli/cli_support.hpp"
+#include "tests/scratch_folder.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;
 
 namespace {
-// No watcher thread: the test calls poll(), which waits for the load it starts.
-[[maybe_unused]] ReloadWatcherOptions test_manual_polling() {
-  ReloadWatcherOptions options;
-  options.poll_period_s = 0.0;
-  return options;
-}
-}  // namespace
-
-namespace {
-
-// A scratch directory with files that can be edited so the watcher sees each edit.
-struct Scratch {
-  std::filesystem::path dir;
-  explicit Scratch(const std::string& tag)
-      : dir(std::filesystem::temp_directory_path() /
-            ("hapscene_" + tag + "_" + std::to_string(getpid()))) {
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-  }
-  ~Scratch() { std::filesystem::remove_all(dir); }
-  std::filesystem::path write(const std::string& name, const std::string& text) const {
-    const auto path = dir / name;
-    std::filesystem::create_directories(path.parent_path());
-    const bool existed = std::filesystem::exists(path);
-    const auto before = existed ? std::filesystem::last_write_time(path) : std::filesystem::file_time_type{};
-    std::ofstream(path) << text;
-    // File times can be coarser than a test's edits: move it forward explicitly.
-    if (existed) std::filesystem::last_write_time(path, before + std::chrono::seconds(1));
-    return path;
-  }
-};
 
 // The shipped profile with its force and slew limits replaced (the name stays "hapkit3").
 std::string hapkit3_with(const std::string& max_force, const std::string& slew_limit) {
@@ -117,14 +88,14 @@ TEST_CASE("reload guard: each loosened limit, the rate and any profile change ar
 }
 
 TEST_CASE("reload watcher: a same-named profile file with looser limits is refused, the limits stay") {
-  Scratch scratch("reload_profile");
+  test::ScratchFolder scratch("reload_profile");
   scratch.write("a/hapkit3.json", hapkit3_with("6 N", "4 N/ms"));
   scratch.write("b/hapkit3.json", hapkit3_with("60 N", "8 N/ms"));
   const auto env = scratch.write("env.json", R"({"device": "a/hapkit3.json", "effects": [{"type": "spring", "stiffness": 1000}]})");
   const Scene running = load_environment_file(env.string());
   SceneExchange exchange;
   Reports reports;
-  ReloadWatcher watcher(env.string(), running, &exchange, reports.sink(), test_manual_polling());
+  ReloadWatcher watcher(env.string(), running, &exchange, reports.sink(), test::manual_polling());
 
   // The environment now points at the other file, whose profile has the same name.
   scratch.write("env.json", R"({"device": "b/hapkit3.json", "effects": [{"type": "spring", "stiffness": 1000}]})");
@@ -160,7 +131,7 @@ TEST_CASE("reload watcher: a same-named profile file with looser limits is refus
 
 TEST_CASE("reload watcher: a load that never ends is abandoned; destroying the watcher does not wait for it") {
   const Scene running = test::scene_from(R"({"effects": []})");
-  Scratch scratch("reload_hang");
+  test::ScratchFolder scratch("reload_hang");
   const auto env = scratch.write("env.json", R"({"effects": []})");
   // A load that blocks until the test lets it go.
   struct Gate {
