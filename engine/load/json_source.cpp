@@ -44,36 +44,38 @@ std::string located(const std::string& name, TextPosition position, const std::s
          ": " + message;
 }
 
-// Refuses nesting deeper than kMaxJsonDepth before the parser sees the text.
-void check_nesting(std::string_view text, const std::string& display_name) {
-  int depth = 0;
-  bool in_string = false;
-  bool escaped = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') in_string = false;
-      continue;
-    }
-    if (c == '"') in_string = true;
-    else if (c == '{' || c == '[') {
-      if (++depth > kMaxJsonDepth) {
-        throw InputError(located(display_name, position_of(text, i),
-                                 "nesting deeper than " + std::to_string(kMaxJsonDepth) +
-                                     " levels"));
-      }
-    } else if (c == '}' || c == ']') {
-      --depth;
-    }
+// Refuses a number the parser would change before anyone reads it: a whole number past
+// 64 bits (it would become a double and lose digits) or past a double's range ("1e400").
+// The message echoes the number as written, located at its first character.
+void check_number(std::string_view text, std::size_t at, std::string_view token,
+                  const std::string& display_name) {
+  const bool whole = token.find_first_of(".eE") == std::string_view::npos;
+  bool out_of_range = false;
+  if (whole) {
+    std::int64_t signed_value = 0;
+    std::uint64_t unsigned_value = 0;
+    const auto as_signed = std::from_chars(token.data(), token.data() + token.size(), signed_value);
+    const auto as_unsigned = std::from_chars(token.data(), token.data() + token.size(), unsigned_value);
+    out_of_range = as_signed.ec == std::errc::result_out_of_range &&
+                   (token.front() == '-' || as_unsigned.ec == std::errc::result_out_of_range);
+  } else {
+    // Overflow only: a tiny number ("1e-400") reads as 0 like everywhere else.
+    const std::string copy(token);
+    errno = 0;
+    const double value = std::strtod(copy.c_str(), nullptr);
+    out_of_range = errno == ERANGE && std::isinf(value);
+  }
+  if (out_of_range) {
+    throw InputError(located(display_name, position_of(text, at),
+                             "number out of range: " + std::string(token) +
+                                 (whole ? " (whole numbers are limited to 64 bits)" : "")));
   }
 }
 
-// Refuses numbers the parser would change before anyone reads them: a whole number past
-// 64 bits (it would become a double and lose digits) and a number past a double's range
-// ("1e400"). The message echoes the number as written, located at its first character.
-void check_numbers(std::string_view text, const std::string& display_name) {
+// One pass over the text before the parser sees it, outside strings: nesting deeper than
+// kMaxJsonDepth is refused, and so is every number token check_number refuses.
+void check_before_parsing(std::string_view text, const std::string& display_name) {
+  int depth = 0;
   bool in_string = false;
   bool escaped = false;
   for (std::size_t i = 0; i < text.size(); ++i) {
@@ -86,38 +88,23 @@ void check_numbers(std::string_view text, const std::string& display_name) {
     }
     if (c == '"') {
       in_string = true;
-      continue;
+    } else if (c == '{' || c == '[') {
+      if (++depth > kMaxJsonDepth) {
+        throw InputError(located(display_name, position_of(text, i),
+                                 "nesting deeper than " + std::to_string(kMaxJsonDepth) + " levels"));
+      }
+    } else if (c == '}' || c == ']') {
+      --depth;
+    } else if (c == '-' || (c >= '0' && c <= '9')) {
+      // One number token: sign, digits, fraction, exponent.
+      std::size_t end = i + 1;
+      while (end < text.size() && (std::isdigit(static_cast<unsigned char>(text[end])) != 0 || text[end] == '.' ||
+                                   text[end] == 'e' || text[end] == 'E' || text[end] == '+' || text[end] == '-')) {
+        ++end;
+      }
+      check_number(text, i, text.substr(i, end - i), display_name);
+      i = end - 1;
     }
-    if (c != '-' && (c < '0' || c > '9')) continue;
-    // One number token: sign, digits, fraction, exponent.
-    std::size_t end = i + 1;
-    while (end < text.size() && (std::isdigit(static_cast<unsigned char>(text[end])) != 0 || text[end] == '.' ||
-                                 text[end] == 'e' || text[end] == 'E' || text[end] == '+' || text[end] == '-')) {
-      ++end;
-    }
-    const std::string_view token = text.substr(i, end - i);
-    const bool whole = token.find_first_of(".eE") == std::string_view::npos;
-    bool out_of_range = false;
-    if (whole) {
-      std::int64_t signed_value = 0;
-      std::uint64_t unsigned_value = 0;
-      const auto as_signed = std::from_chars(token.data(), token.data() + token.size(), signed_value);
-      const auto as_unsigned = std::from_chars(token.data(), token.data() + token.size(), unsigned_value);
-      out_of_range = as_signed.ec == std::errc::result_out_of_range &&
-                     (token.front() == '-' || as_unsigned.ec == std::errc::result_out_of_range);
-    } else {
-      // Overflow only: a tiny number ("1e-400") reads as 0 like everywhere else.
-      const std::string copy(token);
-      errno = 0;
-      const double value = std::strtod(copy.c_str(), nullptr);
-      out_of_range = errno == ERANGE && std::isinf(value);
-    }
-    if (out_of_range) {
-      throw InputError(located(display_name, position_of(text, i),
-                               "number out of range: " + std::string(token) +
-                                   (whole ? " (whole numbers are limited to 64 bits)" : "")));
-    }
-    i = end - 1;
   }
 }
 
@@ -261,8 +248,7 @@ nlohmann::json parse_json_text(std::string_view text, const std::string& display
     throw InputError(display_name + ": larger than " + std::to_string(kMaxJsonFileBytes) +
                      " bytes");
   }
-  check_nesting(text, display_name);
-  check_numbers(text, display_name);
+  check_before_parsing(text, display_name);
   try {
     return nlohmann::json::parse(text, DuplicateKeyCheck{}, /*allow_exceptions=*/true,
                                  /*ignore_comments=*/false);
