@@ -112,7 +112,7 @@ TEST_CASE("cli: run checks every file before running any") {
                        ": /effects/0/type: unknown effect type \"wal\" (did you mean \"wall\"?)\n");
 }
 
-TEST_CASE("cli: run prints a summary per environment") {
+TEST_CASE("cli: run prints a summary per environment" * doctest::test_suite("threaded")) {
   const Outcome run =
       run_cli("run --sim-time --duration 0.5s environments/spring.json environments/wall.json");
   CHECK(run.exit_code == 0);

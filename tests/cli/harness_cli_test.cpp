@@ -76,7 +76,7 @@ TEST_CASE("cli: test runs every spec in the repository, or the ones given") {
   CHECK(invalid.err.ends_with("bad.test.json: /never_exceeds: must be > 0, got -1 N\n"));
 }
 
-TEST_CASE("cli: plot and --plot write SVG figures with axes, units and the limit") {
+TEST_CASE("cli: plot and --plot write SVG figures with axes, units and the limit" * doctest::test_suite("threaded")) {
   const auto svg = std::filesystem::temp_directory_path() / "hapscene_plot_test.svg";
   const auto plot = run_cli("plot environments/texture.json --scenario shake --output " + svg.string());
   CHECK(plot.exit_code == 0);

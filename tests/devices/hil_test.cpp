@@ -67,7 +67,7 @@ std::vector<Sample> run(const Scene& scene, DeviceT& device, double duration_s,
 
 }  // namespace
 
-TEST_CASE("hil: a wall contact renders the same forces as the simulated device") {
+TEST_CASE("hil: a wall contact renders the same forces as the simulated device" * doctest::test_suite("threaded")) {
   const Scene scene = load_environment_file(test::source_path("environments/wall.json"));
   SimulationConfig simulation;  // the hand sweeps to +/- 40 mm
   SimulatedHapkit sim(scene.device, simulation);
@@ -100,7 +100,7 @@ TEST_CASE("hil: a wall contact renders the same forces as the simulated device")
   }
 }
 
-TEST_CASE("hil: the board turns the motor off within its timeout when the host stops talking") {
+TEST_CASE("hil: the board turns the motor off within its timeout when the host stops talking" * doctest::test_suite("threaded")) {
   const Scene scene = scene_from(R"({"effects": []})");
   SimulationConfig simulation;
   simulation.hand.motion = HandMotion::hold;
@@ -145,7 +145,7 @@ TEST_CASE("hil: the board turns the motor off within its timeout when the host s
   CHECK(hil.link().board_stats().timeouts == 1);
 }
 
-TEST_CASE("hil: corrupt bytes, dropped bytes, garbage and a board reset are survived") {
+TEST_CASE("hil: corrupt bytes, dropped bytes, garbage and a board reset are survived" * doctest::test_suite("threaded")) {
   const Scene scene = scene_from(R"({"effects": [
     {"type": "wall", "position": 0, "stiffness": 500, "solid": "above"}]})");
   SimulationConfig simulation;
@@ -208,7 +208,7 @@ TEST_CASE("hil: corrupt bytes, dropped bytes, garbage and a board reset are surv
   CHECK(largest_rise_N < 0.1);
 }
 
-TEST_CASE("hil: runs are deterministic and the firmware reports its timing in cycles") {
+TEST_CASE("hil: runs are deterministic and the firmware reports its timing in cycles" * doctest::test_suite("threaded")) {
   const Scene scene = load_environment_file(test::source_path("environments/spring.json"));
   SimulationConfig simulation;
   HilHapkit a(scene.device, hil_config(simulation));

@@ -89,7 +89,7 @@ std::chrono::nanoseconds run_ticks(SerialHapkit* device, int ticks, double duty)
 
 }  // namespace
 
-TEST_CASE("serial: a board on a pseudo-terminal handshakes, renders, goes silent and vanishes") {
+TEST_CASE("serial: a board on a pseudo-terminal handshakes, renders, goes silent and vanishes" * doctest::test_suite("threaded")) {
   PtyBoard board;
   SerialConfig config;
   config.path = board.path();
@@ -127,7 +127,7 @@ TEST_CASE("serial: a board on a pseudo-terminal handshakes, renders, goes silent
   CHECK(report.find("vanished") != std::string::npos);
 }
 
-TEST_CASE("serial: a port that does not answer the handshake is an error, not a hang") {
+TEST_CASE("serial: a port that does not answer the handshake is an error, not a hang" * doctest::test_suite("threaded")) {
   PtyBoard board;
   board.muted.store(true);
   SerialConfig config;

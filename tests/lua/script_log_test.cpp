@@ -76,7 +76,7 @@ TEST_CASE("log: a __tostring that fails does not publish a broken message") {
   CHECK(drained(script.get()).empty());
 }
 
-TEST_CASE("log: another thread may drain while the loop logs") {
+TEST_CASE("log: another thread may drain while the loop logs" * doctest::test_suite("threaded")) {
   ScriptLimits limits;
   limits.log_messages_per_s = 1e9;
   limits.log_burst = 64;

@@ -161,7 +161,7 @@ TEST_CASE("sim: Coulomb friction holds the handle against small forces") {
   CHECK(device.x_m() > 0.001);
 }
 
-TEST_CASE("run: real-time pacing keeps absolute deadlines and counts its timing") {
+TEST_CASE("run: real-time pacing keeps absolute deadlines and counts its timing" * doctest::test_suite("threaded")) {
   const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 50}]})");
   SimulationConfig config;
   SimulatedHapkit device(scene.device, config);
@@ -173,7 +173,7 @@ TEST_CASE("run: real-time pacing keeps absolute deadlines and counts its timing"
   CHECK(summary.wall_time_s >= 0.049);  // 50 deadlines 1 ms apart cannot finish early
 }
 
-TEST_CASE("run: a stop request ends the run at the next tick") {
+TEST_CASE("run: a stop request ends the run at the next tick" * doctest::test_suite("threaded")) {
   const Scene scene = scene_from(R"({"effects": []})");
   SimulatedHapkit device(scene.device, SimulationConfig{});
   std::atomic<bool> stop{true};
@@ -222,7 +222,7 @@ class SlowDevice final : public Device {
 
 }  // namespace
 
-TEST_CASE("run: sustained overruns warn, then fault to zero force and stop") {
+TEST_CASE("run: sustained overruns warn, then fault to zero force and stop" * doctest::test_suite("threaded")) {
   const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 500}]})");
   SlowDevice device(scene, [](std::uint64_t tick) { return tick >= 20; });  // slow from tick 20 on
   RunOptions options{.duration_s = 0.2, .pacing = Pacing::real_time};
@@ -236,7 +236,7 @@ TEST_CASE("run: sustained overruns warn, then fault to zero force and stop") {
   CHECK_FALSE(summary.realtime_note.empty());
 }
 
-TEST_CASE("run: a short burst of overruns warns without a fault") {
+TEST_CASE("run: a short burst of overruns warns without a fault" * doctest::test_suite("threaded")) {
   const Scene scene = scene_from(R"({"effects": []})");
   SlowDevice device(scene, [](std::uint64_t tick) { return tick >= 10 && tick < 14; });
   RunOptions options{.duration_s = 0.06, .pacing = Pacing::real_time};
@@ -247,7 +247,7 @@ TEST_CASE("run: a short burst of overruns warns without a fault") {
   CHECK(summary.ticks > 40);  // ran on; realigned schedules skip the missed deadlines
 }
 
-TEST_CASE("run: single overruns neither warn nor fault") {
+TEST_CASE("run: single overruns neither warn nor fault" * doctest::test_suite("threaded")) {
   const Scene scene = scene_from(R"({"effects": []})");
   SlowDevice device(scene, [](std::uint64_t tick) { return tick % 10 == 5; });
   RunOptions options{.duration_s = 0.05, .pacing = Pacing::real_time};

@@ -33,7 +33,7 @@ TEST_CASE("telemetry ring: capacity, order, full and empty") {
   CHECK_FALSE(ring.try_pop(&value));
 }
 
-TEST_CASE("telemetry ring: a concurrent producer and consumer lose and reorder nothing") {
+TEST_CASE("telemetry ring: a concurrent producer and consumer lose and reorder nothing" * doctest::test_suite("threaded")) {
   constexpr std::uint64_t kCount = 300'000;
   SpscRing<std::uint64_t> ring(1024);
   std::atomic<bool> mismatch{false};
@@ -63,7 +63,7 @@ TEST_CASE("telemetry ring: a concurrent producer and consumer lose and reorder n
   MESSAGE("pushes refused while the ring was full: " << refused);
 }
 
-TEST_CASE("telemetry log: a full ring drops and counts, never blocks") {
+TEST_CASE("telemetry log: a full ring drops and counts, never blocks" * doctest::test_suite("threaded")) {
   const auto path = std::filesystem::temp_directory_path() / "hapscene_drop_test.csv";
   TelemetryLog log(path.string(), 4);
   TickState state;
@@ -104,7 +104,7 @@ double parse_double(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("telemetry log: the CSV of a simulated run equals the traced ticks exactly") {
+TEST_CASE("telemetry log: the CSV of a simulated run equals the traced ticks exactly" * doctest::test_suite("threaded")) {
   const Scene scene = load_environment_file(test::source_path("environments/wall_corridor.json"));
   SimulationConfig config;
   SimulatedHapkit device(scene.device, config);
