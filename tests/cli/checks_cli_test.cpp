@@ -147,7 +147,7 @@ TEST_CASE("cli: a workspace too wide to sample is refused (exit 2), naming the e
   CHECK(tested.err == "error: " + spec + ": /environment: " + message.substr(7));
 }
 
-TEST_CASE("cli: run reports a script fault with the time it happened and exits 1") {
+TEST_CASE("cli: run reports a script fault with the time it happened and exits 1" * doctest::test_suite("threaded")) {
   // The hand sweeps from the left end of the workspace: the script faults when it first
   // passes 10 mm, well after the start, and does not declare time.
   const hapscene::test::ScratchFolder folder("checks_run");

@@ -61,7 +61,7 @@ TEST_CASE("file reading: every kind of file hapscene loads refuses a named pipe"
   CHECK(test::input_error_of([&] { read_json_file(spec); }).ends_with("x.test.json: cannot read a named pipe, expected a regular file"));
 }
 
-TEST_CASE("reload watcher: an environment file replaced by a named pipe is reported, not waited on") {
+TEST_CASE("reload watcher: an environment file replaced by a named pipe is reported, not waited on" * doctest::test_suite("threaded")) {
   test::ScratchFolder scratch("files");
   const auto env = scratch.dir / "env.json";
   std::ofstream(env) << R"({"effects": []})";

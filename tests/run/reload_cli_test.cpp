@@ -28,7 +28,7 @@ double commanded_N(const std::string& out) {
 
 }  // namespace
 
-TEST_CASE("run: a reload pointing the device at a looser profile of the same name is refused mid-run") {
+TEST_CASE("run: a reload pointing the device at a looser profile of the same name is refused mid-run" * doctest::test_suite("threaded")) {
   test::ScratchFolder scratch("run_profile");
   std::string profile = test::slurp_file(test::source_path("environments/devices/hapkit3.json"));
   scratch.write("a/hapkit3.json", profile);
@@ -54,7 +54,7 @@ TEST_CASE("run: a reload pointing the device at a looser profile of the same nam
   CHECK(run.out.find("reloads") == std::string::npos);
 }
 
-TEST_CASE("run: a reload tightening the force limit is taken, and the summary reports the limit in force") {
+TEST_CASE("run: a reload tightening the force limit is taken, and the summary reports the limit in force" * doctest::test_suite("threaded")) {
   test::ScratchFolder scratch("run_tighten");
   const std::string effects = R"("effects": [{"type": "spring", "stiffness": "10 N/mm", "center": "10 mm"}])";
   const auto env = scratch.write("env.json", "{" + effects + "}");
@@ -70,7 +70,7 @@ TEST_CASE("run: a reload tightening the force limit is taken, and the summary re
   CHECK(run.out.find("  reloads          1\n") != std::string::npos);
 }
 
-TEST_CASE("run: a reload whose load does not end does not hold the run past its duration") {
+TEST_CASE("run: a reload whose load does not end does not hold the run past its duration" * doctest::test_suite("threaded")) {
   test::ScratchFolder scratch("run_hang");
   scratch.write("field.lua", "function force(s) return 0 end\n");
   const auto env = scratch.write(

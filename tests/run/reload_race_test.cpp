@@ -53,7 +53,7 @@ class Offerer final : public TickObserver {
 
 }  // namespace
 
-TEST_CASE("live status: draining logs while reloads swap and destroy script instances is race-free and loses nothing") {
+TEST_CASE("live status: draining logs while reloads swap and destroy script instances is race-free and loses nothing" * doctest::test_suite("threaded")) {
   const Scene first = test::scene_from(logging_scene(0));
   constexpr int kVersions = 8;
   std::vector<std::unique_ptr<LoadedScene>> versions;

@@ -87,7 +87,7 @@ TEST_CASE("reload guard: each loosened limit, the rate and any profile change ar
         "the device cannot change during a run (profile limits.max_force_N 6 -> 5, plant.mass_kg 0.04 -> 0.05)");
 }
 
-TEST_CASE("reload watcher: a same-named profile file with looser limits is refused, the limits stay") {
+TEST_CASE("reload watcher: a same-named profile file with looser limits is refused, the limits stay" * doctest::test_suite("threaded")) {
   test::ScratchFolder scratch("reload_profile");
   scratch.write("a/hapkit3.json", hapkit3_with("6 N", "4 N/ms"));
   scratch.write("b/hapkit3.json", hapkit3_with("60 N", "8 N/ms"));
@@ -129,7 +129,7 @@ TEST_CASE("reload watcher: a same-named profile file with looser limits is refus
                               ": a reload cannot loosen a safety limit (max_force_N 2 -> 6); restart the run to loosen one");
 }
 
-TEST_CASE("reload watcher: a load that never ends is abandoned; destroying the watcher does not wait for it") {
+TEST_CASE("reload watcher: a load that never ends is abandoned; destroying the watcher does not wait for it" * doctest::test_suite("threaded")) {
   const Scene running = test::scene_from(R"({"effects": []})");
   test::ScratchFolder scratch("reload_hang");
   const auto env = scratch.write("env.json", R"({"effects": []})");
