@@ -82,35 +82,22 @@ inline double apply_static_safety(const SafetyConfig& config, double x_m, double
   return std::copysign(config.max_force_N, force_N);
 }
 
+// Rule 3 and an untrusted position, for a tick on which either acts (safety.cpp): returns
+// the force after them.
+// Untrusted position: hold the force (see PositionHold); trusted again, the soft start
+// ramps it back in from the gain reached (or decides afresh after a cut).
+// Soft start: decided on the first tick from the force the scene asks for there, then
+// ramping (the gain is 0 until then).
+[[gnu::noinline]] double apply_ramp(const SafetyConfig& config, double output_N, SafetyState* state) noexcept;
+
 // All five rules, for one tick of a run. (Inline: it runs every tick.)
 inline double apply_safety(const SafetyConfig& config, double x_m, double force_N,
                            SafetyState* state) noexcept {
   double output_N = apply_static_safety(config, x_m, force_N, &state->counters);
 
-  // Untrusted position: hold the force (see PositionHold); trusted again, the soft start
-  // ramps it back in from the gain reached (or decides afresh after a cut).
-  if (state->position_hold != PositionHold::none) [[unlikely]] {
-    ++state->counters.position_hold_ticks;
-    if (state->position_hold == PositionHold::cut || !state->started) {
-      state->started = false;
-      state->ramp_gain = 0.0;
-      output_N = 0.0;
-    } else {
-      state->ramp_gain = std::max(0.0, state->ramp_gain - config.ramp_step_per_tick);
-      output_N *= state->ramp_gain;
-    }
-  } else if (state->ramp_gain < 1.0) [[unlikely]] {
-    // 3. Soft start: decided on the first tick from the force the scene asks for there,
-    // then ramping; a single comparison once the ramp is done (the gain is 0 until then).
-    if (!state->started) {
-      state->started = true;
-      state->ramp_gain = std::abs(output_N) > config.soft_start_threshold_N ? 0.0 : 1.0;
-    }
-    if (state->ramp_gain < 1.0) {
-      output_N *= state->ramp_gain;
-      state->ramp_gain = std::min(1.0, state->ramp_gain + config.ramp_step_per_tick);
-      ++state->counters.soft_start_ticks;
-    }
+  // 3. (and an untrusted position) out of line: the common case is one comparison each.
+  if (state->position_hold != PositionHold::none || state->ramp_gain < 1.0) [[unlikely]] {
+    output_N = apply_ramp(config, output_N, state);
   }
 
   // 5. Slew limit against the previous output.

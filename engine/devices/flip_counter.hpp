@@ -35,9 +35,25 @@ struct FlipCounter {
   int32_t recent_raw[kWindow] = {};   // recent_raw[0] the previous sample, then older
   uint32_t overflows = 0;             // arithmetic that would have overflowed
 
+  // True when `raw_counts` lies within the threshold of every sample of a full window:
+  // no flip, the common case, in straight-line code (the loop below decides the rest).
+  bool within_window(int32_t raw_counts) const {
+    if (recent_count != kWindow) return false;
+    const uint32_t width = 2u * static_cast<uint32_t>(threshold_counts);
+    bool overflowed = false;
+    bool within = true;
+    for (uint8_t i = 0; i < kWindow; ++i) {
+      int32_t jump;
+      overflowed |= __builtin_sub_overflow(raw_counts, recent_raw[i], &jump);
+      // |jump| <= threshold as one unsigned comparison.
+      within &= static_cast<uint32_t>(jump) + static_cast<uint32_t>(threshold_counts) <= width;
+    }
+    return within && !overflowed;
+  }
+
   // Feeds one raw sample; returns the unwrapped count.
   int32_t update(int32_t raw_counts) {
-    if (started) {
+    if (started && !within_window(raw_counts)) {
       int8_t direction = 0;
       for (uint8_t i = 0; i < recent_count && direction == 0; ++i) {
         int32_t jump;
