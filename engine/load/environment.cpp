@@ -207,8 +207,6 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
     parse_validate_block(validate_reader, &scene.validate);
   }
   reader.finish();
-  // Warnings go to stderr at every load, whatever the command.
-  for (const std::string& warning : scene.load_warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   return scene;
 }
 
@@ -225,6 +223,17 @@ Scene load_environment_text(std::string_view json_text, const std::string& displ
   return compile(parse_json_text(json_text, display_name), display_name, base_dir);
 }
 
+namespace {
+
+// A user's file: its warnings go to stderr at every load, whatever the command (scenes a
+// command builds from its own text, such as the bench's, keep theirs in the scene).
+Scene print_warnings(Scene scene) {
+  for (const std::string& warning : scene.load_warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  return scene;
+}
+
+}  // namespace
+
 Scene load_environment_file(const std::string& path) {
   const std::filesystem::path file(path);
   const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
@@ -234,9 +243,9 @@ Scene load_environment_file(const std::string& path) {
     const nlohmann::json script = nlohmann::json::object({{"type", "script"}, {"file", file.filename().string()}});
     const nlohmann::json root = nlohmann::json::object(
         {{"name", file.stem().string()}, {"effects", nlohmann::json::array({script})}});
-    return compile(root, path, base_dir);
+    return print_warnings(compile(root, path, base_dir));
   }
-  return load_environment_text(read_text_file(path, kMaxJsonFileBytes), path, base_dir);
+  return print_warnings(load_environment_text(read_text_file(path, kMaxJsonFileBytes), path, base_dir));
 }
 
 }  // namespace hapscene

@@ -8,11 +8,13 @@
 
 namespace hapscene {
 
-// Loads an environment file. Throws InputError naming the file and the place.
+// Loads an environment file. Throws InputError naming the file and the place. Its load
+// warnings (Scene::load_warnings) are also printed to stderr.
 Scene load_environment_file(const std::string& path);
 
 // Compiles environment JSON text; `display_name` names it in messages and relative
-// paths in it (a device profile) are taken from `base_dir`. Throws InputError.
+// paths in it (a device profile) are taken from `base_dir`. Throws InputError. Load
+// warnings stay in the scene, unprinted.
 Scene load_environment_text(std::string_view json_text, const std::string& display_name,
                             const std::string& base_dir = ".");
 

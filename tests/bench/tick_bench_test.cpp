@@ -89,6 +89,9 @@ TEST_CASE("bench: implementations are compared slice by slice in the same rounds
 TEST_CASE("bench: the command prints the three implementations of a lab environment and its goals") {
   const test::CliOutcome outcome = test::run_cli("bench --seconds 0.5 --passes 2 environments/spring.json");
   CHECK(outcome.exit_code == 0);
+  // The bench's own scenes (the parts table's walls that cannot act, on purpose) warn
+  // nobody: only a user's file does.
+  CHECK(outcome.err.find("warning") == std::string::npos);
   CHECK(outcome.out.find("spring     hand-written C++") != std::string::npos);
   CHECK(outcome.out.find("spring     built-in (JSON)") != std::string::npos);
   CHECK(outcome.out.find("spring     Lua script") != std::string::npos);
