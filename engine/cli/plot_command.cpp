@@ -23,6 +23,10 @@ int plot_command(std::vector<std::string> args) {
   const std::vector<std::string> files = arguments.positionals();
   if (files.size() != 1) arguments.fail("expected one environment file");
   if (kinds.size() > 1) arguments.fail("--scenario: plot draws one scenario");
+  if (out_path) {
+    const std::string problem = output_path_problem({{"output", *out_path}}, files);
+    if (!problem.empty()) arguments.fail(problem);
+  }
 
   const Scene scene = load_environment_file(files[0]);
   const ForceField field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);

@@ -225,6 +225,16 @@ int run_command(std::vector<std::string> args) {
     arguments.fail("--log and --plot take one environment file");
   }
 
+  // Output files that would overwrite an input or each other, or cannot be written where
+  // they are asked for, are refused before anything runs.
+  {
+    std::vector<std::pair<std::string, std::string>> outputs;
+    if (settings.log_path) outputs.emplace_back("log", *settings.log_path);
+    if (settings.plot_path) outputs.emplace_back("plot", *settings.plot_path);
+    const std::string problem = output_path_problem(outputs, files);
+    if (!problem.empty()) arguments.fail(problem);
+  }
+
   // Load everything and open every device first: a bad file fails before anything moves.
   // A real board on a serial port is opened once and shared by every environment.
   std::vector<Scene> scenes;

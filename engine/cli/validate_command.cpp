@@ -31,6 +31,16 @@ int validate_command(std::vector<std::string> args) {
     arguments.fail("--report and --plot take one environment file");
   }
 
+  // Output files that would overwrite an input or each other, or cannot be written where
+  // they are asked for, are refused before anything runs.
+  {
+    std::vector<std::pair<std::string, std::string>> outputs;
+    if (report_path) outputs.emplace_back("report", *report_path);
+    if (plot_path) outputs.emplace_back("plot", *plot_path);
+    const std::string problem = output_path_problem(outputs, files);
+    if (!problem.empty()) arguments.fail(problem);
+  }
+
   // Load everything first: a bad file fails before anything runs.
   std::vector<Scene> scenes;
   for (const std::string& file : files) scenes.push_back(load_environment_file(file));

@@ -49,7 +49,7 @@ TEST_CASE("cli: validate refuses invalid input with exit code 2") {
   CHECK(run_cli("validate environments/wall.json environments/spring.json --report x.json").err ==
         "error: hapscene validate: --report and --plot take one environment file\n");
   CHECK(run_cli("validate environments/wall.json --report /nonexistent/dir/r.json").err ==
-        "error: /nonexistent/dir/r.json: cannot write file\n");
+        "error: hapscene validate: --report /nonexistent/dir/r.json: no folder /nonexistent/dir\n");
 }
 
 TEST_CASE("cli: test runs every spec in the repository, or the ones given") {

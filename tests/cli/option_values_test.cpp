@@ -5,9 +5,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 
 #include "tests/cli/cli_support.hpp"
+#include "tests/scratch_folder.hpp"
 
 namespace {
 
@@ -157,4 +160,29 @@ TEST_CASE("cli values: bench refuses values whose recordings or timings would no
   CHECK(refused("bench --seconds 600 --passes 1000").find("needs about 1025 MiB") != std::string::npos);
   std::filesystem::remove(fast);
   std::filesystem::remove(medium);
+}
+
+TEST_CASE("cli: an output file that is an input, another output, a folder or in no folder is refused before the run") {
+  const hapscene::test::ScratchFolder folder("outputs");
+  const std::string env = folder.write("env.json", R"({"effects": [{"type": "spring", "stiffness": 100}]})").string();
+  const auto text_of = [](const std::string& path) {
+    std::ostringstream text;
+    text << std::ifstream(path).rdbuf();
+    return text.str();
+  };
+  const std::string before = text_of(env);
+  const auto onto_input = run_cli("run " + env + " --sim-time --quiet --no-reload --duration 0.1s --log " + env);
+  CHECK(onto_input.exit_code == 2);
+  CHECK(onto_input.err.find("--log " + env + ": is an input file of this command") != std::string::npos);
+  CHECK(text_of(env) == before);
+  const std::string out = (folder.dir / "out").string();
+  const auto same = run_cli("run " + env + " --sim-time --quiet --no-reload --duration 0.1s --log " + out + " --plot " + out);
+  CHECK(same.exit_code == 2);
+  CHECK(same.err.find("--plot " + out + ": is also given to --log") != std::string::npos);
+  const auto into_folder = run_cli("validate " + env + " --report " + folder.dir.string());
+  CHECK(into_folder.exit_code == 2);
+  CHECK(into_folder.err.find("is a folder, expected a file name") != std::string::npos);
+  const auto nowhere = run_cli("plot " + env + " --output " + (folder.dir / "missing" / "x.svg").string());
+  CHECK(nowhere.exit_code == 2);
+  CHECK(nowhere.err.find(": no folder ") != std::string::npos);
 }
