@@ -44,6 +44,10 @@ int plot_command(std::vector<std::string> args) {
   std::printf("wrote %s\n", path.c_str());
   std::fflush(stdout);
   for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
+  if (faults.omitted()) {
+    std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the workspace are shown)\n",
+                 ScriptFaultLog::kMaxMessages);
+  }
   return faults.empty() ? kExitOk : kExitFailure;
 }
 

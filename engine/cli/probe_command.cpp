@@ -100,6 +100,10 @@ int probe_command(std::vector<std::string> args) {
                  t_s);
   }
   for (const std::string& fault : open_loop.faults().lines()) std::fprintf(stderr, "%s\n", fault.c_str());
+  if (open_loop.faults().omitted()) {
+    std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the workspace are shown)\n",
+                 ScriptFaultLog::kMaxMessages);
+  }
   return open_loop.faults().empty() ? kExitOk : kExitFailure;
 }
 

@@ -30,20 +30,58 @@ std::string describe_point(double x_m, double v_m_per_s, double t_s) {
 }
 
 void ScriptFaultLog::add(const std::string& message, const std::string& where, double order_key) {
+  insert(message, where.empty() ? message : message + " (first at " + where + ")", order_key);
+}
+
+void ScriptFaultLog::insert(const std::string& message, const std::string& line, double order_key) {
   const auto found = std::find(messages_.begin(), messages_.end(), message);
-  const std::string line = where.empty() ? message : message + " (first at " + where + ")";
-  if (found == messages_.end()) {
+  if (found != messages_.end()) {
+    // Seen before: keep the lowest point, so the line does not depend on the probing order.
+    const auto i = static_cast<std::size_t>(found - messages_.begin());
+    if (order_key < keys_[i]) {
+      lines_[i] = line;
+      keys_[i] = order_key;
+      sort_by_key();
+    }
+    return;
+  }
+  if (messages_.size() < kMaxMessages) {
     messages_.push_back(message);
     lines_.push_back(line);
     keys_.push_back(order_key);
+    sort_by_key();
     return;
   }
-  // Seen before: keep the lowest point, so the line does not depend on the probing order.
-  const auto i = static_cast<std::size_t>(found - messages_.begin());
-  if (order_key < keys_[i]) {
+  // Full: keep the messages seen at the lowest keys (the same set whatever the order of
+  // the calls), and count what is left out.
+  omitted_ = true;
+  const auto highest = std::max_element(keys_.begin(), keys_.end());
+  if (order_key < *highest) {
+    const auto i = static_cast<std::size_t>(highest - keys_.begin());
+    messages_[i] = message;
     lines_[i] = line;
     keys_[i] = order_key;
+    sort_by_key();
   }
+}
+
+void ScriptFaultLog::sort_by_key() {
+  // At most kMaxMessages entries: sort the three lists together by (key, message).
+  std::vector<std::size_t> order(messages_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return keys_[a] != keys_[b] ? keys_[a] < keys_[b] : messages_[a] < messages_[b];
+  });
+  std::vector<std::string> messages, lines;
+  std::vector<double> keys;
+  for (const std::size_t i : order) {
+    messages.push_back(std::move(messages_[i]));
+    lines.push_back(std::move(lines_[i]));
+    keys.push_back(keys_[i]);
+  }
+  messages_ = std::move(messages);
+  lines_ = std::move(lines);
+  keys_ = std::move(keys);
 }
 
 void ScriptFaultLog::collect(const ScriptList& scripts, const std::string& where, double order_key) {
@@ -53,12 +91,8 @@ void ScriptFaultLog::collect(const ScriptList& scripts, const std::string& where
 }
 
 void ScriptFaultLog::merge(const ScriptFaultLog& other) {
-  for (std::size_t i = 0; i < other.messages_.size(); ++i) {
-    if (std::find(messages_.begin(), messages_.end(), other.messages_[i]) != messages_.end()) continue;
-    messages_.push_back(other.messages_[i]);
-    lines_.push_back(other.lines_[i]);
-    keys_.push_back(other.keys_[i]);
-  }
+  for (std::size_t i = 0; i < other.messages_.size(); ++i) insert(other.messages_[i], other.lines_[i], other.keys_[i]);
+  omitted_ = omitted_ || other.omitted_;
 }
 
 OpenLoop::OpenLoop(const Scene& scene, double t_s) : scene_(scene), t_s_(t_s) {}

@@ -15,7 +15,7 @@
 namespace hapscene {
 
 // Script faults seen while evaluating a scene: each distinct message once, in the order
-// first seen ("scripts/x.lua:3: attempt to ... (first at x 12.00 mm, v 0 m/s, t 0 s)").
+// of their keys ("scripts/x.lua:3: attempt to ... (first at x 12.00 mm, v 0 m/s, t 0 s)").
 // Of the places one message was seen, the one with the lowest order key (the position,
 // in an open-loop scan; the time, in a run) is kept.
 class ScriptFaultLog {
@@ -25,14 +25,25 @@ class ScriptFaultLog {
   // Records one message with where it was seen (empty: nowhere in particular).
   void add(const std::string& message, const std::string& where, double order_key = 0.0);
   void merge(const ScriptFaultLog& other);
+  // At most kMaxMessages distinct messages are kept (a script whose message changes with
+  // every call would otherwise flood the output and make each record cost a search).
+  static constexpr std::size_t kMaxMessages = 20;
+
   const std::vector<std::string>& lines() const { return lines_; }
+  // Whether a message was left out because kMaxMessages others were kept (not how many
+  // times: that would depend on the order of the calls).
+  bool omitted() const { return omitted_; }
   const std::vector<std::string>& messages() const { return messages_; }
   bool empty() const { return lines_.empty(); }
 
  private:
+  void insert(const std::string& message, const std::string& line, double order_key);
+  void sort_by_key();
+
   std::vector<std::string> messages_;  // the bare messages, for deduplication
   std::vector<std::string> lines_;     // message plus where
   std::vector<double> keys_;
+  bool omitted_{};
 };
 
 // What the script effects of a scene do beyond a fixed function of (x, v).

@@ -162,3 +162,18 @@ TEST_CASE("cli: run reports a script fault with the time it happened and exits 1
   // A clean script still exits 0.
   CHECK(run_cli("run scripts/spring.lua --sim-time --quiet --no-reload --duration 0.5s").exit_code == 0);
 }
+
+TEST_CASE("cli: a fault whose message changes at every point is printed a bounded number of times") {
+  const hapscene::test::ScratchFolder folder("checks_flood");
+  const std::string script = folder.write("distinct.lua",
+      "function force(s)\n  if s.x > 0.001 then error(\"at \" .. math.floor(s.x * 1000 + 0.3) .. \" mm\") end\n"
+      "  return 0\nend\n");
+  // About 40 distinct messages (one per millimetre), each at 4 points.
+  const auto up = run_cli("probe " + script + " --x -10mm:40mm:0.25mm");
+  CHECK(up.exit_code == 1);
+  CHECK(count(up.err, "\n") == 21);
+  CHECK(up.err.find("... and script faults with other messages (only the 20 first") != std::string::npos);
+  // The same faults are shown whichever way the points are probed.
+  const auto down = run_cli("probe " + script + " --x 40mm:-10mm:-0.25mm");
+  CHECK(down.err == up.err);
+}
