@@ -19,6 +19,7 @@ constexpr std::size_t kEhdrSize = 52, kPhdrSize = 32, kShdrSize = 40, kSymSize =
 constexpr std::uint16_t kEtExec = 2, kEmAvr = 83;
 constexpr std::uint32_t kPtLoad = 1;
 constexpr std::uint32_t kShtNull = 0, kShtSymtab = 2, kShtStrtab = 3, kShtNobits = 8;
+constexpr std::uint32_t kShfKnown = 0x7ff;  // SHF_WRITE .. SHF_TLS
 constexpr std::uint32_t kShfAlloc = 0x2;
 
 // The file, read little-endian with every access inside it.
@@ -170,6 +171,10 @@ void check_avr_firmware(const std::string& path) {
     const std::uint32_t offset = image.u32(at + 16), size = image.u32(at + 20);
     const std::uint32_t link = image.u32(at + 24), entsize = image.u32(at + 36);
     if (sh_type != kShtNobits) image.need(offset, size, what);
+    // Only the plain flags (write, alloc, exec, merge, strings, info-link, link-order,
+    // OS, group, TLS): a compressed section (0x800) or unknown bits make libelf hand
+    // simavr data that is not what the header says, and simavr then reads out of bounds.
+    if ((flags & ~kShfKnown) != 0) image.fail(what + ": section flags " + hex(flags) + " (compressed or unknown)");
     if (name == ".mmcu") image.fail("a .mmcu section (simavr metadata the hapscene firmware does not carry)");
     if (name == ".text") {
       has_text = true;
