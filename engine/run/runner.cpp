@@ -2,7 +2,9 @@
 
 #include <sys/prctl.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <ctime>
 
 #include "engine/core/clock.hpp"
@@ -93,14 +95,17 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
 
     deadline_ns += period_ns;
     if (real_time && monotonic_now_ns() > deadline_ns) {
-      // Overran into the next tick: count it and realign rather than burst to catch up.
-      ++summary.deadline_misses;
+      // Overran into the next tick: count every deadline passed without a command (a stall
+      // of 50 periods is 50 misses, not one) and realign rather than burst to catch up.
       const std::int64_t behind_ns = monotonic_now_ns() - deadline_ns;
-      deadline_ns += (behind_ns / period_ns + 1) * period_ns;
-      // Sustained overruns: warn, then fault to zero force and stop.
-      ++miss_streak;
+      const std::int64_t missed = behind_ns / period_ns + 1;
+      summary.deadline_misses += static_cast<std::uint64_t>(missed);
+      deadline_ns += missed * period_ns;
+      // Sustained overruns (deadlines missed in a row): warn, then fault to zero force and stop.
+      const std::uint32_t streak_before = miss_streak;
+      miss_streak = static_cast<std::uint32_t>(std::min<std::int64_t>(miss_streak + missed, UINT32_MAX));
       if (miss_streak > summary.longest_miss_streak) summary.longest_miss_streak = miss_streak;
-      if (miss_streak == options.overrun_warn_ticks) {
+      if (streak_before < options.overrun_warn_ticks && miss_streak >= options.overrun_warn_ticks) {
         ++summary.overrun_warnings;
         if (summary.first_overrun_warning_s < 0.0) summary.first_overrun_warning_s = state.t_s;
       }

@@ -32,8 +32,9 @@ struct RunOptions {
   SceneExchange* reload{nullptr};
   // Real time: SCHED_FIFO and locked memory when permitted (see RealtimeGuard).
   bool realtime_scheduling{true};
-  // Sustained overruns: this many deadline misses in a row is a warning, this many a
-  // fault: the device is commanded zero force and the run ends.
+  // Sustained overruns: this many deadline misses in a row (a single stall of k periods
+  // counts k) is a warning, this many a fault: the device is commanded zero force and
+  // the run ends.
   std::uint32_t overrun_warn_ticks{3};
   std::uint32_t overrun_fault_ticks{10};
 };
@@ -59,7 +60,7 @@ struct RunSummary {
   SafetyCounters safety;
   std::uint64_t script_errors{};          // scripts disabled by an error or a bad return value
   std::uint64_t script_budget_overruns{}; // scripts disabled by their instruction, time or memory limit
-  std::uint64_t deadline_misses{};  // ticks that ended after the next tick's deadline
+  std::uint64_t deadline_misses{};  // deadlines passed without a command (a tick overrunning k periods: k)
   LatencyHistogram compute_ns;      // read + step + write of each tick
   LatencyHistogram wake_late_ns;    // real time: how late each tick started
   std::vector<ScriptReport> scripts;  // one per script effect, in scene order
