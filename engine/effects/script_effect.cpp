@@ -72,8 +72,9 @@ ScriptLoadBudget plan_script_loads(const nlohmann::json& effects, const std::str
     }
     memory_bytes += limits.memory_bytes;
     if (memory_bytes > kMaxScriptMemoryBytesTotal) {
+      const bool written = block != effect.end() && block->contains("memory_bytes");
       throw InputError(located_message(
-          file, json_pointer_append(json_pointer_append(at, "limits"), "memory_bytes"),
+          file, written ? json_pointer_append(json_pointer_append(at, "limits"), "memory_bytes") : at,
           "the script effects' memory_bytes add up to " + std::to_string(memory_bytes) + " here, more than the " +
               std::to_string(kMaxScriptMemoryBytesTotal) + " (1 GiB) one environment may have"));
     }

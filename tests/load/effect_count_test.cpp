@@ -54,8 +54,12 @@ TEST_CASE("effect count: the script effects' memory caps add up to at most 1 GiB
   const std::string big = R"({"type": "script", "source": "function force(s) return 0 end",
                               "limits": {"memory_bytes": 1073741824}})";
   CHECK(scene_from(environment_of(1, big)).script_count == 1);
-  CHECK(load_error(R"({"effects": [)" + big + ", " + kScript + "]}") ==
+  // Named at the effect that passes the sum: its key when written, else the effect.
+  CHECK(load_error(R"({"effects": [)" + kScript + ", " + big + "]}") ==
         "test.json: /effects/1/limits/memory_bytes: the script effects' memory_bytes add up to 1077936128 here, more "
+        "than the 1073741824 (1 GiB) one environment may have");
+  CHECK(load_error(R"({"effects": [)" + big + ", " + kScript + "]}") ==
+        "test.json: /effects/1: the script effects' memory_bytes add up to 1077936128 here, more "
         "than the 1073741824 (1 GiB) one environment may have");
   // 64 scripts at the default 4 MiB stay well within it.
   CHECK(scene_from(environment_of(64, kScript)).script_count == 64);

@@ -4,6 +4,7 @@
 // is the way to leave an effect out silently.
 #include <doctest/doctest.h>
 
+#include "engine/harness/validate.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;
@@ -99,4 +100,13 @@ TEST_CASE("load: a wall exactly on the workspace's edge says so, with no unit hi
                      "position": "10 mm", "stiffness": 500, "solid": "above"}]})")
             .starts_with("test.json: /effects/0 (wall): position 0.01 m is the upper edge of the environment's safety "
                          "workspace [-0.01, 0.01] m"));
+}
+
+TEST_CASE("load: validate fails its scene/effects check for an effect with zero gain") {
+  const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 100}, {"type": "damper", "damping": 0}]})");
+  const ValidationReport report = validate_scene(scene, {ScenarioKind::hold}, {});
+  CHECK_FALSE(report.pass);
+  REQUIRE(report.scene_checks.size() == 1);
+  CHECK(report.scene_checks[0].name == "effects");
+  CHECK(report.scene_checks[0].detail.starts_with("test.json: /effects/1 (damper): damping 0 N*s/m"));
 }
