@@ -1,20 +1,39 @@
 #include "engine/devices/profile.hpp"
 
+#include <cmath>
 #include <filesystem>
 
 #include "engine/core/errors.hpp"
 #include "engine/devices/builtin_profiles.hpp"
 #include "engine/load/json_source.hpp"
 #include "engine/load/object_reader.hpp"
+#include "engine/load/physical_ranges.hpp"
 
 namespace hapscene {
 namespace {
+
+// Ranges of the profile's own numbers (README "Device profiles and kinematics"); the
+// shared ones are in physical_ranges.hpp. Each is far wider than any desktop haptic device
+// and keeps the kinematics and the simulated plant finite.
+constexpr double kMaxDegPerCount = 10.0;  // |slope|: at least 1e-6 deg per count
+constexpr double kMinDegPerCount = 1e-6;
+constexpr Range kAngleOffset_deg{-3600.0, 3600.0};   // ten turns
+constexpr Range kRadius_m{1e-4, 1.0};                // 0.1 mm to 1 m
+constexpr Range kMotorConstant_N_m{1e-6, 100.0};
+constexpr Range kMass_kg{1e-4, 100.0};               // 0.1 g to 100 kg at the handle
+constexpr Range kNoise_counts{0.0, 1000.0};
 
 SensorModel parse_sensor(ObjectReader& reader) {
   SensorModel sensor;
   sensor.counts_to_deg_slope = reader.quantity("counts_to_deg_slope", Quantity::dimensionless);
   if (sensor.counts_to_deg_slope == 0.0) reader.fail("counts_to_deg_slope", "must not be 0");
-  sensor.counts_to_deg_offset = reader.quantity("counts_to_deg_offset", Quantity::dimensionless);
+  const double slope_magnitude = std::abs(sensor.counts_to_deg_slope);
+  if (slope_magnitude < kMinDegPerCount || slope_magnitude > kMaxDegPerCount) {
+    reader.fail("counts_to_deg_slope", "must be in [-10, -1e-06] or [1e-06, 10] (deg/count), got " +
+                                           format_number(sensor.counts_to_deg_slope));
+  }
+  sensor.counts_to_deg_offset =
+      reader.quantity("counts_to_deg_offset", Quantity::dimensionless, kAngleOffset_deg);
   sensor.min_counts = static_cast<std::int32_t>(reader.integer("min_counts", 0, 65535));
   sensor.span_counts = static_cast<std::int32_t>(reader.integer("span_counts", 2, 65535));
   sensor.flip_threshold_counts = static_cast<std::int32_t>(
@@ -25,11 +44,11 @@ SensorModel parse_sensor(ObjectReader& reader) {
 
 DriveModel parse_drive(ObjectReader& reader) {
   DriveModel drive;
-  drive.handle_radius_m = reader.quantity("handle_radius", Quantity::length_m, Bound::positive);
-  drive.pulley_radius_m = reader.quantity("pulley_radius", Quantity::length_m, Bound::positive);
-  drive.sector_radius_m = reader.quantity("sector_radius", Quantity::length_m, Bound::positive);
+  drive.handle_radius_m = reader.quantity("handle_radius", Quantity::length_m, kRadius_m);
+  drive.pulley_radius_m = reader.quantity("pulley_radius", Quantity::length_m, kRadius_m);
+  drive.sector_radius_m = reader.quantity("sector_radius", Quantity::length_m, kRadius_m);
   drive.motor_constant_N_m =
-      reader.quantity("motor_constant", Quantity::dimensionless, Bound::positive);
+      reader.quantity("motor_constant", Quantity::dimensionless, kMotorConstant_N_m);
   drive.duty_max = reader.quantity("duty_max", Quantity::dimensionless, Bound::positive);
   if (drive.duty_max > 1.0) reader.fail("duty_max", "must be <= 1");
   drive.direction_sign = static_cast<int>(reader.integer("direction_sign", -1, 1));
@@ -41,34 +60,34 @@ DriveModel parse_drive(ObjectReader& reader) {
 
 DeviceLimits parse_limits(ObjectReader& reader) {
   DeviceLimits limits;
-  limits.max_force_N = reader.quantity("max_force", Quantity::force_N, Bound::positive);
+  limits.max_force_N = reader.quantity("max_force", Quantity::force_N, ranges::kPositiveForce_N);
   limits.slew_limit_N_per_s =
-      reader.quantity("slew_limit", Quantity::force_rate_N_per_s, Bound::positive);
+      reader.quantity("slew_limit", Quantity::force_rate_N_per_s, ranges::kPositiveSlew_N_per_s);
   std::tie(limits.workspace_min_m, limits.workspace_max_m) =
-      reader.range("workspace", Quantity::length_m);
-  limits.soft_start_s = reader.quantity("soft_start", Quantity::time_s, Bound::non_negative);
+      reader.range("workspace", Quantity::length_m, ranges::kPosition_m);
+  limits.soft_start_s = reader.quantity("soft_start", Quantity::time_s, ranges::kDuration_s);
   limits.soft_start_threshold_N =
-      reader.quantity("soft_start_threshold", Quantity::force_N, Bound::non_negative);
+      reader.quantity("soft_start_threshold", Quantity::force_N, ranges::kForce_N);
   limits.slip_force_N =
-      reader.quantity_or("slip_force", Quantity::force_N, kDefaultSlipForce_N, Bound::positive);
+      reader.quantity_or("slip_force", Quantity::force_N, kDefaultSlipForce_N, ranges::kPositiveForce_N);
   limits.slip_step_N =
-      reader.quantity_or("slip_step", Quantity::force_N, kDefaultSlipStep_N, Bound::positive);
+      reader.quantity_or("slip_step", Quantity::force_N, kDefaultSlipStep_N, ranges::kPositiveForce_N);
   reader.finish();
   return limits;
 }
 
 PlantModel parse_plant(ObjectReader& reader) {
   PlantModel plant;
-  plant.mass_kg = reader.quantity("mass", Quantity::mass_kg, Bound::positive);
+  plant.mass_kg = reader.quantity("mass", Quantity::mass_kg, kMass_kg);
   plant.viscous_N_s_per_m =
-      reader.quantity("viscous", Quantity::damping_N_s_per_m, Bound::non_negative);
-  plant.coulomb_N = reader.quantity("coulomb", Quantity::force_N, Bound::non_negative);
+      reader.quantity("viscous", Quantity::damping_N_s_per_m, ranges::kDamping_N_s_per_m);
+  plant.coulomb_N = reader.quantity("coulomb", Quantity::force_N, ranges::kForce_N);
   std::tie(plant.end_stop_min_m, plant.end_stop_max_m) =
-      reader.range("end_stops", Quantity::length_m);
+      reader.range("end_stops", Quantity::length_m, ranges::kPosition_m);
   plant.end_stop_stiffness_N_per_m =
-      reader.quantity("end_stop_stiffness", Quantity::stiffness_N_per_m, Bound::positive);
+      reader.quantity("end_stop_stiffness", Quantity::stiffness_N_per_m, ranges::kPositiveStiffness_N_per_m);
   plant.sensor_noise_counts =
-      reader.quantity("sensor_noise_counts", Quantity::dimensionless, Bound::non_negative);
+      reader.quantity("sensor_noise_counts", Quantity::dimensionless, kNoise_counts);
   reader.finish();
   return plant;
 }

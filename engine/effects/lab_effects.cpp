@@ -1,27 +1,29 @@
 // JSON keys of the four Hapkit lab effects. Each parse reads every key the effect
-// accepts (so unknown keys can be refused with a suggestion) and checks its bounds.
+// accepts (so unknown keys can be refused with a suggestion) and checks it against its
+// finite range (engine/load/physical_ranges.hpp).
 #include "engine/effects/damper.hpp"
 #include "engine/effects/spring.hpp"
 #include "engine/effects/texture.hpp"
 #include "engine/effects/wall.hpp"
 #include "engine/load/json_source.hpp"
 #include "engine/load/object_reader.hpp"
+#include "engine/load/physical_ranges.hpp"
 
 namespace hapscene {
 
 Spring Spring::parse(ObjectReader& reader) {
   Spring spring;
   spring.stiffness_N_per_m =
-      reader.quantity("stiffness", Quantity::stiffness_N_per_m, Bound::non_negative);
-  spring.center_m = reader.quantity_or("center", Quantity::length_m, 0.0);
+      reader.quantity("stiffness", Quantity::stiffness_N_per_m, ranges::kStiffness_N_per_m);
+  spring.center_m = reader.quantity_or("center", Quantity::length_m, 0.0, ranges::kPosition_m);
   return spring;
 }
 
 Wall Wall::parse(ObjectReader& reader) {
   Wall wall;
-  wall.position_m = reader.quantity("position", Quantity::length_m);
+  wall.position_m = reader.quantity("position", Quantity::length_m, ranges::kPosition_m);
   wall.stiffness_N_per_m =
-      reader.quantity("stiffness", Quantity::stiffness_N_per_m, Bound::non_negative);
+      reader.quantity("stiffness", Quantity::stiffness_N_per_m, ranges::kStiffness_N_per_m);
   wall.solid_above = reader.choice("solid", {"above", "below"}) == "above";
   return wall;
 }
@@ -29,18 +31,18 @@ Wall Wall::parse(ObjectReader& reader) {
 Damper Damper::parse(ObjectReader& reader) {
   Damper damper;
   damper.damping_N_s_per_m =
-      reader.quantity("damping", Quantity::damping_N_s_per_m, Bound::non_negative);
+      reader.quantity("damping", Quantity::damping_N_s_per_m, ranges::kDamping_N_s_per_m);
   return damper;
 }
 
 Texture Texture::parse(ObjectReader& reader) {
   Texture texture;
-  texture.width_m = reader.quantity("width", Quantity::length_m, Bound::positive);
+  texture.width_m = reader.quantity("width", Quantity::length_m, ranges::kFieldWidth_m);
   texture.damping_N_s_per_m =
-      reader.quantity("damping", Quantity::damping_N_s_per_m, Bound::non_negative);
+      reader.quantity("damping", Quantity::damping_N_s_per_m, ranges::kDamping_N_s_per_m);
   texture.spacing_m =
-      reader.quantity_or("spacing", Quantity::length_m, texture.width_m, Bound::non_negative);
-  texture.offset_m = reader.quantity_or("offset", Quantity::length_m, 0.0);
+      reader.quantity_or("spacing", Quantity::length_m, texture.width_m, ranges::kLength_m);
+  texture.offset_m = reader.quantity_or("offset", Quantity::length_m, 0.0, ranges::kPosition_m);
   texture.period_m = texture.width_m + texture.spacing_m;
   if (const nlohmann::json* mirror = reader.get("mirror")) {
     if (!mirror->is_boolean()) reader.fail("mirror", "expected a boolean, got " + json_type_name(*mirror));

@@ -3,11 +3,14 @@
 // errors, unknown parameters and typos inside force() fail the load.
 #include "engine/effects/script_effect.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 
 #include "engine/core/errors.hpp"
 #include "engine/load/json_source.hpp"
 #include "engine/load/object_reader.hpp"
+#include "engine/load/physical_ranges.hpp"
 #include "engine/lua/log_queue.hpp"
 
 namespace hapscene {
@@ -23,7 +26,7 @@ ScriptLimits parse_script_limits(ObjectReader& reader) {
   limits.allocation_bytes_per_call = static_cast<std::size_t>(reader.integer_or(
       "allocation_bytes_per_call", 1 << 10, 1ll << 30, static_cast<long long>(limits.allocation_bytes_per_call)));
   limits.wall_time_per_call_s =
-      reader.quantity_or("wall_time_per_call", Quantity::time_s, limits.wall_time_per_call_s, Bound::non_negative);
+      reader.quantity_or("wall_time_per_call", Quantity::time_s, limits.wall_time_per_call_s, ranges::kDuration_s);
   limits.instructions_at_load = reader.integer_or("instructions_at_load", 100, 1'000'000'000,
                                                   limits.instructions_at_load);
   limits.string_bytes = static_cast<std::size_t>(
@@ -31,15 +34,56 @@ ScriptLimits parse_script_limits(ObjectReader& reader) {
   limits.load_time_s =
       reader.quantity_or("load_time", Quantity::time_s, limits.load_time_s, Bound::positive);
   if (limits.load_time_s > 600.0) reader.fail("load_time", "must be at most 600 s");
+  // One message per tick at the highest tick rate.
   limits.log_messages_per_s =
-      reader.quantity_or("log_rate", Quantity::frequency_Hz, limits.log_messages_per_s, Bound::non_negative);
+      reader.quantity_or("log_rate", Quantity::frequency_Hz, limits.log_messages_per_s, Range{0.0, 1e5});
   limits.log_burst = static_cast<std::size_t>(reader.integer_or(
       "log_burst", 0, static_cast<long long>(detail::LogQueue::kSlots), static_cast<long long>(limits.log_burst)));
   reader.finish();
   return limits;
 }
 
-ScriptEffect ScriptEffect::parse(ObjectReader& reader) {
+ScriptLoadBudget plan_script_loads(const nlohmann::json& effects, const std::string& file,
+                                   const std::string& pointer) {
+  ScriptLoadBudget budget{kScriptLoadBudget_s, 0.0};
+  std::size_t scripts = 0;
+  std::size_t memory_bytes = 0;
+  for (std::size_t i = 0; i < effects.size(); ++i) {
+    const nlohmann::json& effect = effects[i];
+    if (!effect.is_object()) continue;
+    const auto type = effect.find("type");
+    const auto enabled = effect.find("enabled");
+    if (type == effect.end() || *type != "script") continue;
+    if (enabled != effect.end() && *enabled == false) continue;
+    const std::string at = json_pointer_append(pointer, i);
+    if (++scripts > kMaxScriptEffects) {
+      throw InputError(located_message(file, at, "more than " + std::to_string(kMaxScriptEffects) +
+                                                     " script effects in one environment (each has its own Lua state)"));
+    }
+    ScriptLimits limits;
+    const auto block = effect.find("limits");
+    if (block != effect.end() && block->is_object()) {
+      try {
+        ObjectReader limits_reader(*block, json_pointer_append(at, "limits"), file);
+        limits = parse_script_limits(limits_reader);
+      } catch (const InputError&) {
+        continue;  // the effect's own parse reports it, after the effects before it
+      }
+    }
+    memory_bytes += limits.memory_bytes;
+    if (memory_bytes > kMaxScriptMemoryBytesTotal) {
+      const bool written = block != effect.end() && block->contains("memory_bytes");
+      throw InputError(located_message(
+          file, written ? json_pointer_append(json_pointer_append(at, "limits"), "memory_bytes") : at,
+          "the script effects' memory_bytes add up to " + std::to_string(memory_bytes) + " here, more than the " +
+              std::to_string(kMaxScriptMemoryBytesTotal) + " (1 GiB) one environment may have"));
+    }
+    budget.total_s = std::max(budget.total_s, limits.load_time_s);
+  }
+  return budget;
+}
+
+ScriptEffect ScriptEffect::parse(ObjectReader& reader, ScriptLoadBudget* budget) {
   // Where the script is: a file relative to the environment, or inline source.
   const bool has_file = reader.has("file");
   const bool has_source = reader.has("source");
@@ -74,14 +118,40 @@ ScriptEffect ScriptEffect::parse(ObjectReader& reader) {
     limits = parse_script_limits(limits_reader);
   }
 
+  // The load may take its own load_time, or what is left of the environment's budget.
+  ScriptLimits load_limits = limits;
+  double left_s = load_limits.load_time_s;
+  const auto shared_budget = [&] {
+    return "the script effects of this environment share " + format_number(budget->total_s) +
+           " s to load (the larger of " + format_number(kScriptLoadBudget_s) + " s and their largest load_time)";
+  };
+  if (budget != nullptr) {
+    left_s = budget->total_s - budget->used_s;
+    if (left_s <= 0.0) reader.fail("", shared_budget() + ", and the scripts before this one used it all");
+    load_limits.load_time_s = std::min(load_limits.load_time_s, left_s);
+  }
   ScriptEffect effect;
   if (has_file) effect.file = display_name;
+  const auto started = std::chrono::steady_clock::now();
+  const auto charge = [&] {
+    const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (budget != nullptr) budget->used_s += took_s;
+    return took_s;
+  };
   try {
-    effect.program = std::make_shared<const ScriptProgram>(compile_script(
-        display_name, std::move(source), params, reader.file(), reader.pointer_to("params"), limits));
+    ScriptProgram program = compile_script(display_name, std::move(source), params, reader.file(),
+                                           reader.pointer_to("params"), load_limits);
+    program.limits = limits;  // each run's instance has the script's own load_time
+    effect.program = std::make_shared<const ScriptProgram>(std::move(program));
+    charge();
   } catch (const InputError& error) {
-    // An error inside a referenced script file: "env.json: /effects/0/file: s.lua:12: ...".
+    const double took_s = charge();
     const std::string message = error.what();
+    // Stopped by the shared budget rather than by its own load_time.
+    if (budget != nullptr && left_s < limits.load_time_s && took_s >= left_s) {
+      reader.fail("", shared_budget() + ", and this one was stopped when it ran out: " + message);
+    }
+    // An error inside a referenced script file: "env.json: /effects/0/file: s.lua:12: ...".
     if (has_file && message.starts_with(display_name + ":")) reader.fail("file", message);
     throw;
   }

@@ -7,8 +7,10 @@
 #include <functional>
 
 #include "engine/core/errors.hpp"
+#include "engine/load/effect_warnings.hpp"
 #include "engine/load/json_source.hpp"
 #include "engine/load/object_reader.hpp"
+#include "engine/load/physical_ranges.hpp"
 #include "engine/load/validate_block.hpp"
 
 namespace hapscene {
@@ -16,16 +18,24 @@ namespace {
 
 inline constexpr double kMinRate_Hz = 10.0;
 inline constexpr double kMaxRate_Hz = 100000.0;
+// Effects in one environment (enabled or not), checked before any is read: far beyond any
+// lab scene, and it bounds the work and memory of a load (script effects have their own,
+// lower bound: kMaxScriptEffects).
+inline constexpr std::size_t kMaxEffects = 256;
 
 // Built-in effect types by their "type" name.
+// Script effects also take the environment's shared load budget.
 struct EffectType {
   std::string_view name;
-  std::function<Effect(ObjectReader&)> parse;
+  std::function<Effect(ObjectReader&, ScriptLoadBudget*)> parse;
 };
 
 template <typename T>
 EffectType effect_type() {
-  return EffectType{T::kType, [](ObjectReader& reader) { return Effect{T::parse(reader)}; }};
+  return EffectType{T::kType, [](ObjectReader& reader, ScriptLoadBudget* budget) {
+                      if constexpr (std::is_same_v<T, ScriptEffect>) return Effect{T::parse(reader, budget)};
+                      return Effect{T::parse(reader)};
+                    }};
 }
 
 const std::vector<EffectType>& effect_types() {
@@ -37,8 +47,8 @@ const std::vector<EffectType>& effect_types() {
 
 // One element of "effects". Returns false when it is disabled ("enabled": false): then
 // it is not compiled at all (a disabled script is not even loaded).
-bool parse_effect(const nlohmann::json& value, const std::string& pointer,
-                  const std::string& file, const std::string& base_dir, Effect* effect) {
+bool parse_effect(const nlohmann::json& value, const std::string& pointer, const std::string& file,
+                  const std::string& base_dir, ScriptLoadBudget* budget, Effect* effect) {
   ObjectReader reader(value, pointer, file, base_dir);
   std::vector<std::string_view> names;
   for (const EffectType& type : effect_types()) names.push_back(type.name);
@@ -58,7 +68,7 @@ bool parse_effect(const nlohmann::json& value, const std::string& pointer,
     enabled = flag->get<bool>();
   }
   if (!enabled) return false;
-  *effect = type->parse(reader);
+  *effect = type->parse(reader, budget);
   reader.finish();
   return true;
 }
@@ -81,7 +91,7 @@ void parse_safety(ObjectReader& reader, const DeviceLimits& device, SafetyConfig
                          Bound::positive),
       device.slew_limit_N_per_s, "N/s");
   safety->soft_start_s = reader.quantity_or("soft_start", Quantity::time_s, device.soft_start_s,
-                                            Bound::non_negative);
+                                            ranges::kDuration_s);
   if (safety->soft_start_s < device.soft_start_s) {
     reader.fail("soft_start", "must not be shorter than the device's " +
                                   format_number(device.soft_start_s) + " s");
@@ -111,31 +121,9 @@ VelocityEstimatorConfig parse_velocity(ObjectReader& reader) {
     if (kVelocityEstimatorNames[i] == name) config.kind = static_cast<VelocityEstimatorKind>(i);
   }
   config.cutoff_Hz =
-      reader.quantity_or("cutoff", Quantity::frequency_Hz, config.cutoff_Hz, Bound::positive);
+      reader.quantity_or("cutoff", Quantity::frequency_Hz, config.cutoff_Hz, ranges::kCutoff_Hz);
   reader.finish();
   return config;
-}
-
-// Why an effect can never act inside the workspace, with the likely unit slip; empty when
-// it can act, or when it is off by an explicit zero gain (that reads as intentional).
-std::string unreachable_effect_warning(const Effect& effect, const SafetyConfig& safety) {
-  const Wall* wall = std::get_if<Wall>(&effect);
-  if (wall == nullptr || wall->stiffness_N_per_m == 0.0 ||
-      wall->can_act_within(safety.workspace_min_m, safety.workspace_max_m)) {
-    return "";
-  }
-  std::string message = "(wall): position " + format_number(wall->position_m) + " m puts the solid side (" +
-                        (wall->solid_above ? "above" : "below") + ") wholly outside the workspace [" +
-                        format_number(safety.workspace_min_m) + ", " + format_number(safety.workspace_max_m) +
-                        "] m, so the wall never acts";
-  // A length written as a plain number is metres: 20 meant as 20 mm is 20 m.
-  const auto inside = [&](double x_m) { return x_m > safety.workspace_min_m && x_m < safety.workspace_max_m; };
-  if (inside(wall->position_m * 1e-3)) {
-    message += "; did you mean \"" + format_number(wall->position_m) + " mm\"?";
-  } else if (inside(wall->position_m * 1e-2)) {
-    message += "; did you mean \"" + format_number(wall->position_m) + " cm\"?";
-  }
-  return message;
 }
 
 Scene compile(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
@@ -191,11 +179,16 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
   if (!effects->is_array()) {
     reader.fail("effects", "expected an array of effects, got " + json_type_name(*effects));
   }
+  if (effects->size() > kMaxEffects) {
+    reader.fail("effects", "has " + std::to_string(effects->size()) + " effects; one environment may have at most " +
+                               std::to_string(kMaxEffects));
+  }
+  ScriptLoadBudget script_budget = plan_script_loads(*effects, file, reader.pointer_to("effects"));
   for (std::size_t i = 0; i < effects->size(); ++i) {
     Effect effect;
     const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
-    if (parse_effect((*effects)[i], pointer, file, base_dir, &effect)) {
-      std::string warning = unreachable_effect_warning(effect, scene.safety);
+    if (parse_effect((*effects)[i], pointer, file, base_dir, &script_budget, &effect)) {
+      std::string warning = inert_effect_warning(effect, (*effects)[i], scene);
       if (!warning.empty()) scene.load_warnings.push_back(file + ": " + pointer + " " + warning);
       add_effect(&scene, std::move(effect));
     }

@@ -72,6 +72,33 @@ double ObjectReader::to_quantity(std::string_view key, const nlohmann::json& val
   return value_si;
 }
 
+void ObjectReader::check_range(std::string_view key, double value_si, Quantity quantity, Range range) const {
+  const bool below = range.min_excluded ? !(value_si > range.min) : !(value_si >= range.min);
+  if (!below && value_si <= range.max) return;
+  const std::string unit(si_unit(quantity));
+  const std::string suffix = unit.empty() ? "" : " " + unit;
+  const std::string shown = format_number(value_si) + suffix;
+  // Below a lower bound of 0, or not positive where the range is, the words Bound gives.
+  if (below && range.min == 0.0 && !range.min_excluded) fail(key, "must be >= 0, got " + shown);
+  if (below && range.min >= 0.0 && value_si <= 0.0) fail(key, "must be > 0, got " + shown);
+  fail(key, "must be in " + std::string(range.min_excluded ? "(" : "[") + format_number(range.min) + ", " +
+                format_number(range.max) + "]" + suffix + ", got " + shown);
+}
+
+double ObjectReader::quantity(std::string_view key, Quantity quantity, Range range) {
+  const double value_si = this->quantity(key, quantity);
+  check_range(key, value_si, quantity, range);
+  return value_si;
+}
+
+double ObjectReader::quantity_or(std::string_view key, Quantity quantity, double fallback, Range range) {
+  if (!has(key)) {
+    get(key);
+    return fallback;
+  }
+  return this->quantity(key, quantity, range);
+}
+
 double ObjectReader::quantity(std::string_view key, Quantity quantity, Bound bound) {
   const nlohmann::json* value = get(key);
   if (value == nullptr) fail("", "missing required key \"" + std::string(key) + "\"");
@@ -98,6 +125,15 @@ std::pair<double, double> ObjectReader::range(std::string_view key, Quantity qua
   const double low = holder.quantity("0", quantity);
   const double high = holder.quantity("1", quantity);
   if (!(low < high)) fail(key, "low must be below high");
+  return {low, high};
+}
+
+std::pair<double, double> ObjectReader::range(std::string_view key, Quantity quantity, Range ends) {
+  const auto [low, high] = range(key, quantity);
+  // Each end is checked at its own pointer (".../workspace/0"), as range() reads them.
+  const ObjectReader holder(nlohmann::json::object(), pointer_to(key), file_);
+  holder.check_range("0", low, quantity, ends);
+  holder.check_range("1", high, quantity, ends);
   return {low, high};
 }
 

@@ -18,6 +18,15 @@ namespace hapscene {
 // What values a number may take.
 enum class Bound { any, non_negative, positive };
 
+// A finite range [min, max] (SI) of a physical key, or (min, max] with min_excluded.
+// Out-of-range values are refused naming the key: "must be in [0, 10000000] N/m, got
+// 1e+308 N/m" (below a lower bound of 0, the Bound messages: "must be >= 0, got -5 N/m").
+struct Range {
+  double min{};
+  double max{};
+  bool min_excluded{};
+};
+
 class ObjectReader {
  public:
   // `file` names the source in messages; `pointer` is this object's JSON pointer ("" for
@@ -31,8 +40,12 @@ class ObjectReader {
   // The same, or `fallback` when the key is absent.
   double quantity_or(std::string_view key, Quantity quantity, double fallback,
                      Bound bound = Bound::any);
-  // A required pair [low, high] of quantities with low < high.
+  // The same within a finite range.
+  double quantity(std::string_view key, Quantity quantity, Range range);
+  double quantity_or(std::string_view key, Quantity quantity, double fallback, Range range);
+  // A required pair [low, high] of quantities with low < high, each end within `ends`.
   std::pair<double, double> range(std::string_view key, Quantity quantity);
+  std::pair<double, double> range(std::string_view key, Quantity quantity, Range ends);
   // A required whole number in [min, max], and one with a fallback.
   long long integer(std::string_view key, long long min, long long max);
   long long integer_or(std::string_view key, long long min, long long max, long long fallback);
@@ -60,6 +73,7 @@ class ObjectReader {
  private:
   double to_quantity(std::string_view key, const nlohmann::json& value, Quantity quantity,
                      Bound bound) const;
+  void check_range(std::string_view key, double value_si, Quantity quantity, Range range) const;
 
   const nlohmann::json& object_;
   std::string pointer_;

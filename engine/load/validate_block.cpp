@@ -1,5 +1,7 @@
 #include "engine/load/validate_block.hpp"
 
+#include "engine/load/physical_ranges.hpp"
+
 namespace hapscene {
 namespace {
 
@@ -19,37 +21,41 @@ double fraction_or(ObjectReader& reader, std::string_view key, double fallback) 
   return value;
 }
 
+// Ratios and lengths of the checks: finite, however lax.
+constexpr Range kPositiveRatio{0.0, 1e6, true};
+constexpr Range kPositiveLength_m{0.0, ranges::kLength_m.max, true};
+
 }  // namespace
 
 void parse_validate_block(ObjectReader& reader, ValidateThresholds* t) {
   // Checks.
-  t->max_force_N = reader.quantity_or("max_force", Quantity::force_N, t->max_force_N, Bound::positive);
+  t->max_force_N = reader.quantity_or("max_force", Quantity::force_N, t->max_force_N, ranges::kPositiveForce_N);
   t->max_time_at_limit_fraction =
       fraction_or(reader, "max_time_at_limit", t->max_time_at_limit_fraction);
   t->max_slew_N_per_s = reader.quantity_or("max_slew", Quantity::force_rate_N_per_s,
-                                           t->max_slew_N_per_s, Bound::positive);
+                                           t->max_slew_N_per_s, ranges::kPositiveSlew_N_per_s);
   t->max_slip_ticks = count_or(reader, "max_slip_ticks", t->max_slip_ticks);
   t->max_passivity_ratio = reader.quantity_or("max_passivity_ratio", Quantity::dimensionless,
-                                              t->max_passivity_ratio, Bound::positive);
+                                              t->max_passivity_ratio, kPositiveRatio);
   t->max_residual_amplitude_m = reader.quantity_or(
-      "max_residual_amplitude", Quantity::length_m, t->max_residual_amplitude_m, Bound::positive);
+      "max_residual_amplitude", Quantity::length_m, t->max_residual_amplitude_m, kPositiveLength_m);
   t->max_amplitude_growth = reader.quantity_or("max_amplitude_growth", Quantity::dimensionless,
-                                               t->max_amplitude_growth, Bound::positive);
+                                               t->max_amplitude_growth, kPositiveRatio);
   t->max_penetration_m = reader.quantity_or("max_penetration", Quantity::length_m,
-                                            t->max_penetration_m, Bound::positive);
+                                            t->max_penetration_m, kPositiveLength_m);
   t->max_force_jitter_N = reader.quantity_or("max_force_jitter", Quantity::force_N,
-                                             t->max_force_jitter_N, Bound::positive);
+                                             t->max_force_jitter_N, ranges::kPositiveForce_N);
   t->max_tick_compute_s = reader.quantity_or("max_tick_compute", Quantity::time_s,
-                                             t->max_tick_compute_s, Bound::positive);
+                                             t->max_tick_compute_s, ranges::kPositiveDuration_s);
   t->max_script_faults = count_or(reader, "max_script_faults", t->max_script_faults);
 
   // Scenario construction.
   t->stiff_threshold_N_per_m = reader.quantity_or("stiff_threshold", Quantity::stiffness_N_per_m,
-                                                  t->stiff_threshold_N_per_m, Bound::positive);
+                                                  t->stiff_threshold_N_per_m, ranges::kPositiveStiffness_N_per_m);
   t->press_force_N =
-      reader.quantity_or("press_force", Quantity::force_N, t->press_force_N, Bound::positive);
+      reader.quantity_or("press_force", Quantity::force_N, t->press_force_N, ranges::kPositiveForce_N);
   t->release_from_m =
-      reader.quantity_or("release_from", Quantity::length_m, t->release_from_m);
+      reader.quantity_or("release_from", Quantity::length_m, t->release_from_m, ranges::kPosition_m);
   reader.finish();
 }
 
