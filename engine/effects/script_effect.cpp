@@ -5,9 +5,9 @@
 
 #include <filesystem>
 
-#include "engine/core/errors.hpp"
-#include "engine/load/json_source.hpp"
-#include "engine/load/object_reader.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/json_source.hpp"
+#include "engine/base/object_reader.hpp"
 #include "engine/lua/log_queue.hpp"
 
 namespace hapscene {

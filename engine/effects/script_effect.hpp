@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "engine/core/effect_input.hpp"
+#include "engine/effects/effect_input.hpp"
 #include "engine/lua/script.hpp"
 
 namespace hapscene {
