@@ -5,7 +5,7 @@
 
 #include <doctest/doctest.h>
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 #include "engine/load/environment.hpp"
 
 namespace hapscene::test {

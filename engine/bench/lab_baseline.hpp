@@ -5,7 +5,7 @@
 // into the benchmark so `hapscene bench` can put the engine's cost next to it.
 #include <cstdint>
 
-#include "engine/core/scene.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

@@ -59,7 +59,7 @@ std::optional<Scene> lua_equivalent(const Scene& scene, const std::string& scrip
   // Same device, safety and velocity estimator: only the effects stage differs.
   Scene lua = load_environment_text(environment.dump(), scene.name + ".lua.json", ".");
   lua.device = scene.device;
-  lua.kinematics = scene.kinematics;
+  lua.device_model = scene.device_model;
   lua.safety = scene.safety;
   lua.velocity = scene.velocity;
   return lua;

@@ -5,7 +5,7 @@
 // a different, harder wall).
 #include <optional>
 
-#include "engine/core/scene.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

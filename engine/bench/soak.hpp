@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string>
 
-#include "engine/core/scene.hpp"
-#include "engine/core/safety.hpp"
+#include "engine/scene/safety.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <functional>
 
-#include "engine/core/velocity.hpp"
 #include "engine/devices/kinematics.hpp"
 #include "engine/devices/noise.hpp"
 #include "engine/harness/validate.hpp"
 #include "engine/load/environment.hpp"
+#include "engine/scene/velocity.hpp"
 
 namespace hapscene {
 namespace {

@@ -4,8 +4,8 @@
 #include <chrono>
 
 #include "engine/bench/lab_baseline.hpp"
-#include "engine/core/step.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
+#include "engine/scene/step.hpp"
 
 namespace hapscene {
 namespace {

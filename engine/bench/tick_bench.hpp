@@ -15,7 +15,7 @@
 
 #include "engine/bench/instruction_counter.hpp"
 #include "engine/bench/tick_timer.hpp"
-#include "engine/core/scene.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

@@ -3,8 +3,8 @@
 #include <charconv>
 #include <cmath>
 
-#include "engine/core/errors.hpp"
-#include "engine/load/object_reader.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/object_reader.hpp"
 
 namespace hapscene {
 namespace {

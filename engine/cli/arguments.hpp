@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/load/units.hpp"
+#include "engine/base/units.hpp"
 
 namespace hapscene {
 

@@ -12,8 +12,8 @@
 #include "engine/bench/tick_bench.hpp"
 #include "engine/cli/bench_modes.hpp"
 #include "engine/cli/option_definitions.hpp"
-#include "engine/core/step.hpp"
 #include "engine/load/environment.hpp"
+#include "engine/scene/step.hpp"
 
 namespace hapscene {
 

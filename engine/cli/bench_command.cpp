@@ -8,15 +8,15 @@
 #include <optional>
 #include <string>
 
+#include "engine/base/object_reader.hpp"
 #include "engine/bench/instruction_counter.hpp"
 #include "engine/bench/lua_equivalent.hpp"
 #include "engine/bench/tick_bench.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/bench_modes.hpp"
-#include "engine/cli/option_definitions.hpp"
 #include "engine/cli/commands.hpp"
+#include "engine/cli/option_definitions.hpp"
 #include "engine/load/environment.hpp"
-#include "engine/load/object_reader.hpp"
 
 namespace hapscene {
 namespace {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/errors.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/output_file.hpp"
-#include "engine/core/errors.hpp"
 
 namespace {
 

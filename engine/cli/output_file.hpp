@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 
 namespace hapscene {
 

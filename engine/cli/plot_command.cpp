@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/base/errors.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/harness_options.hpp"
 #include "engine/cli/output_file.hpp"
-#include "engine/core/errors.hpp"
 #include "engine/harness/figures.hpp"
 #include "engine/load/environment.hpp"
 

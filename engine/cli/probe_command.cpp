@@ -10,13 +10,13 @@
 #include <cstdio>
 #include <string>
 
+#include "engine/base/errors.hpp"
+#include "engine/base/object_reader.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
-#include "engine/core/errors.hpp"
 #include "engine/harness/open_loop.hpp"
 #include "engine/load/environment.hpp"
-#include "engine/load/object_reader.hpp"
 
 namespace hapscene {
 namespace {

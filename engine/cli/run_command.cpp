@@ -14,21 +14,21 @@
 #include <string>
 #include <thread>
 
+#include "engine/base/errors.hpp"
+#include "engine/base/object_reader.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/run_trace.hpp"
-#include "engine/core/errors.hpp"
 #include "engine/devices/open_device.hpp"
-#include "engine/load/environment.hpp"
-#include "engine/load/object_reader.hpp"
 #include "engine/harness/figures.hpp"
+#include "engine/load/environment.hpp"
 #include "engine/run/live_status.hpp"
-#include "engine/run/reload_watcher.hpp"
 #include "engine/run/observer_list.hpp"
-#include "engine/run/telemetry_log.hpp"
+#include "engine/run/reload_watcher.hpp"
 #include "engine/run/runner.hpp"
+#include "engine/run/telemetry_log.hpp"
 
 namespace hapscene {
 namespace {
@@ -279,7 +279,7 @@ int run_command(std::vector<std::string> args) {
     std::unique_ptr<RunTrace> trace;
     if (settings.plot_path) {
       const auto ticks = static_cast<std::uint64_t>(std::llround(settings.options.duration_s * scene.rate_hz));
-      trace = std::make_unique<RunTrace>(dynamic_cast<const SimulatedHapkit*>(&device), ticks);
+      trace = std::make_unique<RunTrace>(device.truth(), ticks);
     }
     observers.add(trace.get());
     RunSummary summary;

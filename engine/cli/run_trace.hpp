@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/devices/simulated_hapkit.hpp"
 #include "engine/harness/recorder.hpp"
 #include "engine/run/runner.hpp"
 
@@ -22,14 +21,14 @@ class RunTrace final : public TickObserver {
  public:
   // `planned_ticks`: the run's length (duration x rate); a run that goes longer stops
   // recording and counts the ticks it dropped.
-  RunTrace(const SimulatedHapkit* device, std::uint64_t planned_ticks) : device_(device) {
+  RunTrace(const SimulationTruth* truth, std::uint64_t planned_ticks) : truth_(truth) {
     const std::uint64_t buckets = kMaxRunTraceRecords / 2;
     ticks_per_bucket_ = planned_ticks + 1 <= kMaxRunTraceRecords ? 1 : (planned_ticks + buckets - 1) / buckets;
     records_.reserve(kMaxRunTraceRecords);
   }
 
   void on_tick(const TickState& s) noexcept override {
-    const TickRecord r = record_of(s);
+    const TickRecord r = tick_record(s, truth_);
     if (ticks_per_bucket_ == 1) {
       push(r);
       return;
@@ -46,14 +45,6 @@ class RunTrace final : public TickObserver {
   std::uint64_t dropped() const { return dropped_; }
 
  private:
-  TickRecord record_of(const TickState& s) const noexcept {
-    if (device_ == nullptr) {
-      return {s.t_s, s.x_m, s.v_m_per_s, s.x_m, s.v_m_per_s, s.effects_force_N, s.output_N, s.output_N, 0.0};
-    }
-    return {s.t_s, device_->x_m(), device_->v_m_per_s(), s.x_m, s.v_m_per_s, s.effects_force_N, s.output_N,
-            device_->motor_force_N(), device_->hand_force_N()};
-  }
-
   void push(const TickRecord& r) noexcept {
     if (records_.size() == records_.capacity()) {
       ++dropped_;
@@ -72,7 +63,7 @@ class RunTrace final : public TickObserver {
     in_bucket_ = 0;
   }
 
-  const SimulatedHapkit* device_;
+  const SimulationTruth* truth_;
   std::uint64_t ticks_per_bucket_{1};
   std::uint64_t in_bucket_{0};
   TickRecord low_{};

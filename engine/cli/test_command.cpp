@@ -3,9 +3,9 @@
 // expectation. Exit 0 when all pass, 1 when any fails, 2 for an invalid spec.
 #include <cstdio>
 
+#include "engine/base/errors.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
-#include "engine/core/errors.hpp"
 #include "engine/harness/test_spec.hpp"
 
 namespace hapscene {

@@ -1,5 +1,5 @@
 #pragma once
-// The host's side of the board protocol (engine/firmware/protocol.h) over a ByteLink:
+// The host's side of the board protocol (protocol/protocol.h) over a ByteLink:
 // handshake, one COMMAND per tick answered by a STATE, sequence-gap and CRC counting,
 // round-trip latency, and what to do when the board goes quiet or away.
 //
@@ -30,11 +30,11 @@
 #include <cmath>
 #include <cstdint>
 
+#include "engine/base/latency_histogram.hpp"
 #include "engine/devices/byte_link.hpp"
 #include "engine/devices/device.hpp"
 #include "engine/devices/kinematics.hpp"
-#include "engine/firmware/protocol.h"
-#include "engine/run/latency_histogram.hpp"
+#include "protocol/protocol.h"
 
 namespace hapscene {
 

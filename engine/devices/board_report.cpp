@@ -1,6 +1,6 @@
 #include "engine/devices/board_report.hpp"
 
-#include "engine/core/format.hpp"
+#include "engine/base/format.hpp"
 
 namespace hapscene {
 namespace {

@@ -17,6 +17,18 @@ enum class PositionStatus : std::uint8_t {
   implausible,  // the latest measurement was rejected as impossible: no force
 };
 
+// What a simulator knows and a real device cannot: the plant's true state, read by
+// observers (the harness recorder, `run --plot`, the soak) beside what the host measured.
+// Simulated devices implement it; for a real device Device::truth() is null.
+class SimulationTruth {
+ public:
+  virtual ~SimulationTruth() = default;
+  virtual double x_m() const noexcept = 0;           // handle position
+  virtual double v_m_per_s() const noexcept = 0;     // handle velocity
+  virtual double motor_force_N() const noexcept = 0;      // what the motor applies now
+  virtual double hand_force_N() const noexcept = 0;       // the hand's force on the handle
+};
+
 class Device {
  public:
   virtual ~Device() = default;
@@ -39,6 +51,8 @@ class Device {
   // Lines for the run summary (link health, latency, board timing); called outside the
   // loop. Empty for devices with nothing to add.
   virtual std::string report() const { return {}; }
+  // The simulator's true state, or null for a real device.
+  virtual const SimulationTruth* truth() const noexcept { return nullptr; }
 };
 
 }  // namespace hapscene

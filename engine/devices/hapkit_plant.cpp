@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/object_reader.hpp"
 #include "engine/devices/kinematics.hpp"
-#include "engine/load/object_reader.hpp"
 
 namespace hapscene {
 

@@ -1,6 +1,6 @@
 #include "engine/devices/open_device.hpp"
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 #include "engine/devices/serial_hapkit.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
 #if HAPSCENE_HAVE_HIL

@@ -3,11 +3,11 @@
 #include <cmath>
 #include <filesystem>
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/json_source.hpp"
+#include "engine/base/object_reader.hpp"
+#include "engine/base/physical_ranges.hpp"
 #include "engine/devices/builtin_profiles.hpp"
-#include "engine/load/json_source.hpp"
-#include "engine/load/object_reader.hpp"
-#include "engine/load/physical_ranges.hpp"
 
 namespace hapscene {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 
 namespace hapscene {
 

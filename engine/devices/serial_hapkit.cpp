@@ -3,8 +3,8 @@
 #include <stdexcept>
 #include <thread>
 
-#include "engine/core/clock.hpp"
-#include "engine/core/format.hpp"
+#include "engine/base/clock.hpp"
+#include "engine/base/format.hpp"
 #include "engine/devices/board_report.hpp"
 
 namespace hapscene {

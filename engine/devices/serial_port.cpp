@@ -9,7 +9,7 @@
 #include <cstring>
 #include <utility>
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 
 namespace hapscene {
 namespace {

@@ -11,7 +11,7 @@
 
 namespace hapscene {
 
-class SimulatedHapkit final : public Device {
+class SimulatedHapkit final : public Device, public SimulationTruth {
  public:
   // Throws InputError when the start position is outside the sensor's home period (the
   // host's flip count starts at 0, as a real Hapkit centred at power-up).
@@ -21,12 +21,14 @@ class SimulatedHapkit final : public Device {
   void write(const MotorCommand& command) noexcept override;
   void advance(double dt_s) noexcept override;
 
-  // The true plant state, for tests and telemetry (the host only sees counts).
-  double x_m() const noexcept { return plant_.x_m(); }
-  double v_m_per_s() const noexcept { return plant_.v_m_per_s(); }
+  const SimulationTruth* truth() const noexcept override { return this; }
+
+  // The true plant state, for observers and tests (the host only sees counts).
+  double x_m() const noexcept override { return plant_.x_m(); }
+  double v_m_per_s() const noexcept override { return plant_.v_m_per_s(); }
+  double motor_force_N() const noexcept override { return motor_force_N_; }
+  double hand_force_N() const noexcept override { return plant_.hand_force_N(); }
   double t_s() const noexcept { return plant_.t_s(); }
-  double motor_force_N() const noexcept { return motor_force_N_; }
-  double hand_force_N() const noexcept { return plant_.hand_force_N(); }
 
  private:
   HapkitPlant plant_;

@@ -1,13 +1,13 @@
 // JSON keys of the four Hapkit lab effects. Each parse reads every key the effect
 // accepts (so unknown keys can be refused with a suggestion) and checks it against its
-// finite range (engine/load/physical_ranges.hpp).
+// finite range (engine/base/physical_ranges.hpp).
+#include "engine/base/json_source.hpp"
+#include "engine/base/object_reader.hpp"
+#include "engine/base/physical_ranges.hpp"
 #include "engine/effects/damper.hpp"
 #include "engine/effects/spring.hpp"
 #include "engine/effects/texture.hpp"
 #include "engine/effects/wall.hpp"
-#include "engine/load/json_source.hpp"
-#include "engine/load/object_reader.hpp"
-#include "engine/load/physical_ranges.hpp"
 
 namespace hapscene {
 

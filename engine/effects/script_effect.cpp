@@ -7,10 +7,10 @@
 #include <chrono>
 #include <filesystem>
 
-#include "engine/core/errors.hpp"
-#include "engine/load/json_source.hpp"
-#include "engine/load/object_reader.hpp"
-#include "engine/load/physical_ranges.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/json_source.hpp"
+#include "engine/base/object_reader.hpp"
+#include "engine/base/physical_ranges.hpp"
 #include "engine/lua/log_queue.hpp"
 
 namespace hapscene {

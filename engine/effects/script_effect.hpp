@@ -7,9 +7,9 @@
 #include <memory>
 #include <string>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
-#include "engine/core/effect_input.hpp"
+#include "engine/effects/effect_input.hpp"
 #include "engine/lua/script.hpp"
 
 namespace hapscene {

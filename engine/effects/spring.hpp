@@ -1,6 +1,6 @@
 #pragma once
 // The Hapkit lab spring: F = -K (x - x0).
-#include "engine/core/effect_input.hpp"
+#include "engine/effects/effect_input.hpp"
 
 namespace hapscene {
 

@@ -7,7 +7,7 @@
 // Constant cost whatever the number of fields: one floor per tick.
 #include <cmath>
 
-#include "engine/core/effect_input.hpp"
+#include "engine/effects/effect_input.hpp"
 
 namespace hapscene {
 

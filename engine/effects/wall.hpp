@@ -1,7 +1,7 @@
 #pragma once
 // The Hapkit lab wall: a spring that pushes only while the handle is inside the solid
 // side. "above": F = -K (x - xw) when x > xw; "below": F = -K (x - xw) when x < xw.
-#include "engine/core/effect_input.hpp"
+#include "engine/effects/effect_input.hpp"
 
 namespace hapscene {
 

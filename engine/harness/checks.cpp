@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "engine/core/format.hpp"
+#include "engine/base/format.hpp"
 
 namespace hapscene {
 namespace {

@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/scene.hpp"
 #include "engine/harness/metrics.hpp"
 #include "engine/harness/scenario.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

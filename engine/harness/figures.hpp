@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/scene.hpp"
 #include "engine/harness/open_loop.hpp"
 #include "engine/harness/recorder.hpp"
 #include "engine/harness/svg_plot.hpp"
 #include "engine/harness/validate.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/core/errors.hpp"
-#include "engine/core/format.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 
 namespace hapscene {
 

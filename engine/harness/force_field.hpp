@@ -4,8 +4,8 @@
 // check, and the potential energy the field stores, for the passivity observer.
 #include <vector>
 
-#include "engine/core/scene.hpp"
 #include "engine/harness/open_loop.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/core/format.hpp"
+#include "engine/base/format.hpp"
 #include "engine/devices/kinematics.hpp"
 
 namespace hapscene {

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/scene.hpp"
 #include "engine/harness/force_field.hpp"
 #include "engine/harness/recorder.hpp"
 #include "engine/run/runner.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

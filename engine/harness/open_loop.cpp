@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/core/format.hpp"
-#include "engine/core/step.hpp"
+#include "engine/base/format.hpp"
+#include "engine/scene/step.hpp"
 
 namespace hapscene {
 namespace {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/scene.hpp"
-#include "engine/core/tick_state.hpp"
+#include "engine/scene/scene.hpp"
+#include "engine/scene/tick_state.hpp"
 
 namespace hapscene {
 

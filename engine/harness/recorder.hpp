@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "engine/devices/simulated_hapkit.hpp"
+#include "engine/devices/device.hpp"
 #include "engine/run/runner.hpp"
 
 namespace hapscene {
@@ -23,9 +23,21 @@ struct TickRecord {
   double hand_N{};            // the hand's force on the handle
 };
 
+// One tick as the host saw it, beside the simulator's truth (`truth` null: a real device,
+// whose "true" fields repeat what the host measured and whose motor is taken to apply
+// the commanded force).
+inline TickRecord tick_record(const TickState& s, const SimulationTruth* truth) noexcept {
+  if (truth == nullptr) {
+    return {s.t_s, s.x_m, s.v_m_per_s, s.x_m, s.v_m_per_s, s.effects_force_N, s.output_N, s.output_N, 0.0};
+  }
+  return {s.t_s,           truth->x_m(),      truth->v_m_per_s(),        s.x_m,
+          s.v_m_per_s,     s.effects_force_N, s.output_N,                truth->motor_force_N(),
+          truth->hand_force_N()};
+}
+
 class Recorder final : public TickObserver {
  public:
-  Recorder(const SimulatedHapkit* device, std::size_t capacity) : device_(device) {
+  Recorder(const SimulationTruth* truth, std::size_t capacity) : truth_(truth) {
     records_.reserve(capacity);
   }
 
@@ -34,13 +46,7 @@ class Recorder final : public TickObserver {
       ++dropped_;
       return;
     }
-    if (device_ != nullptr) {
-      records_.push_back({s.t_s, device_->x_m(), device_->v_m_per_s(), s.x_m, s.v_m_per_s,
-                          s.effects_force_N, s.output_N, device_->motor_force_N(), device_->hand_force_N()});
-    } else {
-      records_.push_back({s.t_s, s.x_m, s.v_m_per_s, s.x_m, s.v_m_per_s, s.effects_force_N,
-                          s.output_N, s.output_N, 0.0});
-    }
+    records_.push_back(tick_record(s, truth_));
   }
 
   const std::vector<TickRecord>& records() const { return records_; }
@@ -48,7 +54,7 @@ class Recorder final : public TickObserver {
   std::size_t dropped() const { return dropped_; }
 
  private:
-  const SimulatedHapkit* device_;
+  const SimulationTruth* truth_;
   std::vector<TickRecord> records_;
   std::size_t dropped_{};
 };

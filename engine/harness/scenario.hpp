@@ -14,9 +14,9 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/core/scene.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/harness/force_field.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <optional>
 
-#include "engine/core/format.hpp"
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
+#include "engine/base/json_source.hpp"
+#include "engine/base/object_reader.hpp"
 #include "engine/harness/open_loop.hpp"
 #include "engine/harness/validate.hpp"
 #include "engine/load/environment.hpp"
-#include "engine/load/json_source.hpp"
-#include "engine/load/object_reader.hpp"
 
 namespace hapscene {
 namespace {

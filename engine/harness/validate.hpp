@@ -3,12 +3,12 @@
 // run each closed loop on the simulated Hapkit in simulated time, measure and judge.
 #include <vector>
 
-#include "engine/core/scene.hpp"
 #include "engine/harness/checks.hpp"
 #include "engine/harness/force_field.hpp"
 #include "engine/harness/metrics.hpp"
 #include "engine/harness/recorder.hpp"
 #include "engine/harness/scenario.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

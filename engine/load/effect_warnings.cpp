@@ -3,8 +3,8 @@
 #include <limits>
 #include <utility>
 
-#include "engine/load/object_reader.hpp"
-#include "engine/load/units.hpp"
+#include "engine/base/object_reader.hpp"
+#include "engine/base/units.hpp"
 
 namespace hapscene {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/core/scene.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

@@ -5,12 +5,14 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <utility>
+#include <variant>
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/json_source.hpp"
+#include "engine/base/object_reader.hpp"
+#include "engine/base/physical_ranges.hpp"
 #include "engine/load/effect_warnings.hpp"
-#include "engine/load/json_source.hpp"
-#include "engine/load/object_reader.hpp"
-#include "engine/load/physical_ranges.hpp"
 #include "engine/load/validate_block.hpp"
 
 namespace hapscene {
@@ -38,10 +40,11 @@ EffectType effect_type() {
                     }};
 }
 
+// Every alternative of Effect, in its order.
 const std::vector<EffectType>& effect_types() {
-  static const std::vector<EffectType> types{effect_type<Spring>(), effect_type<Wall>(),
-                                             effect_type<Damper>(), effect_type<Texture>(),
-                                             effect_type<ScriptEffect>()};
+  static const std::vector<EffectType> types = []<std::size_t... I>(std::index_sequence<I...>) {
+    return std::vector<EffectType>{effect_type<std::variant_alternative_t<I, Effect>>()...};
+  }(std::make_index_sequence<std::variant_size_v<Effect>>{});
   return types;
 }
 
@@ -153,7 +156,7 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
   scene.device_file = device_is_path && std::filesystem::path(device_name).is_relative()
                           ? (std::filesystem::path(base_dir) / device_name).lexically_normal().string()
                           : device_name;
-  scene.kinematics = compile_kinematics(scene.device);
+  scene.device_model = compile_device_model(scene.device);
 
   // Safety: the device's limits, lowered by the environment's.
   const DeviceLimits& limits = scene.device.limits;

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "engine/core/scene.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

@@ -1,6 +1,6 @@
 #include "engine/load/validate_block.hpp"
 
-#include "engine/load/physical_ranges.hpp"
+#include "engine/base/physical_ranges.hpp"
 
 namespace hapscene {
 namespace {

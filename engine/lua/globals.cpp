@@ -9,7 +9,7 @@
 #include <string_view>
 #include <unordered_map>
 
-#include "engine/load/units.hpp"
+#include "engine/base/units.hpp"
 #include "engine/lua/params.hpp"
 #include "engine/lua/script_vm.hpp"
 

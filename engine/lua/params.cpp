@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/core/errors.hpp"
-#include "engine/load/units.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/units.hpp"
 
 namespace hapscene {
 namespace {

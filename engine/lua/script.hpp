@@ -23,9 +23,9 @@
 #include <string_view>
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
-#include "engine/load/units.hpp"
+#include "engine/base/units.hpp"
 
 namespace hapscene {
 
@@ -115,7 +115,7 @@ struct ScriptProgram {
   // characters to "..." and their end).
   std::string display_name;
   std::string source;        // Lua source text (binary chunks are refused)
-  nlohmann::json params_override = nlohmann::json::object();
+  std::shared_ptr<const nlohmann::json> params_override;  // the JSON "params" object; null: none
   std::string error_context;   // e.g. the JSON file, "environments/lab.json"
   std::string pointer_prefix;  // e.g. "/effects/2/params"
   ScriptLimits limits;

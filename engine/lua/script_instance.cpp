@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 #include "engine/lua/bytecode.hpp"
 #include "engine/lua/script_vm.hpp"
 
@@ -103,7 +103,7 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   vm->limits = program.limits;
   vm->backstop_s = call_time_backstop_s(program.limits);
   vm->source = &program.source;
-  vm->params_override = &program.params_override;
+  vm->params_override = program.params_override.get();
   vm->error_context = program.error_context;
   vm->pointer_prefix = program.pointer_prefix;
   vm->log.configure(program.limits.log_messages_per_s, program.limits.log_burst);

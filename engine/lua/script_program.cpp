@@ -1,9 +1,12 @@
 // compile_script: everything that can be wrong with a script is found here, at load
 // time, with a message naming the place; a run only ever sees a checked program.
 #include <cctype>
+#include <memory>
 #include <string>
 
-#include "engine/core/errors.hpp"
+#include <nlohmann/json.hpp>
+
+#include "engine/base/errors.hpp"
 #include "engine/lua/script_vm.hpp"
 
 namespace hapscene {
@@ -104,7 +107,7 @@ ScriptProgram compile_script(std::string display_name, std::string source,
   ScriptProgram program;
   program.display_name = std::move(display_name);
   program.source = std::move(source);
-  program.params_override = params_override.is_null() ? nlohmann::json::object() : params_override;
+  if (!params_override.is_null()) program.params_override = std::make_shared<const nlohmann::json>(params_override);
   program.error_context = std::move(error_context);
   program.pointer_prefix = std::move(pointer_prefix);
   program.limits = limits;

@@ -12,10 +12,10 @@
 #include <atomic>
 #include <memory>
 
-#include "engine/core/scene.hpp"
-#include "engine/core/step.hpp"
-#include "engine/core/tick_state.hpp"
 #include "engine/run/tick_observer.hpp"
+#include "engine/scene/scene.hpp"
+#include "engine/scene/step.hpp"
+#include "engine/scene/tick_state.hpp"
 
 namespace hapscene {
 

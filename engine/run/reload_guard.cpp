@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "engine/load/object_reader.hpp"
+#include "engine/base/object_reader.hpp"
 
 namespace hapscene {
 namespace {

@@ -4,7 +4,7 @@
 // in force. Checked by the reload thread before a new version is offered to the loop.
 #include <string>
 
-#include "engine/core/scene.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace hapscene {
 

@@ -2,8 +2,8 @@
 
 #include <system_error>
 
+#include "engine/base/object_reader.hpp"
 #include "engine/load/environment.hpp"
-#include "engine/load/object_reader.hpp"
 #include "engine/run/reload_guard.hpp"
 
 namespace hapscene {

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <ctime>
 
-#include "engine/core/clock.hpp"
-#include "engine/core/step.hpp"
+#include "engine/base/clock.hpp"
 #include "engine/run/realtime.hpp"
+#include "engine/scene/step.hpp"
 
 namespace hapscene {
 namespace {

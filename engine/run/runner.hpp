@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/scene.hpp"
-#include "engine/core/tick_state.hpp"
+#include "engine/base/latency_histogram.hpp"
 #include "engine/devices/device.hpp"
 #include "engine/run/hot_swap.hpp"
-#include "engine/run/latency_histogram.hpp"
 #include "engine/run/tick_observer.hpp"
+#include "engine/scene/scene.hpp"
+#include "engine/scene/tick_state.hpp"
 
 namespace hapscene {
 

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cstring>
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 
 namespace hapscene {
 namespace {

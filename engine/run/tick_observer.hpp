@@ -3,7 +3,7 @@
 #include <memory>
 #include <span>
 
-#include "engine/core/tick_state.hpp"
+#include "engine/scene/tick_state.hpp"
 
 namespace hapscene {
 

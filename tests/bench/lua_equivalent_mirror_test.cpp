@@ -3,7 +3,7 @@
 #include <doctest/doctest.h>
 
 #include "engine/bench/lua_equivalent.hpp"
-#include "engine/core/step.hpp"
+#include "engine/scene/step.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;

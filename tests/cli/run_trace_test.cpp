@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "engine/cli/run_trace.hpp"
-#include "engine/core/tick_state.hpp"
+#include "engine/scene/tick_state.hpp"
 
 using namespace hapscene;
 

@@ -8,7 +8,7 @@
 #include <algorithm>
 
 #include "engine/devices/byte_link.hpp"
-#include "engine/firmware/protocol.h"
+#include "protocol/protocol.h"
 
 namespace hapscene::test {
 

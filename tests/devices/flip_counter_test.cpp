@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "engine/devices/flip_counter.hpp"
+#include "protocol/flip_counter.hpp"
 
 using namespace hapscene;
 

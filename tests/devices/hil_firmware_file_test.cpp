@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 #include "engine/devices/open_device.hpp"
 #include "tests/cli/cli_support.hpp"
 

@@ -1,4 +1,4 @@
-// Firmware-in-the-loop: the real firmware (build/engine/firmware/hapkit_firmware.elf) on
+// Firmware-in-the-loop: the real firmware (build/firmware/hapkit_firmware.elf) on
 // simavr's ATmega328P, wired to the simulated Hapkit, driven by the host engine through
 // the same protocol code as a real board. Compiled only when the build has simavr and
 // the AVR toolchain; otherwise one skipped case says so.

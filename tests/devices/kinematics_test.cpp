@@ -5,9 +5,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "engine/devices/flip_counter.hpp"
 #include "engine/devices/kinematics.hpp"
 #include "engine/devices/profile.hpp"
+#include "protocol/flip_counter.hpp"
 
 using namespace hapscene;
 

@@ -1,11 +1,11 @@
-// The board protocol (engine/firmware/protocol.h): CRC, frames, payloads, and a decoder
+// The board protocol (protocol/protocol.h): CRC, frames, payloads, and a decoder
 // that counts and skips corrupt and lost frames and resyncs after garbage.
 #include <doctest/doctest.h>
 
 #include <cstdint>
 #include <vector>
 
-#include "engine/firmware/protocol.h"
+#include "protocol/protocol.h"
 
 namespace {
 

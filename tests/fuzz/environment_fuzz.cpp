@@ -1,7 +1,7 @@
 // Fuzz target: an environment file (JSON, with the unit strings, inline Lua scripts and
 // references to shipped profiles and scripts) through the loader; a scene that loads is
 // ticked through the sensor's range and must command only finite forces within its limits.
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 #include "engine/load/environment.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 

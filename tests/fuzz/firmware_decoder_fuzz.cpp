@@ -1,10 +1,10 @@
-// Fuzz target: the board's frame decoder (engine/firmware/protocol.h, the firmware's own C
+// Fuzz target: the board's frame decoder (protocol/protocol.h, the firmware's own C
 // code compiled for the host) on any byte stream, polled after every byte or only now and
 // then (a full buffer then drops its oldest byte). Every frame it returns must be a valid
 // frame that occurs in the input as it is, and must survive a re-encode unchanged.
 #include <cstring>
 
-#include "engine/firmware/protocol.h"
+#include "protocol/protocol.h"
 #include "tests/fuzz/fuzz_support.hpp"
 
 namespace {

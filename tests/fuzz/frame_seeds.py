@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the wire-protocol seed inputs in corpus/board_link and corpus/firmware_decoder:
-valid frames (engine/firmware/protocol.h: 0xA5, type, seq, length, payload, CRC-16/CCITT-FALSE)
+valid frames (protocol/protocol.h: 0xA5, type, seq, length, payload, CRC-16/CCITT-FALSE)
 in the input layouts that board_link_fuzz.cpp and firmware_decoder_fuzz.cpp read.
 Run from anywhere: python3 tests/fuzz/frame_seeds.py"""
 import os

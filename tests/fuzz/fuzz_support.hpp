@@ -17,9 +17,9 @@
 #include <string>
 #include <string_view>
 
-#include "engine/core/scene.hpp"
-#include "engine/core/step.hpp"
-#include "engine/core/tick_state.hpp"
+#include "engine/scene/scene.hpp"
+#include "engine/scene/step.hpp"
+#include "engine/scene/tick_state.hpp"
 
 namespace hapscene::fuzz {
 
@@ -79,7 +79,7 @@ inline void check_scene_commands(const Scene& scene) {
     fuzz_require(std::isfinite(state.output_N), "commanded force is not finite");
     fuzz_require(std::abs(state.output_N) <= scene.safety.max_force_N,
                  "commanded force above the safety limit");
-    fuzz_require(state.command.duty >= 0.0 && state.command.duty <= scene.kinematics.duty_max,
+    fuzz_require(state.command.duty >= 0.0 && state.command.duty <= scene.device_model.kinematics.duty_max,
                  "duty outside [0, duty_max]");
   }
 }

@@ -1,6 +1,6 @@
 // Fuzz target: a device profile through the profile loader, then as the device of a small
 // environment, which must command only finite forces within the profile's limits.
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 #include "engine/devices/profile.hpp"
 #include "engine/load/environment.hpp"
 #include "tests/fuzz/fuzz_support.hpp"

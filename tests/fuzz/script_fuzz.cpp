@@ -6,7 +6,9 @@
 #include <memory>
 #include <vector>
 
-#include "engine/core/errors.hpp"
+#include <nlohmann/json.hpp>
+
+#include "engine/base/errors.hpp"
 #include "engine/lua/script.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 

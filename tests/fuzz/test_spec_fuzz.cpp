@@ -2,7 +2,7 @@
 // written to an empty scratch folder, so the environment it names is not there: a spec the
 // reader accepts fails at its environment, which keeps every input fast (no probes or
 // simulated runs) and exercises the whole of the spec's parsing and checking.
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 #include "engine/harness/test_spec.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 

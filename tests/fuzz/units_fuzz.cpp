@@ -2,7 +2,7 @@
 // "did you mean" distance it uses on unknown units.
 #include <cmath>
 
-#include "engine/load/units.hpp"
+#include "engine/base/units.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

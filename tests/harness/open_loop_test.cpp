@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/harness/open_loop.hpp"
 #include "engine/harness/validate.hpp"
 #include "tests/support.hpp"

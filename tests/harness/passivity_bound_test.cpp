@@ -6,6 +6,8 @@
 #include <cmath>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/devices/kinematics.hpp"
 #include "engine/harness/report.hpp"
 #include "engine/harness/validate.hpp"

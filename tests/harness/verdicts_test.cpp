@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/harness/report.hpp"
 #include "engine/harness/validate.hpp"
 #include "tests/support.hpp"

@@ -6,8 +6,8 @@
 #include <chrono>
 #include <string>
 
+#include "engine/base/object_reader.hpp"
 #include "engine/effects/script_effect.hpp"
-#include "engine/load/object_reader.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "engine/base/json_source.hpp"
 #include "engine/load/environment.hpp"
-#include "engine/load/json_source.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;

@@ -7,10 +7,10 @@
 #include <fstream>
 #include <string>
 
+#include "engine/base/json_source.hpp"
+#include "engine/base/units.hpp"
 #include "engine/devices/profile.hpp"
 #include "engine/harness/test_spec.hpp"
-#include "engine/load/json_source.hpp"
-#include "engine/load/units.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;

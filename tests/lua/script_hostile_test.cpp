@@ -7,8 +7,10 @@
 #include <chrono>
 #include <ctime>
 
+#include <nlohmann/json.hpp>
+
+#include "engine/base/object_reader.hpp"
 #include "engine/effects/script_effect.hpp"
-#include "engine/load/object_reader.hpp"
 #include "tests/lua/script_test_support.hpp"
 
 namespace hapscene {

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "engine/load/units.hpp"
+#include <nlohmann/json.hpp>
+
+#include "engine/base/units.hpp"
 #include "tests/lua/script_test_support.hpp"
 
 namespace hapscene {

@@ -9,7 +9,9 @@
 #include <string>
 #include <string_view>
 
-#include "engine/core/errors.hpp"
+#include <nlohmann/json.hpp>
+
+#include "engine/base/errors.hpp"
 #include "engine/lua/script.hpp"
 
 namespace hapscene::test {

@@ -11,8 +11,8 @@
 
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/run/reload_watcher.hpp"
-#include "tests/run/reload_support.hpp"
 #include "engine/run/runner.hpp"
+#include "tests/run/reload_support.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;

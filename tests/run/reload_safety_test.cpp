@@ -17,8 +17,8 @@
 
 #include "engine/run/reload_guard.hpp"
 #include "engine/run/reload_watcher.hpp"
-#include "tests/run/reload_support.hpp"
 #include "tests/cli/cli_support.hpp"
+#include "tests/run/reload_support.hpp"
 #include "tests/scratch_folder.hpp"
 #include "tests/support.hpp"
 

@@ -1,6 +1,6 @@
 #include "engine/devices/hil/firmware_image.hpp"
 
-#include "engine/load/json_source.hpp"
+#include "engine/base/json_source.hpp"
 
 #include <cstdint>
 #include <cstdio>
@@ -8,8 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/core/errors.hpp"
-#include "engine/load/json_source.hpp"
+#include "engine/base/errors.hpp"
+#include "engine/base/json_source.hpp"
 
 namespace hapscene {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "engine/core/format.hpp"
+#include "engine/base/format.hpp"
 #include "engine/devices/board_report.hpp"
 #include "engine/devices/kinematics.hpp"
 

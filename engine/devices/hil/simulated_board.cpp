@@ -9,7 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "engine/core/errors.hpp"
+#include "engine/base/errors.hpp"
 #include "engine/devices/hil/firmware_image.hpp"
 
 extern "C" {

@@ -1,0 +1,51 @@
+#pragma once
+// The device-specific half of every tick, compiled from a device profile: what the device
+// reads becomes the handle position, and the force on the handle becomes what the
+// device's motor driver takes. step() calls sense_position_m() and motor_command() and
+// knows nothing of sensors, drives or duty laws.
+//
+// The Hapkit's model: an MR sensor whose raw counts wrap every half turn of the motor
+// shaft (unwrapped by the FlipCounter the firmware shares), a linear map from counts to
+// sector angle, and the capstan to the handle; force to motor torque through the same
+// ratios, the sqrt duty law and a direction pin (engine/devices/kinematics.hpp).
+// docs/n-axis.md says how models for other devices and more axes plug in here.
+#include <cstdint>
+
+#include "engine/devices/kinematics.hpp"
+#include "engine/devices/profile.hpp"
+#include "protocol/flip_counter.hpp"
+
+namespace hapscene {
+
+// What the sensor stage of one run keeps (TickState::sensor).
+struct SensorState {
+  FlipCounter flip_counter;
+  std::int32_t raw_counts{};        // the latest reading as the device gave it
+  std::int32_t unwrapped_counts{};  // after unwrapping
+};
+
+// A profile compiled for the tick: immutable, read through a const reference.
+struct DeviceModel {
+  Kinematics kinematics;
+  std::int32_t flip_threshold_counts{};
+  std::int32_t span_counts{};
+};
+
+DeviceModel compile_device_model(const DeviceProfile& profile) noexcept;
+
+// A fresh sensor stage for a run (nothing unwrapped yet).
+SensorState make_sensor_state(const DeviceModel& model) noexcept;
+
+// Sensor stage: one raw reading to the handle position.
+inline double sense_position_m(const DeviceModel& model, std::int32_t raw_counts, SensorState* sensor) noexcept {
+  sensor->raw_counts = raw_counts;
+  sensor->unwrapped_counts = sensor->flip_counter.update(raw_counts);
+  return counts_to_position_m(model.kinematics, sensor->unwrapped_counts);
+}
+
+// Command stage: the force on the handle to the motor driver's command.
+inline MotorCommand motor_command(const DeviceModel& model, double force_N) noexcept {
+  return force_to_motor(model.kinematics, force_N);
+}
+
+}  // namespace hapscene

@@ -1,0 +1,57 @@
+#pragma once
+// The one list of effect types. A new built-in effect is a header in this folder (a
+// struct with kType, kNeeds, parse(), can_act_within() and force_N(input), parsed in
+// lab_effects.cpp or a file of its own) and one entry in BuiltInEffects: the Effect
+// variant, the scene's EffectBank, add_effect and the loader's table of "type" names
+// all follow from that entry.
+#include <tuple>
+#include <variant>
+#include <vector>
+
+#include "engine/effects/damper.hpp"
+#include "engine/effects/effect_input.hpp"
+#include "engine/effects/script_effect.hpp"
+#include "engine/effects/spring.hpp"
+#include "engine/effects/texture.hpp"
+#include "engine/effects/wall.hpp"
+
+namespace hapscene {
+
+template <typename... Types>
+struct EffectTypeList {
+  // One effect of any of the types, plus scripts (which run in the Lua layer, not here).
+  using Variant = std::variant<Types..., ScriptEffect>;
+
+  // A scene's built-in effects grouped by type, compiled once at load: the tick loops
+  // over each group as a plain array, with no per-effect dispatch, so a scene pays only
+  // for the groups it has (an empty group costs a comparison). Within a group effects
+  // keep their order in the file; the groups add up in the order of the list, then the
+  // scene adds its scripts.
+  struct Bank {
+    std::tuple<std::vector<Types>...> groups;
+
+    template <typename T>
+    std::vector<T>& group() noexcept { return std::get<std::vector<T>>(groups); }
+    template <typename T>
+    const std::vector<T>& group() const noexcept { return std::get<std::vector<T>>(groups); }
+
+    // The sum of every built-in effect's force for one input.
+    double force_N(const EffectInput& input) const noexcept {
+      double force_N = 0.0;
+      const auto add_group = [&](const auto& group) {
+        for (const auto& e : group) force_N += e.force_N(input);
+      };
+      std::apply([&](const auto&... group) { (add_group(group), ...); }, groups);
+      return force_N;
+    }
+  };
+};
+
+// The built-in effects, in the order the tick adds them up.
+using BuiltInEffects = EffectTypeList<Spring, Wall, Damper, Texture>;
+
+// One effect as written in an environment file; the forces of all effects add up.
+using Effect = BuiltInEffects::Variant;
+using EffectBank = BuiltInEffects::Bank;
+
+}  // namespace hapscene

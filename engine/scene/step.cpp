@@ -1,0 +1,133 @@
+#include "engine/scene/step.hpp"
+
+#include "engine/devices/device_model.hpp"
+
+namespace hapscene {
+
+void add_effect(Scene* scene, Effect effect) {
+  const double min_m = scene->safety.workspace_min_m;
+  const double max_m = scene->safety.workspace_max_m;
+  // A built-in effect that cannot act inside the workspace (zero gain, or a wall whose
+  // solid side lies beyond it) is listed but not compiled: it costs the tick nothing and
+  // adds no needs.
+  const auto add_built_in = [&](auto& group, const auto& e) {
+    if (!e.can_act_within(min_m, max_m)) return;
+    group.push_back(e);
+    scene->needs |= std::decay_t<decltype(e)>::kNeeds;
+  };
+  std::visit(
+      [&](auto& e) {
+        using Type = std::decay_t<decltype(e)>;
+        if constexpr (std::is_same_v<Type, ScriptEffect>) {
+          e.instance_index = scene->script_count++;
+          scene->needs |= e.needs;
+        } else {
+          add_built_in(scene->bank.group<Type>(), e);
+        }
+      },
+      effect);
+  scene->effects.push_back(std::move(effect));
+}
+
+ScriptList make_script_instances(const Scene& scene) {
+  // One sandboxed instance per script effect, in scene order (ScriptEffect::instance_index).
+  ScriptList scripts;
+  scripts.reserve(scene.script_count);
+  for (const Effect& effect : scene.effects) {
+    if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
+      scripts.push_back(ScriptInstance::create(*script->program));
+      scripts.back()->reset();
+    }
+  }
+  return scripts;
+}
+
+TickState make_tick_state(const Scene& scene) {
+  TickState state;
+  state.sensor = make_sensor_state(scene.device_model);
+  state.scripts = make_script_instances(scene);
+  return state;
+}
+
+namespace {
+
+// Each script's force (one call per script per tick).
+double add_scripts_N(double force_N, const EffectInput& input, ScriptList& scripts,
+                     std::uint64_t* script_calls) noexcept {
+  const ScriptInput script_input{input.x_m, input.v_m_per_s, input.t_s, input.dt_s};
+  for (const auto& script : scripts) force_N += script->force_N(script_input);
+  if (script_calls != nullptr) *script_calls += scripts.size();
+  return force_N;
+}
+
+// The effects stage: the built-in bank, then the scripts (when kScripts).
+template <bool kScripts>
+[[gnu::always_inline]] inline double add_effects_N(const Scene& scene, const EffectInput& input,
+                                                   ScriptList& scripts,
+                                                   std::uint64_t* script_calls) noexcept {
+  double force_N = scene.bank.force_N(input);
+  if constexpr (kScripts) force_N = add_scripts_N(force_N, input, scripts, script_calls);
+  return force_N;
+}
+
+// One tick. Each case is its own instantiation: a tick of built-in effects alone (the
+// common one) makes no call at all, so it saves no registers and keeps its values in
+// them; scripts and cross-fades take the others.
+template <bool kFading, bool kScripts>
+[[gnu::noinline]] void step_tick(const Scene& scene, std::int32_t raw_counts, TickState* state,
+                                 const Crossfade* fade) noexcept {
+  // Sensor: the device model turns the reading into the handle position. (The tick count
+  // converts as signed: one instruction, and runs never reach 2^63 ticks.)
+  state->t_s = static_cast<double>(static_cast<std::int64_t>(state->tick)) * scene.period_s;
+  state->x_m = sense_position_m(scene.device_model, raw_counts, &state->sensor);
+
+  // Velocity: only when some effect reads it (of either scene during a cross-fade).
+  Needs needs = scene.needs;
+  if constexpr (kFading) needs |= fade->from->needs;
+  if (needs.velocity) {
+    state->v_m_per_s =
+        estimate_velocity(scene.velocity, scene.period_s, state->x_m, &state->velocity_state);
+  }
+
+  // Effects: the sum of every effect's force.
+  EffectInput input;
+  input.x_m = state->x_m;
+  input.v_m_per_s = state->v_m_per_s;
+  input.t_s = state->t_s;
+  input.dt_s = scene.period_s;
+  double effects_N = add_effects_N<kScripts>(scene, input, state->scripts, &state->script_calls);
+  if constexpr (kFading) {
+    const double from_N = add_effects_N<kScripts>(*fade->from, input, *fade->from_scripts, &state->script_calls);
+    effects_N = (1.0 - fade->weight_to) * from_N + fade->weight_to * effects_N;
+  }
+  state->effects_force_N = effects_N;
+
+  // Safety, then the motor command the board needs.
+  state->output_N = apply_safety(scene.safety, state->x_m, effects_N, &state->safety);
+  state->command = motor_command(scene.device_model, state->output_N);
+  ++state->tick;
+}
+
+}  // namespace
+
+double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts,
+                     std::uint64_t* script_calls) noexcept {
+  return add_effects_N<true>(scene, input, scripts, script_calls);
+}
+
+void collect_script_garbage(TickState* state) noexcept {
+  for (const auto& script : state->scripts) script->collect_garbage();
+}
+
+void step(const Scene& scene, std::int32_t raw_counts, TickState* state,
+          const Crossfade* fade) noexcept {
+  if (fade != nullptr) [[unlikely]] {
+    step_tick<true, true>(scene, raw_counts, state, fade);
+  } else if (state->scripts.empty()) [[likely]] {
+    step_tick<false, false>(scene, raw_counts, state, nullptr);
+  } else {
+    step_tick<false, true>(scene, raw_counts, state, nullptr);
+  }
+}
+
+}  // namespace hapscene

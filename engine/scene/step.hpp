@@ -1,0 +1,35 @@
+#pragma once
+// One tick of the haptic loop: read device -> sensor pipeline -> effects -> safety ->
+// motor command. No allocation, no exception, no lock, no I/O.
+#include <cstdint>
+
+#include "engine/effects/effect_input.hpp"
+#include "engine/scene/scene.hpp"
+#include "engine/scene/tick_state.hpp"
+
+namespace hapscene {
+
+// A cross-fade from a scene being replaced (hot reload): the effects stage gives
+// (1 - weight_to) * F_from + weight_to * F_to, so the handle never gets a jolt.
+struct Crossfade {
+  const Scene* from{};
+  ScriptList* from_scripts{};
+  double weight_to{};  // in [0, 1]
+};
+
+// A full tick from a raw sensor reading. Writes state->command (and every stage's field).
+// With `fade`, `scene` is the new scene and state->scripts its instances.
+void step(const Scene& scene, std::int32_t raw_counts, TickState* state,
+          const Crossfade* fade = nullptr) noexcept;
+
+// The effects stage alone, as the tick runs it: the sum of the compiled effects' forces
+// (the bank's, then each script's) for one input, with the scene's script instances;
+// adds the number of script calls made to *script_calls.
+double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts,
+                     std::uint64_t* script_calls = nullptr) noexcept;
+
+// Housekeeping for the tick's slack, after the command is written: a little garbage
+// collection for each script (their collectors are stopped while they compute force).
+void collect_script_garbage(TickState* state) noexcept;
+
+}  // namespace hapscene
