@@ -10,6 +10,7 @@
 #include "engine/bench/lab_baseline.hpp"
 #include "engine/bench/lua_equivalent.hpp"
 #include "engine/bench/tick_bench.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/cli/bench_modes.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/core/step.hpp"
@@ -58,7 +59,7 @@ int bench_callgrind(Arguments& arguments) {
       checksum += state.command.duty;
     }
   }
-  std::printf("callgrind mode: %s, %s, %lld ticks, checksum %.17g\n", scene.name.c_str(), impl.c_str(), ticks, checksum);
+  print_out("callgrind mode: %s, %s, %lld ticks, checksum %.17g\n", scene.name.c_str(), impl.c_str(), ticks, checksum);
   return 0;
 }
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "engine/cli/commands.hpp"
-#include "engine/cli/output_file.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/core/errors.hpp"
 
 namespace {
@@ -73,11 +73,12 @@ namespace {
 
 int dispatch(std::vector<std::string> args) {
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
-    (args.empty() ? std::cerr : std::cout) << kUsage;
+    if (args.empty()) std::cerr << kUsage;
+    else hapscene::write_out(kUsage);
     return args.empty() ? hapscene::kExitInvalidInput : hapscene::kExitOk;
   }
   if (args[0] == "version" || args[0] == "--version") {
-    std::cout << "hapscene " << HAPSCENE_VERSION << "\n";
+    hapscene::write_out(std::string("hapscene ") + HAPSCENE_VERSION + "\n");
     return hapscene::kExitOk;
   }
   const std::string command = args[0];
@@ -104,11 +105,8 @@ int dispatch(std::vector<std::string> args) {
 
 int main(int argc, char** argv) {
   const int code = dispatch(std::vector<std::string>(argv + 1, argv + argc));
-  // Output that never arrived is a failure, not a success: "probe ... > /dev/full" exits 1.
-  errno = 0;
-  if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
-    std::cerr << "hapscene: " << hapscene::write_failed_message("standard output", errno) << "\n";
-    return code == hapscene::kExitOk ? hapscene::kExitFailure : code;
-  }
+  // Output that never arrived is a failure, not a success: "probe ... > /dev/full" exits 1
+  // and says why (the first failed write's errno, kept by engine/cli/standard_output.hpp).
+  if (!hapscene::report_stdout_failure()) return code == hapscene::kExitOk ? hapscene::kExitFailure : code;
   return code;
 }
