@@ -7,10 +7,10 @@
 #include <string>
 
 #include "engine/bench/accuracy.hpp"
-#include "engine/cli/standard_output.hpp"
 #include "engine/cli/bench_modes.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/devices/profile.hpp"
 #include "engine/harness/svg_plot.hpp"
 

@@ -8,9 +8,9 @@
 
 #include "engine/bench/lua_equivalent.hpp"
 #include "engine/bench/soak.hpp"
-#include "engine/cli/standard_output.hpp"
 #include "engine/cli/bench_modes.hpp"
 #include "engine/cli/option_definitions.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/load/environment.hpp"
 
 namespace hapscene {
@@ -39,8 +39,8 @@ int bench_soak(Arguments& arguments) {
   bool all_ok = true;
   for (const Scene& scene : scenes) {
     const SoakResult r = run_soak(scene, ticks);
-    // No NaN; drift below a tenth of a sensor count and a microjoule; memory flat.
-    const bool ok = r.nonfinite_ticks == 0 && r.position_spread_m < 1.2e-6 && r.energy_spread_J < 1e-6 &&
+    // No script error; no NaN; drift below a tenth of a sensor count and a microjoule; memory flat.
+    const bool ok = r.script_errors == 0 && r.script_faults.empty() && r.nonfinite_ticks == 0 && r.position_spread_m < 1.2e-6 && r.energy_spread_J < 1e-6 &&
                     r.rss_end_kB - r.rss_start_kB < 1024 && r.lua_bytes_end <= r.lua_bytes_start + 65536;
     all_ok = all_ok && ok;
     char rss[40], lua[40];
@@ -51,6 +51,8 @@ int bench_soak(Arguments& arguments) {
                 static_cast<unsigned long long>(r.windows), r.position_spread_m * 1e6, r.energy_spread_J * 1e6, rss,
                 lua, r.wall_s, ok ? "ok" : "FAIL");
     flush_out();
+    // A disabled script soaked 0 N: say why, once per script.
+    for (const std::string& fault : r.script_faults) std::fprintf(stderr, "%s (while soaking %s)\n", fault.c_str(), scene.name.c_str());
   }
   return all_ok ? 0 : 1;
 }

@@ -6,9 +6,9 @@
 #include <cstdio>
 
 #include "engine/bench/stability_sweep.hpp"
-#include "engine/cli/standard_output.hpp"
 #include "engine/cli/bench_modes.hpp"
 #include "engine/cli/option_definitions.hpp"
+#include "engine/cli/standard_output.hpp"
 
 namespace hapscene {
 

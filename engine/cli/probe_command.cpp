@@ -10,10 +10,10 @@
 #include <cstdio>
 #include <string>
 
-#include "engine/cli/standard_output.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/core/errors.hpp"
 #include "engine/harness/open_loop.hpp"
 #include "engine/load/environment.hpp"

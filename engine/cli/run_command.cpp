@@ -14,22 +14,22 @@
 #include <string>
 #include <thread>
 
-#include "engine/cli/standard_output.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/run_trace.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/core/errors.hpp"
 #include "engine/devices/open_device.hpp"
+#include "engine/harness/figures.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/load/object_reader.hpp"
-#include "engine/harness/figures.hpp"
 #include "engine/run/live_status.hpp"
-#include "engine/run/reload_watcher.hpp"
 #include "engine/run/observer_list.hpp"
-#include "engine/run/telemetry_log.hpp"
+#include "engine/run/reload_watcher.hpp"
 #include "engine/run/runner.hpp"
+#include "engine/run/telemetry_log.hpp"
 
 namespace hapscene {
 namespace {

@@ -4,10 +4,10 @@
 // environment) is invalid input; the other specs still run.
 #include <cstdio>
 
-#include "engine/cli/standard_output.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/per_file.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/core/errors.hpp"
 #include "engine/harness/test_spec.hpp"
 

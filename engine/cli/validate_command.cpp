@@ -8,12 +8,12 @@
 #include <fstream>
 #include <string>
 
-#include "engine/cli/standard_output.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/harness_options.hpp"
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/per_file.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/core/errors.hpp"
 #include "engine/harness/figures.hpp"
 #include "engine/harness/report.hpp"
