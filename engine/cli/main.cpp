@@ -10,6 +10,7 @@
 #include "engine/cli/commands.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/core/errors.hpp"
+#include "engine/core/format.hpp"
 
 namespace {
 
@@ -90,13 +91,13 @@ int dispatch(std::vector<std::string> args) {
     if (command == "validate") return hapscene::validate_command(args);
     if (command == "plot") return hapscene::plot_command(args);
     if (command == "test") return hapscene::test_command(args);
-    std::cerr << "hapscene: unknown command \"" << command << "\" (try: hapscene --help)\n";
+    std::cerr << "hapscene: unknown command \"" << hapscene::printable(command) << "\" (try: hapscene --help)\n";
     return hapscene::kExitInvalidInput;
   } catch (const hapscene::InputError& error) {
-    std::cerr << "error: " << error.what() << "\n";
+    std::cerr << "error: " << hapscene::printable(error.what()) << "\n";
     return hapscene::kExitInvalidInput;
   } catch (const std::exception& error) {
-    std::cerr << "hapscene: " << error.what() << "\n";
+    std::cerr << "hapscene: " << hapscene::printable(error.what()) << "\n";
     return hapscene::kExitFailure;
   }
 }

@@ -9,6 +9,7 @@
 
 #include "engine/cli/standard_output.hpp"
 #include "engine/core/errors.hpp"
+#include "engine/core/format.hpp"
 
 namespace hapscene {
 
@@ -26,11 +27,11 @@ int run_for_file(Work&& work) {
     return work();
   } catch (const InputError& error) {
     flush_out();
-    std::fprintf(stderr, "error: %s\n", error.what());
+    std::fprintf(stderr, "error: %s\n", printable(error.what()).c_str());
     return kExitInvalidInput;
   } catch (const std::exception& error) {
     flush_out();
-    std::fprintf(stderr, "hapscene: %s\n", error.what());
+    std::fprintf(stderr, "hapscene: %s\n", printable(error.what()).c_str());
     return kExitFailure;
   }
 }

@@ -11,6 +11,7 @@
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/core/errors.hpp"
+#include "engine/core/format.hpp"
 #include "engine/harness/figures.hpp"
 #include "engine/load/environment.hpp"
 
@@ -42,7 +43,7 @@ int plot_command(std::vector<std::string> args) {
   // Default output: the environment's name with .svg in the working directory.
   const std::string path = out_path.value_or(scene.name + ".svg");
   write_output_file(path, svg);
-  print_out("wrote %s\n", path.c_str());
+  print_out("wrote %s\n", printable(path).c_str());
   flush_out();
   for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
   if (faults.omitted()) {

@@ -21,6 +21,7 @@
 #include "engine/cli/run_trace.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/core/errors.hpp"
+#include "engine/core/format.hpp"
 #include "engine/devices/open_device.hpp"
 #include "engine/harness/figures.hpp"
 #include "engine/load/environment.hpp"
@@ -151,8 +152,10 @@ void print_force_limits(const RunSummary& summary) {
 
 void print_summary(const Scene& scene, const RunSettings& settings, const RunSummary& summary) {
   const bool real_time = settings.options.pacing == Pacing::real_time;
+  // Names and paths from files and the command line are printed in printable form.
   print_out("%s (%s) on %s:%s, %g Hz, %s, hand %s\n", scene.name.c_str(),
-              scene.source_path.c_str(), settings.device.c_str(), scene.device.name.c_str(),
+              printable(scene.source_path).c_str(), printable(settings.device).c_str(),
+              printable(scene.device.name).c_str(),
               scene.rate_hz, real_time ? "real time" : "simulated time",
               std::string(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]).c_str());
   print_out("  ticks            %llu in %.3f s of device time, loop rate %.1f Hz\n",
@@ -172,10 +175,10 @@ void print_summary(const Scene& scene, const RunSettings& settings, const RunSum
   for (const ScriptReport& script : summary.scripts) {
     if (script.disabled) {
       print_out("  script disabled  %s (at t = %.3f s; 0 N for the remaining %llu ticks)\n",
-                  script.fault.c_str(), script.fault_time_s,
+                  printable(script.fault).c_str(), script.fault_time_s,
                   static_cast<unsigned long long>(script.skipped_calls));
     } else {
-      print_out("  script ok        %s\n", script.name.c_str());
+      print_out("  script ok        %s\n", printable(script.name).c_str());
     }
   }
   print_out("  deadline misses  %s\n",
@@ -296,7 +299,7 @@ int run_command(std::vector<std::string> args) {
         watch.before_destroy = [&status](LoadedScene& retired) { status.drain_retired(retired); };
         watcher = std::make_unique<ReloadWatcher>(
             files[i], scene, &exchange, [show_status](const std::string& message) {
-              std::fprintf(stderr, "%s%s\n", show_status ? "\r\033[K" : "", message.c_str());
+              std::fprintf(stderr, "%s%s\n", show_status ? "\r\033[K" : "", printable(message).c_str());
             }, std::move(watch));
       }
       summary = run_scene(scene, device, options, &observers);
@@ -304,7 +307,7 @@ int run_command(std::vector<std::string> args) {
     }
     std::vector<std::string> log_lines;
     status.drain_log(&log_lines);
-    for (const std::string& line : log_lines) std::fprintf(stderr, "%s\n", line.c_str());
+    for (const std::string& line : log_lines) std::fprintf(stderr, "%s\n", printable(line).c_str());
     if (i > 0) print_out("\n");
     print_summary(scene, settings, summary);
     if (exchange.swaps() > 0) {
@@ -314,12 +317,12 @@ int run_command(std::vector<std::string> args) {
       log->finish();
       if (!log->error().empty()) {
         // Never claim samples reached a file that refused them: say so, and exit 1.
-        print_out("  telemetry        FAILED: %s\n", log->error().c_str());
-        std::fprintf(stderr, "hapscene run: %s\n", log->error().c_str());
+        print_out("  telemetry        FAILED: %s\n", printable(log->error()).c_str());
+        std::fprintf(stderr, "hapscene run: %s\n", printable(log->error()).c_str());
         write_failed = true;
       } else {
         print_out("  telemetry        %llu samples written to %s, %llu dropped (ring full)\n",
-                    static_cast<unsigned long long>(log->written()), settings.log_path->c_str(),
+                    static_cast<unsigned long long>(log->written()), printable(*settings.log_path).c_str(),
                     static_cast<unsigned long long>(log->dropped()));
       }
     }
@@ -330,7 +333,7 @@ int run_command(std::vector<std::string> args) {
         what += ", lowest and highest force of every " + std::to_string(trace->ticks_per_bucket()) + " ticks";
       }
       write_output_file(*settings.plot_path, run_figure_svg(scene, trace->records(), what));
-      print_out("  plot             %s\n", settings.plot_path->c_str());
+      print_out("  plot             %s\n", printable(*settings.plot_path).c_str());
     }
     write_out(device.report());
     flush_out();

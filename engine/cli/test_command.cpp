@@ -9,6 +9,7 @@
 #include "engine/cli/per_file.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/core/errors.hpp"
+#include "engine/core/format.hpp"
 #include "engine/harness/test_spec.hpp"
 
 namespace hapscene {
@@ -30,14 +31,18 @@ int test_command(std::vector<std::string> args) {
   for (const std::string& spec : specs) {
     const int spec_code = run_for_file([&] {
       const SpecResult r = run_test_spec(spec);
-      print_out("%s %s (%zu expectations)\n", r.pass ? "PASS" : "FAIL", r.spec_path.c_str(), r.outcomes.size());
+      // Paths, pointers and messages carry text from files and scripts: printable.
+      print_out("%s %s (%zu expectations)\n", r.pass ? "PASS" : "FAIL", printable(r.spec_path).c_str(),
+                r.outcomes.size());
       expectations += r.outcomes.size();
       for (const SpecOutcome& o : r.outcomes) {
-        if (!o.pass || verbose) print_out("  %s %s: %s\n", o.pass ? "ok  " : "FAIL", o.what.c_str(), o.message.c_str());
+        if (!o.pass || verbose) {
+          print_out("  %s %s: %s\n", o.pass ? "ok  " : "FAIL", printable(o.what).c_str(), printable(o.message).c_str());
+        }
       }
       return r.pass ? kExitOk : kExitFailure;
     });
-    if (spec_code == kExitInvalidInput) print_out("FAIL %s: invalid input (see the error above)\n", spec.c_str());
+    if (spec_code == kExitInvalidInput) print_out("FAIL %s: invalid input (see the error above)\n", printable(spec).c_str());
     failed += spec_code == kExitOk ? 0 : 1;
     exit_code = worst_exit_code(exit_code, spec_code);
   }

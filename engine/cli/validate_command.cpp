@@ -15,6 +15,7 @@
 #include "engine/cli/per_file.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/core/errors.hpp"
+#include "engine/core/format.hpp"
 #include "engine/harness/figures.hpp"
 #include "engine/harness/report.hpp"
 #include "engine/load/environment.hpp"
@@ -51,16 +52,19 @@ int validate_command(std::vector<std::string> args) {
     const int file_code = run_for_file([&] {
       const Scene scene = load_environment_file(files[i]);
       const ValidationReport report = validate_scene(scene, kinds, options);
+      // The printed forms name the file in printable form (the JSON report escapes it).
+      ValidationReport shown = report;
+      shown.source_path = printable(report.source_path);
       if (quiet) {
-        print_out("%s", format_report_line(report).c_str());
+        print_out("%s", format_report_line(shown).c_str());
       } else {
-        print_out("%s%s", i > 0 ? "\n" : "", format_report_table(report).c_str());
+        print_out("%s%s", i > 0 ? "\n" : "", format_report_table(shown).c_str());
       }
       if (report_path) write_output_file(*report_path, report_to_json(report).dump(2) + "\n");
       if (plot_path) write_output_file(*plot_path, validation_figure_svg(scene, report));
       return report.pass ? kExitOk : kExitFailure;
     });
-    if (file_code == kExitInvalidInput && quiet) print_out("FAIL %s: invalid input (see the error above)\n", files[i].c_str());
+    if (file_code == kExitInvalidInput && quiet) print_out("FAIL %s: invalid input (see the error above)\n", printable(files[i]).c_str());
     exit_code = worst_exit_code(exit_code, file_code);
   }
   flush_out();

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "engine/core/errors.hpp"
+#include "engine/core/format.hpp"
 #include "engine/load/json_source.hpp"
 #include "engine/load/object_reader.hpp"
 #include "engine/lua/log_queue.hpp"
@@ -45,20 +46,24 @@ ScriptEffect ScriptEffect::parse(ObjectReader& reader) {
   const bool has_source = reader.has("source");
   if (has_file == has_source) reader.fail("", "a script needs exactly one of \"file\" and \"source\"");
   std::string display_name;
+  std::string raw_path;
   std::string source;
   if (has_file) {
     std::filesystem::path path(reader.string("file"));
     if (path.is_relative()) path = std::filesystem::path(reader.base_dir()) / path;
-    display_name = path.lexically_normal().string();
+    raw_path = path.lexically_normal().string();
+    // Messages name the file in printable form (engine/core/format.hpp); the reload
+    // watcher keeps the path as it is.
+    display_name = printable(raw_path);
     try {
-      source = read_text_file(display_name, kMaxScriptBytes);
+      source = read_text_file(raw_path, kMaxScriptBytes);
     } catch (const InputError& error) {
       reader.fail("file", error.what());
     }
     reader.get("source");
   } else {
     source = reader.string("source");
-    display_name = reader.file() + "#" + reader.pointer_to("source");
+    display_name = printable(reader.file() + "#" + reader.pointer_to("source"));
     reader.get("file");
   }
 
@@ -75,7 +80,7 @@ ScriptEffect ScriptEffect::parse(ObjectReader& reader) {
   }
 
   ScriptEffect effect;
-  if (has_file) effect.file = display_name;
+  if (has_file) effect.file = raw_path;
   try {
     effect.program = std::make_shared<const ScriptProgram>(compile_script(
         display_name, std::move(source), params, reader.file(), reader.pointer_to("params"), limits));

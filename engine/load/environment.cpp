@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "engine/core/errors.hpp"
+#include "engine/core/format.hpp"
 #include "engine/load/json_source.hpp"
 #include "engine/load/object_reader.hpp"
 #include "engine/load/validate_block.hpp"
@@ -142,7 +143,9 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
   ObjectReader reader(root, "", file);
   Scene scene;
   scene.source_path = file;
-  scene.name = reader.string_or("name", std::filesystem::path(file).stem().string());
+  // Printed by every command and in reports: printable (engine/core/format.hpp), so a
+  // name holding "\n" or "\r" cannot forge an output line.
+  scene.name = printable(reader.string_or("name", std::filesystem::path(file).stem().string()));
   scene.description = reader.string_or("description", "");
 
   // Tick rate.
@@ -196,7 +199,7 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
     const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
     if (parse_effect((*effects)[i], pointer, file, base_dir, &effect)) {
       std::string warning = unreachable_effect_warning(effect, scene.safety);
-      if (!warning.empty()) scene.load_warnings.push_back(file + ": " + pointer + " " + warning);
+      if (!warning.empty()) scene.load_warnings.push_back(printable(file + ": " + pointer + " " + warning));
       add_effect(&scene, std::move(effect));
     }
   }
