@@ -66,14 +66,14 @@ constexpr double kTailGoalRatio = 5.0;        // Lua scripts: p99.9 against the 
 
 void print_header() {
   print_out("%-10s %-18s %8s %8s %8s %9s %7s %8s %11s\n", "environment", "implementation", "median", "p99",
-              "p99.9", "max", "ratio", "instr", "p99.9/med");
+            "p99.9", "max", "ratio", "instr", "p99.9/med");
 }
 
 // One row. The tail verdict is printed for rows that carry the tail goal (Lua scripts);
 // returns whether the row meets it (true for the others).
 bool print_row(const std::string& scene, const char* implementation, const TickCost& cost, bool tail_goal) {
   print_out("%-10s %-18s %8.1f %8.1f %8.1f %9.1f", scene.c_str(), implementation, cost.median_ns, cost.p99_ns,
-              cost.p999_ns, cost.max_ns);
+            cost.p999_ns, cost.max_ns);
   if (cost.ratio >= 0.0) print_out(" %6.2fx", cost.ratio);
   else print_out(" %7s", "-");
   if (cost.instructions_per_tick >= 0.0) print_out(" %8.0f", cost.instructions_per_tick);
@@ -151,12 +151,12 @@ int bench_command(std::vector<std::string> args) {
   TickTimer timer;
   InstructionCounter counter;
   print_out("tick compute in ns (read counts -> motor command, no I/O); %g s of recorded sensor "
-              "readings x %d passes per row, every row interleaved in rounds of %zu ticks; ratios against the hand-written lab code, same rounds\n", seconds, passes, kSliceTicks);
+            "readings x %d passes per row, every row interleaved in rounds of %zu ticks; ratios against the hand-written lab code, same rounds\n", seconds, passes, kSliceTicks);
   if (counter.available()) {
     print_out("instr: instructions per tick from the CPU's counters (one more pass)\n\n");
   } else {
     print_out("instr: not available here (%s); count them with valgrind: hapscene bench --callgrind "
-                "(see README, Measurements)\n\n", counter.reason().c_str());
+              "(see README, Measurements)\n\n", counter.reason().c_str());
   }
   // Each environment's group: the hand-written code first (the ratios' reference), then
   // the engine, then Lua, on the environment's own recorded readings.
@@ -237,16 +237,16 @@ int bench_command(std::vector<std::string> args) {
   print_out("\ngoals\n");
   for (const std::string& goal : goals) print_out("  %s\n", goal.c_str());
   print_out("  Lua rows: p99.9 <= %.0fx the median (no GC spikes): %s\n", kTailGoalRatio,
-              tails_ok ? "met" : "NOT met (see p99.9/med)");
+            tails_ok ? "met" : "NOT met (see p99.9/med)");
 
   print_out("\nwhat each part of a scene costs (median ns per tick, measured with the rows above; "
-              "ratio against the first row)\n\n");
+            "ratio against the first row)\n\n");
   const std::vector<TickCost>& part_costs = costs.back();
   for (std::size_t i = 0; i < part_scenes.size(); ++i) {
     print_out("%-52s %8.1f %6.2fx", kPartScenes[i][0], part_costs[i].median_ns, part_costs[i].ratio);
     if (part_scenes[i].script_count > 0) {
       print_out("   %zu script effect(s), %.3f Lua calls per tick", part_scenes[i].script_count,
-                  part_loops[i]->script_calls_per_tick());
+                part_loops[i]->script_calls_per_tick());
     }
     print_out("\n");
   }

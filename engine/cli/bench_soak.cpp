@@ -33,9 +33,9 @@ int bench_soak(Arguments& arguments) {
   }
 
   print_out("soak: %llu ticks per environment, sweeping hand (-40 .. +40 mm at 80 mm/s, period 2 s); drift = "
-              "spread of the per-period means after the first period\n\n", ticks);
+            "spread of the per-period means after the first period\n\n", ticks);
   print_out("%-16s %12s %9s %8s %13s %13s %15s %12s %8s %s\n", "environment", "ticks", "nonfinite", "periods",
-              "x_spread_um", "E_spread_uJ", "RSS_kB", "Lua_bytes", "wall_s", "verdict");
+            "x_spread_um", "E_spread_uJ", "RSS_kB", "Lua_bytes", "wall_s", "verdict");
   bool all_ok = true;
   for (const Scene& scene : scenes) {
     const SoakResult r = run_soak(scene, ticks);
@@ -47,9 +47,9 @@ int bench_soak(Arguments& arguments) {
     std::snprintf(rss, sizeof rss, "%ld->%ld", r.rss_start_kB, r.rss_end_kB);
     std::snprintf(lua, sizeof lua, "%zu->%zu", r.lua_bytes_start, r.lua_bytes_end);
     print_out("%-16s %12llu %9llu %8llu %13.3g %13.3g %15s %12s %8.1f %s\n", scene.name.c_str(),
-                static_cast<unsigned long long>(r.ticks), static_cast<unsigned long long>(r.nonfinite_ticks),
-                static_cast<unsigned long long>(r.windows), r.position_spread_m * 1e6, r.energy_spread_J * 1e6, rss,
-                lua, r.wall_s, ok ? "ok" : "FAIL");
+              static_cast<unsigned long long>(r.ticks), static_cast<unsigned long long>(r.nonfinite_ticks),
+              static_cast<unsigned long long>(r.windows), r.position_spread_m * 1e6, r.energy_spread_J * 1e6, rss,
+              lua, r.wall_s, ok ? "ok" : "FAIL");
     flush_out();
     // A disabled script soaked 0 N: say why, once per script.
     for (const std::string& fault : r.script_faults) std::fprintf(stderr, "%s (while soaking %s)\n", fault.c_str(), scene.name.c_str());

@@ -133,7 +133,7 @@ void print_force_limits(const RunSummary& summary) {
   const SafetyConfig& start = summary.limits_at_start;
   const SafetyConfig& end = summary.limits_at_end;
   print_out("  max force        asked %.3f N, commanded %.3f N (limit %g N)\n",
-              summary.max_abs_requested_N, summary.max_abs_output_N, end.max_force_N);
+            summary.max_abs_requested_N, summary.max_abs_output_N, end.max_force_N);
   std::string tightened;
   const auto note = [&](const char* name, double before, double after, const char* unit) {
     if (before == after) return;
@@ -154,42 +154,42 @@ void print_summary(const Scene& scene, const RunSettings& settings, const RunSum
   const bool real_time = settings.options.pacing == Pacing::real_time;
   // Names and paths from files and the command line are printed in printable form.
   print_out("%s (%s) on %s:%s, %g Hz, %s, hand %s\n", scene.name.c_str(),
-              printable(scene.source_path).c_str(), printable(settings.device).c_str(),
-              printable(scene.device.name).c_str(),
-              scene.rate_hz, real_time ? "real time" : "simulated time",
-              std::string(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]).c_str());
+            printable(scene.source_path).c_str(), printable(settings.device).c_str(),
+            printable(scene.device.name).c_str(),
+            scene.rate_hz, real_time ? "real time" : "simulated time",
+            std::string(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]).c_str());
   print_out("  ticks            %llu in %.3f s of device time, loop rate %.1f Hz\n",
-              static_cast<unsigned long long>(summary.ticks), summary.device_time_s,
-              summary.achieved_rate_hz);
+            static_cast<unsigned long long>(summary.ticks), summary.device_time_s,
+            summary.achieved_rate_hz);
   print_force_limits(summary);
   const SafetyCounters& safety = summary.safety;
   print_out("  time clamped     %.3f s (%llu ticks); slew-limited %llu, soft start %llu, "
-              "outside workspace %llu ticks\n",
-              static_cast<double>(safety.clamped_ticks) * scene.period_s,
-              static_cast<unsigned long long>(safety.clamped_ticks),
-              static_cast<unsigned long long>(safety.slew_limited_ticks),
-              static_cast<unsigned long long>(safety.soft_start_ticks),
-              static_cast<unsigned long long>(safety.outside_workspace_ticks));
+            "outside workspace %llu ticks\n",
+            static_cast<double>(safety.clamped_ticks) * scene.period_s,
+            static_cast<unsigned long long>(safety.clamped_ticks),
+            static_cast<unsigned long long>(safety.slew_limited_ticks),
+            static_cast<unsigned long long>(safety.soft_start_ticks),
+            static_cast<unsigned long long>(safety.outside_workspace_ticks));
   print_out("  faults           %llu non-finite forces\n",
-              static_cast<unsigned long long>(safety.nonfinite_faults));
+            static_cast<unsigned long long>(safety.nonfinite_faults));
   for (const ScriptReport& script : summary.scripts) {
     if (script.disabled) {
       print_out("  script disabled  %s (at t = %.3f s; 0 N for the remaining %llu ticks)\n",
-                  printable(script.fault).c_str(), script.fault_time_s,
-                  static_cast<unsigned long long>(script.skipped_calls));
+                printable(script.fault).c_str(), script.fault_time_s,
+                static_cast<unsigned long long>(script.skipped_calls));
     } else {
       print_out("  script ok        %s\n", printable(script.name).c_str());
     }
   }
   print_out("  deadline misses  %s\n",
-              real_time ? std::to_string(summary.deadline_misses).c_str() : "n/a (simulated time)");
+            real_time ? std::to_string(summary.deadline_misses).c_str() : "n/a (simulated time)");
   print_out("  tick compute     p50 %.2f us  p99 %.2f us  max %.2f us\n",
-              us(summary.compute_ns.percentile_ns(0.50)), us(summary.compute_ns.percentile_ns(0.99)),
-              us(summary.compute_ns.max_ns()));
+            us(summary.compute_ns.percentile_ns(0.50)), us(summary.compute_ns.percentile_ns(0.99)),
+            us(summary.compute_ns.max_ns()));
   if (real_time) {
     print_out("  wake-up jitter   p50 %.2f us  p99 %.2f us  max %.2f us\n",
-                us(summary.wake_late_ns.percentile_ns(0.50)),
-                us(summary.wake_late_ns.percentile_ns(0.99)), us(summary.wake_late_ns.max_ns()));
+              us(summary.wake_late_ns.percentile_ns(0.50)),
+              us(summary.wake_late_ns.percentile_ns(0.99)), us(summary.wake_late_ns.max_ns()));
     // The jitter histogram: ticks per band of lateness.
     const LatencyHistogram& late = summary.wake_late_ns;
     const std::uint64_t edges_ns[] = {10'000, 50'000, 100'000, 500'000, 1'000'000};
@@ -206,13 +206,13 @@ void print_summary(const Scene& scene, const RunSettings& settings, const RunSum
     print_out("  scheduling       %s\n", summary.realtime_note.c_str());
     if (summary.overrun_warnings > 0 || summary.overrun_fault) {
       print_out("  overruns         %llu warnings (first at %.3f s), longest streak %u misses\n",
-                  static_cast<unsigned long long>(summary.overrun_warnings),
-                  summary.first_overrun_warning_s, summary.longest_miss_streak);
+                static_cast<unsigned long long>(summary.overrun_warnings),
+                summary.first_overrun_warning_s, summary.longest_miss_streak);
     }
     if (summary.overrun_fault) {
       print_out("  FAULT            sustained overrun at %.3f s (%u deadline misses in a row): "
-                  "zero force commanded, run stopped\n",
-                  summary.overrun_fault_s, settings.options.overrun_fault_ticks);
+                "zero force commanded, run stopped\n",
+                summary.overrun_fault_s, settings.options.overrun_fault_ticks);
     }
   }
   flush_out();
@@ -322,8 +322,8 @@ int run_command(std::vector<std::string> args) {
         write_failed = true;
       } else {
         print_out("  telemetry        %llu samples written to %s, %llu dropped (ring full)\n",
-                    static_cast<unsigned long long>(log->written()), printable(*settings.log_path).c_str(),
-                    static_cast<unsigned long long>(log->dropped()));
+                  static_cast<unsigned long long>(log->written()), printable(*settings.log_path).c_str(),
+                  static_cast<unsigned long long>(log->dropped()));
       }
     }
     if (trace) {
