@@ -19,7 +19,12 @@ class SoakWatch final : public TickObserver {
       : device_(device), field_(field), mass_kg_(mass_kg), window_ticks_(window_ticks) {}
 
   void on_start(const TickState& s) override { lua_bytes_start = lua_bytes(s); }
-  void on_finish(const TickState& s) override { lua_bytes_end = lua_bytes(s); }
+  void on_finish(const TickState& s) override {
+    lua_bytes_end = lua_bytes(s);
+    for (const auto& script : s.scripts) {
+      if (script->disabled()) result.script_faults.emplace_back(script->fault_message());
+    }
+  }
 
   void on_tick(const TickState& s) noexcept override {
     const double x = device_.x_m();

@@ -5,6 +5,7 @@
 // start-up has passed) and memory (process RSS, Lua heap).
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "engine/scene/safety.hpp"
 #include "engine/scene/scene.hpp"
@@ -28,6 +29,7 @@ struct SoakResult {
   double wall_s{};
   SafetyCounters safety;
   std::uint64_t script_errors{};
+  std::vector<std::string> script_faults;  // messages of the scripts a fault disabled
 };
 
 // Runs `scene` for `ticks` ticks in simulated time.

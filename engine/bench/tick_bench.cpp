@@ -69,6 +69,7 @@ class SceneTickLoop final : public TickLoopOf<SceneTick> {
     const TickState& state = tick_.state;
     return state.tick == 0 ? 0.0 : static_cast<double>(state.script_calls) / static_cast<double>(state.tick);
   }
+  const ScriptList* scripts() const override { return &tick_.state.scripts; }
 };
 
 // The hand-written sketch for one lab effect (a direct call, as step() is).

@@ -16,6 +16,7 @@
 #include "engine/bench/instruction_counter.hpp"
 #include "engine/bench/tick_timer.hpp"
 #include "engine/scene/scene.hpp"
+#include "engine/scene/tick_state.hpp"
 
 namespace hapscene {
 
@@ -38,6 +39,9 @@ class TickLoop {
                                        const std::vector<std::int32_t>& counts) = 0;
   // Script calls per tick so far (0 for a scene without scripts and for the baseline).
   virtual double script_calls_per_tick() const { return 0.0; }
+  // The loop's script instances (null for the baseline): a fault disables one, and the
+  // bench must then say so rather than time the 0 N that is left.
+  virtual const ScriptList* scripts() const { return nullptr; }
 };
 
 // The engine's step() on `scene` (which must outlive the loop), with its own TickState.

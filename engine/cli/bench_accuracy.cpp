@@ -10,6 +10,7 @@
 #include "engine/cli/bench_modes.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/devices/profile.hpp"
 #include "engine/harness/svg_plot.hpp"
 
@@ -26,14 +27,14 @@ std::string percent(double fraction) {
 }
 
 void print_results(const std::vector<AccuracyResult>& results) {
-  std::printf("%-8s %7s %-6s %3s %10s %12s %11s %9s %9s %13s %s\n", "scenario", "rate_Hz", "integ", "sub",
-              "ms_per_s", "pos_rms_um", "force_rms_mN", "freq_err", "decay_err", "integ_rms_um", "fronts");
+  print_out("%-8s %7s %-6s %3s %10s %12s %11s %9s %9s %13s %s\n", "scenario", "rate_Hz", "integ", "sub",
+            "ms_per_s", "pos_rms_um", "force_rms_mN", "freq_err", "decay_err", "integ_rms_um", "fronts");
   for (const AccuracyResult& r : results) {
-    std::printf("%-8s %7.0f %-6s %3d %10.3f %12.4g %11.4g %9s %9s %13.4g %s%s\n", scenario_name(r.which.scenario),
-                r.which.rate_hz, std::string(kPlantIntegratorNames[static_cast<int>(r.which.integrator)]).c_str(),
-                r.which.substeps, r.run_time_s_per_s * 1e3, r.finite ? r.position_rms_m * 1e6 : NAN,
-                r.finite ? r.force_rms_N * 1e3 : NAN, percent(r.frequency_error).c_str(),
-                percent(r.decay_error).c_str(), r.integration_rms_m * 1e6, r.front_truth ? "T" : "", r.front_integration ? "I" : "");
+    print_out("%-8s %7.0f %-6s %3d %10.3f %12.4g %11.4g %9s %9s %13.4g %s%s\n", scenario_name(r.which.scenario),
+              r.which.rate_hz, std::string(kPlantIntegratorNames[static_cast<int>(r.which.integrator)]).c_str(),
+              r.which.substeps, r.run_time_s_per_s * 1e3, r.finite ? r.position_rms_m * 1e6 : NAN,
+              r.finite ? r.force_rms_N * 1e3 : NAN, percent(r.frequency_error).c_str(),
+              percent(r.decay_error).c_str(), r.integration_rms_m * 1e6, r.front_truth ? "T" : "", r.front_integration ? "I" : "");
   }
 }
 
@@ -112,23 +113,23 @@ int bench_accuracy(Arguments& arguments) {
   if (only_rate) std::erase_if(cases, [&](const AccuracyCase& c) { return c.rate_hz != *only_rate; });
   if (cases.empty()) arguments.fail("--rate: not one of 250, 500, 1000, 2000, 5000, 10000, 20000 Hz");
 
-  std::printf("run time against error of the simulated Hapkit (profile hapkit3: m %g kg, b %g N*s/m)\n",
-              setup.mass_kg, setup.viscous_N_s_per_m);
-  std::printf("release: %g N/m spring from %g mm, no Coulomb friction; analytic %.4f Hz, decay %.4f 1/s\n",
-              setup.spring_N_per_m, setup.start_m * 1e3, setup.analytic_frequency_Hz, setup.analytic_decay_per_s);
-  std::printf("wall: %g N/m at %g mm, hand %g N/m %g N*s/m at %g mm/s in and out, Coulomb on; truth = 100 kHz "
-              "loop, RK4 at 1 us\n",
-              setup.wall_N_per_m, setup.wall_m * 1e3, setup.hand_N_per_m, setup.hand_N_s_per_m,
-              setup.speed_m_per_s * 1e3);
-  std::printf("force rendered from the true position and held one tick (ideal sensor and motor); ms_per_s = "
-              "CPU ms per simulated second (best of repeats); integ_rms = position RMS against the same loop "
-              "rate with 1 us RK4 steps; fronts: T = on the scenario's Pareto front of run time against pos_rms, "
-              "I = on the front of run time against integ_rms at this loop rate\n\n");
+  print_out("run time against error of the simulated Hapkit (profile hapkit3: m %g kg, b %g N*s/m)\n",
+            setup.mass_kg, setup.viscous_N_s_per_m);
+  print_out("release: %g N/m spring from %g mm, no Coulomb friction; analytic %.4f Hz, decay %.4f 1/s\n",
+            setup.spring_N_per_m, setup.start_m * 1e3, setup.analytic_frequency_Hz, setup.analytic_decay_per_s);
+  print_out("wall: %g N/m at %g mm, hand %g N/m %g N*s/m at %g mm/s in and out, Coulomb on; truth = 100 kHz "
+            "loop, RK4 at 1 us\n",
+            setup.wall_N_per_m, setup.wall_m * 1e3, setup.hand_N_per_m, setup.hand_N_s_per_m,
+            setup.speed_m_per_s * 1e3);
+  print_out("force rendered from the true position and held one tick (ideal sensor and motor); ms_per_s = "
+            "CPU ms per simulated second (best of repeats); integ_rms = position RMS against the same loop "
+            "rate with 1 us RK4 steps; fronts: T = on the scenario's Pareto front of run time against pos_rms, "
+            "I = on the front of run time against integ_rms at this loop rate\n\n");
   std::vector<AccuracyResult> results = run_accuracy_sweep(profile, cases);
   print_results(results);
   if (svg) {
     write_output_file(*svg, accuracy_svg(results));
-    std::printf("\nwrote %s\n", svg->c_str());
+    print_out("\nwrote %s\n", svg->c_str());
   }
   return 0;
 }

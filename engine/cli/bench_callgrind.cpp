@@ -12,6 +12,7 @@
 #include "engine/bench/tick_bench.hpp"
 #include "engine/cli/bench_modes.hpp"
 #include "engine/cli/option_definitions.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/scene/step.hpp"
 
@@ -32,6 +33,7 @@ int bench_callgrind(Arguments& arguments) {
   const std::vector<std::int32_t> counts = record_sensor_counts(scene, 1.0);
   const auto n = static_cast<long long>(counts.size());
   double checksum = 0.0;
+  std::vector<std::string> faulted;
   if (impl == "baseline") {
     LabBaselineKind kind{};
     LabBaselineConstants constants;
@@ -57,9 +59,15 @@ int bench_callgrind(Arguments& arguments) {
       step(run, counts[static_cast<std::size_t>(i % n)], &state);
       checksum += state.command.duty;
     }
+    // A script a fault disabled ran 0 N: the profile is not the script's.
+    for (const auto& script : state.scripts) {
+      if (script->disabled()) faulted.emplace_back(script->fault_message());
+    }
   }
-  std::printf("callgrind mode: %s, %s, %lld ticks, checksum %.17g\n", scene.name.c_str(), impl.c_str(), ticks, checksum);
-  return 0;
+  print_out("callgrind mode: %s, %s, %lld ticks, checksum %.17g\n", scene.name.c_str(), impl.c_str(), ticks, checksum);
+  flush_out();
+  for (const std::string& fault : faulted) std::fprintf(stderr, "%s (script disabled: the ticks ran 0 N)\n", fault.c_str());
+  return faulted.empty() ? 0 : 1;
 }
 
 }  // namespace hapscene

@@ -8,8 +8,10 @@
 #include <vector>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/output_file.hpp"
+#include "engine/cli/standard_output.hpp"
 
 namespace {
 
@@ -73,11 +75,12 @@ namespace {
 
 int dispatch(std::vector<std::string> args) {
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
-    (args.empty() ? std::cerr : std::cout) << kUsage;
+    if (args.empty()) std::cerr << kUsage;
+    else hapscene::write_out(kUsage);
     return args.empty() ? hapscene::kExitInvalidInput : hapscene::kExitOk;
   }
   if (args[0] == "version" || args[0] == "--version") {
-    std::cout << "hapscene " << HAPSCENE_VERSION << "\n";
+    hapscene::write_out(std::string("hapscene ") + HAPSCENE_VERSION + "\n");
     return hapscene::kExitOk;
   }
   const std::string command = args[0];
@@ -89,13 +92,13 @@ int dispatch(std::vector<std::string> args) {
     if (command == "validate") return hapscene::validate_command(args);
     if (command == "plot") return hapscene::plot_command(args);
     if (command == "test") return hapscene::test_command(args);
-    std::cerr << "hapscene: unknown command \"" << command << "\" (try: hapscene --help)\n";
+    std::cerr << "hapscene: unknown command \"" << hapscene::printable(command) << "\" (try: hapscene --help)\n";
     return hapscene::kExitInvalidInput;
   } catch (const hapscene::InputError& error) {
-    std::cerr << "error: " << error.what() << "\n";
+    std::cerr << "error: " << hapscene::printable(error.what()) << "\n";
     return hapscene::kExitInvalidInput;
   } catch (const std::exception& error) {
-    std::cerr << "hapscene: " << error.what() << "\n";
+    std::cerr << "hapscene: " << hapscene::printable(error.what()) << "\n";
     return hapscene::kExitFailure;
   }
 }
@@ -104,11 +107,8 @@ int dispatch(std::vector<std::string> args) {
 
 int main(int argc, char** argv) {
   const int code = dispatch(std::vector<std::string>(argv + 1, argv + argc));
-  // Output that never arrived is a failure, not a success: "probe ... > /dev/full" exits 1.
-  errno = 0;
-  if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
-    std::cerr << "hapscene: " << hapscene::write_failed_message("standard output", errno) << "\n";
-    return code == hapscene::kExitOk ? hapscene::kExitFailure : code;
-  }
+  // Output that never arrived is a failure, not a success: "probe ... > /dev/full" exits 1
+  // and says why (the first failed write's errno, kept by engine/cli/standard_output.hpp).
+  if (!hapscene::report_stdout_failure()) return code == hapscene::kExitOk ? hapscene::kExitFailure : code;
   return code;
 }

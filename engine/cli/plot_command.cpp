@@ -6,10 +6,12 @@
 #include <cstdio>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/harness_options.hpp"
 #include "engine/cli/output_file.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/harness/figures.hpp"
 #include "engine/load/environment.hpp"
 
@@ -41,8 +43,8 @@ int plot_command(std::vector<std::string> args) {
   // Default output: the environment's name with .svg in the working directory.
   const std::string path = out_path.value_or(scene.name + ".svg");
   write_output_file(path, svg);
-  std::printf("wrote %s\n", path.c_str());
-  std::fflush(stdout);
+  print_out("wrote %s\n", printable(path).c_str());
+  flush_out();
   for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
   if (faults.omitted()) {
     std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the workspace are shown)\n",

@@ -15,6 +15,7 @@
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/harness/open_loop.hpp"
 #include "engine/load/environment.hpp"
 
@@ -91,8 +92,8 @@ int probe_command(std::vector<std::string> args) {
     out += shortest(x_m[i]) + "," + shortest(v_m_per_s) + "," + shortest(force_N) + "," +
            shortest(open_loop.output_N(x_m[i], force_N)) + "\n";
   }
-  std::fwrite(out.data(), 1, out.size(), stdout);
-  std::fflush(stdout);
+  write_out(out);
+  flush_out();
 
   // What the points mean for scripts with state or time, and every fault, once.
   if (!scan.behaviour.static_field()) {

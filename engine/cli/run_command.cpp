@@ -15,12 +15,14 @@
 #include <thread>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/run_trace.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/devices/open_device.hpp"
 #include "engine/harness/figures.hpp"
 #include "engine/load/environment.hpp"
@@ -130,8 +132,8 @@ double us(std::uint64_t ns) { return static_cast<double>(ns) * 1e-3; }
 void print_force_limits(const RunSummary& summary) {
   const SafetyConfig& start = summary.limits_at_start;
   const SafetyConfig& end = summary.limits_at_end;
-  std::printf("  max force        asked %.3f N, commanded %.3f N (limit %g N)\n",
-              summary.max_abs_requested_N, summary.max_abs_output_N, end.max_force_N);
+  print_out("  max force        asked %.3f N, commanded %.3f N (limit %g N)\n",
+            summary.max_abs_requested_N, summary.max_abs_output_N, end.max_force_N);
   std::string tightened;
   const auto note = [&](const char* name, double before, double after, const char* unit) {
     if (before == after) return;
@@ -145,47 +147,49 @@ void print_force_limits(const RunSummary& summary) {
   note("workspace max", start.workspace_max_m * 1e3, end.workspace_max_m * 1e3, "mm");
   note("soft start", start.soft_start_s, end.soft_start_s, "s");
   note("soft-start threshold", start.soft_start_threshold_N, end.soft_start_threshold_N, "N");
-  if (!tightened.empty()) std::printf("  limits           tightened by a reload: %s\n", tightened.c_str());
+  if (!tightened.empty()) print_out("  limits           tightened by a reload: %s\n", tightened.c_str());
 }
 
 void print_summary(const Scene& scene, const RunSettings& settings, const RunSummary& summary) {
   const bool real_time = settings.options.pacing == Pacing::real_time;
-  std::printf("%s (%s) on %s:%s, %g Hz, %s, hand %s\n", scene.name.c_str(),
-              scene.source_path.c_str(), settings.device.c_str(), scene.device.name.c_str(),
-              scene.rate_hz, real_time ? "real time" : "simulated time",
-              std::string(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]).c_str());
-  std::printf("  ticks            %llu in %.3f s of device time, loop rate %.1f Hz\n",
-              static_cast<unsigned long long>(summary.ticks), summary.device_time_s,
-              summary.achieved_rate_hz);
+  // Names and paths from files and the command line are printed in printable form.
+  print_out("%s (%s) on %s:%s, %g Hz, %s, hand %s\n", scene.name.c_str(),
+            printable(scene.source_path).c_str(), printable(settings.device).c_str(),
+            printable(scene.device.name).c_str(),
+            scene.rate_hz, real_time ? "real time" : "simulated time",
+            std::string(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]).c_str());
+  print_out("  ticks            %llu in %.3f s of device time, loop rate %.1f Hz\n",
+            static_cast<unsigned long long>(summary.ticks), summary.device_time_s,
+            summary.achieved_rate_hz);
   print_force_limits(summary);
   const SafetyCounters& safety = summary.safety;
-  std::printf("  time clamped     %.3f s (%llu ticks); slew-limited %llu, soft start %llu, "
-              "outside workspace %llu ticks\n",
-              static_cast<double>(safety.clamped_ticks) * scene.period_s,
-              static_cast<unsigned long long>(safety.clamped_ticks),
-              static_cast<unsigned long long>(safety.slew_limited_ticks),
-              static_cast<unsigned long long>(safety.soft_start_ticks),
-              static_cast<unsigned long long>(safety.outside_workspace_ticks));
-  std::printf("  faults           %llu non-finite forces\n",
-              static_cast<unsigned long long>(safety.nonfinite_faults));
+  print_out("  time clamped     %.3f s (%llu ticks); slew-limited %llu, soft start %llu, "
+            "outside workspace %llu ticks\n",
+            static_cast<double>(safety.clamped_ticks) * scene.period_s,
+            static_cast<unsigned long long>(safety.clamped_ticks),
+            static_cast<unsigned long long>(safety.slew_limited_ticks),
+            static_cast<unsigned long long>(safety.soft_start_ticks),
+            static_cast<unsigned long long>(safety.outside_workspace_ticks));
+  print_out("  faults           %llu non-finite forces\n",
+            static_cast<unsigned long long>(safety.nonfinite_faults));
   for (const ScriptReport& script : summary.scripts) {
     if (script.disabled) {
-      std::printf("  script disabled  %s (at t = %.3f s; 0 N for the remaining %llu ticks)\n",
-                  script.fault.c_str(), script.fault_time_s,
-                  static_cast<unsigned long long>(script.skipped_calls));
+      print_out("  script disabled  %s (at t = %.3f s; 0 N for the remaining %llu ticks)\n",
+                printable(script.fault).c_str(), script.fault_time_s,
+                static_cast<unsigned long long>(script.skipped_calls));
     } else {
-      std::printf("  script ok        %s\n", script.name.c_str());
+      print_out("  script ok        %s\n", printable(script.name).c_str());
     }
   }
-  std::printf("  deadline misses  %s\n",
-              real_time ? std::to_string(summary.deadline_misses).c_str() : "n/a (simulated time)");
-  std::printf("  tick compute     p50 %.2f us  p99 %.2f us  max %.2f us\n",
-              us(summary.compute_ns.percentile_ns(0.50)), us(summary.compute_ns.percentile_ns(0.99)),
-              us(summary.compute_ns.max_ns()));
+  print_out("  deadline misses  %s\n",
+            real_time ? std::to_string(summary.deadline_misses).c_str() : "n/a (simulated time)");
+  print_out("  tick compute     p50 %.2f us  p99 %.2f us  max %.2f us\n",
+            us(summary.compute_ns.percentile_ns(0.50)), us(summary.compute_ns.percentile_ns(0.99)),
+            us(summary.compute_ns.max_ns()));
   if (real_time) {
-    std::printf("  wake-up jitter   p50 %.2f us  p99 %.2f us  max %.2f us\n",
-                us(summary.wake_late_ns.percentile_ns(0.50)),
-                us(summary.wake_late_ns.percentile_ns(0.99)), us(summary.wake_late_ns.max_ns()));
+    print_out("  wake-up jitter   p50 %.2f us  p99 %.2f us  max %.2f us\n",
+              us(summary.wake_late_ns.percentile_ns(0.50)),
+              us(summary.wake_late_ns.percentile_ns(0.99)), us(summary.wake_late_ns.max_ns()));
     // The jitter histogram: ticks per band of lateness.
     const LatencyHistogram& late = summary.wake_late_ns;
     const std::uint64_t edges_ns[] = {10'000, 50'000, 100'000, 500'000, 1'000'000};
@@ -198,20 +202,20 @@ void print_summary(const Scene& scene, const RunSettings& settings, const RunSum
       below = upto;
     }
     bands += "  >1ms " + std::to_string(late.count() - below);
-    std::printf("  jitter bands     %s\n", bands.c_str());
-    std::printf("  scheduling       %s\n", summary.realtime_note.c_str());
+    print_out("  jitter bands     %s\n", bands.c_str());
+    print_out("  scheduling       %s\n", summary.realtime_note.c_str());
     if (summary.overrun_warnings > 0 || summary.overrun_fault) {
-      std::printf("  overruns         %llu warnings (first at %.3f s), longest streak %u misses\n",
-                  static_cast<unsigned long long>(summary.overrun_warnings),
-                  summary.first_overrun_warning_s, summary.longest_miss_streak);
+      print_out("  overruns         %llu warnings (first at %.3f s), longest streak %u misses\n",
+                static_cast<unsigned long long>(summary.overrun_warnings),
+                summary.first_overrun_warning_s, summary.longest_miss_streak);
     }
     if (summary.overrun_fault) {
-      std::printf("  FAULT            sustained overrun at %.3f s (%u deadline misses in a row): "
-                  "zero force commanded, run stopped\n",
-                  summary.overrun_fault_s, settings.options.overrun_fault_ticks);
+      print_out("  FAULT            sustained overrun at %.3f s (%u deadline misses in a row): "
+                "zero force commanded, run stopped\n",
+                summary.overrun_fault_s, settings.options.overrun_fault_ticks);
     }
   }
-  std::fflush(stdout);
+  flush_out();
 }
 
 }  // namespace
@@ -295,7 +299,7 @@ int run_command(std::vector<std::string> args) {
         watch.before_destroy = [&status](LoadedScene& retired) { status.drain_retired(retired); };
         watcher = std::make_unique<ReloadWatcher>(
             files[i], scene, &exchange, [show_status](const std::string& message) {
-              std::fprintf(stderr, "%s%s\n", show_status ? "\r\033[K" : "", message.c_str());
+              std::fprintf(stderr, "%s%s\n", show_status ? "\r\033[K" : "", printable(message).c_str());
             }, std::move(watch));
       }
       summary = run_scene(scene, device, options, &observers);
@@ -303,23 +307,23 @@ int run_command(std::vector<std::string> args) {
     }
     std::vector<std::string> log_lines;
     status.drain_log(&log_lines);
-    for (const std::string& line : log_lines) std::fprintf(stderr, "%s\n", line.c_str());
-    if (i > 0) std::printf("\n");
+    for (const std::string& line : log_lines) std::fprintf(stderr, "%s\n", printable(line).c_str());
+    if (i > 0) print_out("\n");
     print_summary(scene, settings, summary);
     if (exchange.swaps() > 0) {
-      std::printf("  reloads          %llu\n", static_cast<unsigned long long>(exchange.swaps()));
+      print_out("  reloads          %llu\n", static_cast<unsigned long long>(exchange.swaps()));
     }
     if (log) {
       log->finish();
       if (!log->error().empty()) {
         // Never claim samples reached a file that refused them: say so, and exit 1.
-        std::printf("  telemetry        FAILED: %s\n", log->error().c_str());
-        std::fprintf(stderr, "hapscene run: %s\n", log->error().c_str());
+        print_out("  telemetry        FAILED: %s\n", printable(log->error()).c_str());
+        std::fprintf(stderr, "hapscene run: %s\n", printable(log->error()).c_str());
         write_failed = true;
       } else {
-        std::printf("  telemetry        %llu samples written to %s, %llu dropped (ring full)\n",
-                    static_cast<unsigned long long>(log->written()), settings.log_path->c_str(),
-                    static_cast<unsigned long long>(log->dropped()));
+        print_out("  telemetry        %llu samples written to %s, %llu dropped (ring full)\n",
+                  static_cast<unsigned long long>(log->written()), printable(*settings.log_path).c_str(),
+                  static_cast<unsigned long long>(log->dropped()));
       }
     }
     if (trace) {
@@ -329,10 +333,10 @@ int run_command(std::vector<std::string> args) {
         what += ", lowest and highest force of every " + std::to_string(trace->ticks_per_bucket()) + " ticks";
       }
       write_output_file(*settings.plot_path, run_figure_svg(scene, trace->records(), what));
-      std::printf("  plot             %s\n", settings.plot_path->c_str());
+      print_out("  plot             %s\n", printable(*settings.plot_path).c_str());
     }
-    std::fputs(device.report().c_str(), stdout);
-    std::fflush(stdout);
+    write_out(device.report());
+    flush_out();
     // A script disabled by a fault (in the version running at the end or in one a reload
     // replaced) is a fault the run saw: exit 1, like a device fault or a sustained overrun.
     const bool script_faulted =
@@ -344,9 +348,9 @@ int run_command(std::vector<std::string> args) {
   // A reload load that never finished may still hold a thread: end without running
   // static destructors under it.
   if (ReloadWatcher::abandoned_loads() > 0) {
-    std::fflush(stdout);
+    const bool output_ok = report_stdout_failure();
     std::fflush(stderr);
-    std::_Exit(faulted || write_failed ? kExitFailure : kExitOk);
+    std::_Exit(faulted || write_failed || !output_ok ? kExitFailure : kExitOk);
   }
   return faulted || write_failed ? kExitFailure : kExitOk;
 }

@@ -1,11 +1,15 @@
 // `hapscene test [SPEC...]`: runs environment test specs (default: every *.test.json
 // under environments/ and scripts/). Prints PASS/FAIL per spec and each unmet
-// expectation. Exit 0 when all pass, 1 when any fails, 2 for an invalid spec.
+// expectation. Exit 0 when all pass, 1 when any fails, 2 when any spec (or its
+// environment) is invalid input; the other specs still run.
 #include <cstdio>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
+#include "engine/cli/per_file.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/harness/test_spec.hpp"
 
 namespace hapscene {
@@ -19,23 +23,32 @@ int test_command(std::vector<std::string> args) {
     if (specs.empty()) arguments.fail("no *.test.json under environments/ or scripts/");
   }
 
-  // Check every spec can be read before reporting: an invalid one is exit code 2.
-  std::vector<SpecResult> results;
-  for (const std::string& spec : specs) results.push_back(run_test_spec(spec));
-
+  // Each spec its own verdict: one that cannot be loaded (the spec or its environment)
+  // prints its error and a FAIL line, and the others still run (engine/cli/per_file.hpp).
+  int exit_code = kExitOk;
   int failed = 0;
   std::size_t expectations = 0;
-  for (const SpecResult& r : results) {
-    std::printf("%s %s (%zu expectations)\n", r.pass ? "PASS" : "FAIL", r.spec_path.c_str(), r.outcomes.size());
-    expectations += r.outcomes.size();
-    for (const SpecOutcome& o : r.outcomes) {
-      if (!o.pass || verbose) std::printf("  %s %s: %s\n", o.pass ? "ok  " : "FAIL", o.what.c_str(), o.message.c_str());
-    }
-    failed += r.pass ? 0 : 1;
+  for (const std::string& spec : specs) {
+    const int spec_code = run_for_file([&] {
+      const SpecResult r = run_test_spec(spec);
+      // Paths, pointers and messages carry text from files and scripts: printable.
+      print_out("%s %s (%zu expectations)\n", r.pass ? "PASS" : "FAIL", printable(r.spec_path).c_str(),
+                r.outcomes.size());
+      expectations += r.outcomes.size();
+      for (const SpecOutcome& o : r.outcomes) {
+        if (!o.pass || verbose) {
+          print_out("  %s %s: %s\n", o.pass ? "ok  " : "FAIL", printable(o.what).c_str(), printable(o.message).c_str());
+        }
+      }
+      return r.pass ? kExitOk : kExitFailure;
+    });
+    if (spec_code == kExitInvalidInput) print_out("FAIL %s: invalid input (see the error above)\n", printable(spec).c_str());
+    failed += spec_code == kExitOk ? 0 : 1;
+    exit_code = worst_exit_code(exit_code, spec_code);
   }
-  std::printf("%zu specs, %zu expectations: %s\n", results.size(), expectations,
-              failed == 0 ? "all pass" : (std::to_string(failed) + " specs failed").c_str());
-  return failed == 0 ? kExitOk : kExitFailure;
+  print_out("%zu specs, %zu expectations: %s\n", specs.size(), expectations,
+            failed == 0 ? "all pass" : (std::to_string(failed) + " specs failed").c_str());
+  return exit_code;
 }
 
 }  // namespace hapscene

@@ -2,16 +2,20 @@
 // Hapkit through the virtual-hand scenarios in simulated time, prints a table of
 // verdicts (--quiet: one line per file), optionally writes a JSON report and an SVG
 // figure. Exit 0 when every check passes or is not judged, 1 when any fails (a script
-// fault always fails the "script" check), 2 for invalid input.
+// fault always fails the "script" check), 2 for invalid input (options, or any of the
+// files: the others still get their verdicts).
 #include <cstdio>
 #include <fstream>
 #include <string>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/harness_options.hpp"
 #include "engine/cli/output_file.hpp"
+#include "engine/cli/per_file.hpp"
+#include "engine/cli/standard_output.hpp"
 #include "engine/harness/figures.hpp"
 #include "engine/harness/report.hpp"
 #include "engine/load/environment.hpp"
@@ -41,24 +45,30 @@ int validate_command(std::vector<std::string> args) {
     if (!problem.empty()) arguments.fail(problem);
   }
 
-  // Load everything first: a bad file fails before anything runs.
-  std::vector<Scene> scenes;
-  for (const std::string& file : files) scenes.push_back(load_environment_file(file));
-
-  bool all_pass = true;
-  for (std::size_t i = 0; i < scenes.size(); ++i) {
-    const ValidationReport report = validate_scene(scenes[i], kinds, options);
-    all_pass = all_pass && report.pass;
-    if (quiet) {
-      std::printf("%s", format_report_line(report).c_str());
-    } else {
-      std::printf("%s%s", i > 0 ? "\n" : "", format_report_table(report).c_str());
-    }
-    if (report_path) write_output_file(*report_path, report_to_json(report).dump(2) + "\n");
-    if (plot_path) write_output_file(*plot_path, validation_figure_svg(scenes[i], report));
+  // Each file its own verdict: one that is invalid input prints its error (and, with
+  // --quiet, a FAIL line) and the others still run (engine/cli/per_file.hpp).
+  int exit_code = kExitOk;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const int file_code = run_for_file([&] {
+      const Scene scene = load_environment_file(files[i]);
+      const ValidationReport report = validate_scene(scene, kinds, options);
+      // The printed forms name the file in printable form (the JSON report escapes it).
+      ValidationReport shown = report;
+      shown.source_path = printable(report.source_path);
+      if (quiet) {
+        print_out("%s", format_report_line(shown).c_str());
+      } else {
+        print_out("%s%s", i > 0 ? "\n" : "", format_report_table(shown).c_str());
+      }
+      if (report_path) write_output_file(*report_path, report_to_json(report).dump(2) + "\n");
+      if (plot_path) write_output_file(*plot_path, validation_figure_svg(scene, report));
+      return report.pass ? kExitOk : kExitFailure;
+    });
+    if (file_code == kExitInvalidInput && quiet) print_out("FAIL %s: invalid input (see the error above)\n", printable(files[i]).c_str());
+    exit_code = worst_exit_code(exit_code, file_code);
   }
-  std::fflush(stdout);
-  return all_pass ? kExitOk : kExitFailure;
+  flush_out();
+  return exit_code;
 }
 
 }  // namespace hapscene

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/base/physical_ranges.hpp"
@@ -89,20 +90,24 @@ ScriptEffect ScriptEffect::parse(ObjectReader& reader, ScriptLoadBudget* budget)
   const bool has_source = reader.has("source");
   if (has_file == has_source) reader.fail("", "a script needs exactly one of \"file\" and \"source\"");
   std::string display_name;
+  std::string raw_path;
   std::string source;
   if (has_file) {
     std::filesystem::path path(reader.string("file"));
     if (path.is_relative()) path = std::filesystem::path(reader.base_dir()) / path;
-    display_name = path.lexically_normal().string();
+    raw_path = path.lexically_normal().string();
+    // Messages name the file in printable form (engine/base/format.hpp); the reload
+    // watcher keeps the path as it is.
+    display_name = printable(raw_path);
     try {
-      source = read_text_file(display_name, kMaxScriptBytes);
+      source = read_text_file(raw_path, kMaxScriptBytes);
     } catch (const InputError& error) {
       reader.fail("file", error.what());
     }
     reader.get("source");
   } else {
     source = reader.string("source");
-    display_name = reader.file() + "#" + reader.pointer_to("source");
+    display_name = printable(reader.file() + "#" + reader.pointer_to("source"));
     reader.get("file");
   }
 
@@ -131,7 +136,7 @@ ScriptEffect ScriptEffect::parse(ObjectReader& reader, ScriptLoadBudget* budget)
     load_limits.load_time_s = std::min(load_limits.load_time_s, left_s);
   }
   ScriptEffect effect;
-  if (has_file) effect.file = display_name;
+  if (has_file) effect.file = raw_path;
   const auto started = std::chrono::steady_clock::now();
   const auto charge = [&] {
     const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/base/physical_ranges.hpp"
@@ -133,7 +134,9 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
   ObjectReader reader(root, "", file);
   Scene scene;
   scene.source_path = file;
-  scene.name = reader.string_or("name", std::filesystem::path(file).stem().string());
+  // Printed by every command and in reports: printable (engine/base/format.hpp), so a
+  // name holding "\n" or "\r" cannot forge an output line.
+  scene.name = printable(reader.string_or("name", std::filesystem::path(file).stem().string()));
   scene.description = reader.string_or("description", "");
 
   // Tick rate.
@@ -192,7 +195,7 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
     const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
     if (parse_effect((*effects)[i], pointer, file, base_dir, &script_budget, &effect)) {
       std::string warning = inert_effect_warning(effect, (*effects)[i], scene);
-      if (!warning.empty()) scene.load_warnings.push_back(file + ": " + pointer + " " + warning);
+      if (!warning.empty()) scene.load_warnings.push_back(printable(file + ": " + pointer + " " + warning));
       add_effect(&scene, std::move(effect));
     }
   }

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <ctime>
 
+#include "engine/base/format.hpp"
 #include "engine/lua/script_vm.hpp"
 
 namespace hapscene::detail {
@@ -204,12 +205,15 @@ void record_fault(ScriptVm* vm, ScriptFault kind, const char* format, ...) {
   vm->fault_kind = kind;
   std::va_list args;
   va_start(args, format);
-  const int n = std::vsnprintf(vm->fault, ScriptVm::kFaultBytes, format, args);
+  char raw[ScriptVm::kFaultBytes];
+  const int n = std::vsnprintf(raw, sizeof raw, format, args);
   va_end(args);
   if (n < 0) return;
-  vm->fault_length = static_cast<std::size_t>(n) < ScriptVm::kFaultBytes
-                         ? static_cast<std::size_t>(n)
-                         : ScriptVm::kFaultBytes - 1;
+  // The message carries the script's own text (error("..."), a path): printable, so it
+  // can neither forge output lines nor be cut short by a NUL (engine/base/format.hpp).
+  const std::size_t raw_length = static_cast<std::size_t>(n) < sizeof raw ? static_cast<std::size_t>(n) : sizeof raw - 1;
+  vm->fault_length = write_printable(std::string_view(raw, raw_length), vm->fault, ScriptVm::kFaultBytes);
+  if (vm->fault_length == 0) vm->fault_length = write_printable("script fault", vm->fault, ScriptVm::kFaultBytes);
 }
 
 void trip(ScriptVm* vm, lua_State* L) {

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
+
+#include "engine/base/format.hpp"
 
 namespace hapscene::detail {
 
@@ -53,7 +56,8 @@ void LogQueue::drain(std::string_view script_name, std::vector<std::string>* out
     const Slot& slot = slots_[tail % kSlots];
     char time[48];
     std::snprintf(time, sizeof time, " (t = %.3f s)", slot.t_s);
-    out->push_back(std::string(slot.text, slot.length) + time);
+    // What the script logged is printed as it is, but printable (engine/base/format.hpp).
+    out->push_back(printable(std::string_view(slot.text, slot.length)) + time);
     tail_.store(tail + 1, std::memory_order_release);
   }
   const std::uint64_t dropped = dropped_.exchange(0, std::memory_order_relaxed);
@@ -63,7 +67,7 @@ void LogQueue::drain(std::string_view script_name, std::vector<std::string>* out
                   ": %llu log message%s dropped (at most %g per second, bursts of %g)",
                   static_cast<unsigned long long>(dropped), dropped == 1 ? "" : "s",
                   rate_per_s_, burst_);
-    out->push_back(std::string(script_name) + line);
+    out->push_back(printable(script_name) + line);
   }
 }
 

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 #include "engine/lua/bytecode.hpp"
 #include "engine/lua/script_vm.hpp"
 
@@ -34,17 +35,20 @@ bool has_place(const ScriptVm& vm, const char* message) {
 }
 
 // After a failed load step: the first of the load error, the tripped limit, or Lua's message.
+// The message is made printable (a script's error("...") may hold newlines or a NUL).
 [[noreturn]] void throw_load_failure(const ScriptVm& vm, lua_State* L) {
-  if (!vm.load_error.empty()) throw InputError(vm.load_error);
+  if (!vm.load_error.empty()) throw InputError(printable(vm.load_error));
   if (vm.fault_length > 0) throw InputError(std::string(vm.fault, vm.fault_length));
   if (lua_type(L, -1) == LUA_TSTRING) {
-    const char* message = lua_tostring(L, -1);
+    std::size_t length = 0;
+    const char* text = lua_tolstring(L, -1, &length);
+    const std::string message(text, length);
     char hint[160];
-    detail::suggestion_for(const_cast<ScriptVm*>(&vm), L, message, hint, sizeof hint);
-    if (has_place(vm, message)) throw InputError(message + std::string(hint));
-    throw InputError(vm.display_name + ": " + message + hint);
+    detail::suggestion_for(const_cast<ScriptVm*>(&vm), L, message.c_str(), hint, sizeof hint);
+    if (has_place(vm, message.c_str())) throw InputError(printable(message + hint));
+    throw InputError(printable(vm.display_name + ": " + message + hint));
   }
-  throw InputError(vm.display_name + ": error while loading (error object is a " +
+  throw InputError(printable(vm.display_name) + ": error while loading (error object is a " +
                    luaL_typename(L, -1) + " value)");
 }
 
@@ -53,7 +57,12 @@ void record_call_failure(ScriptVm* vm, int status, const char* what) {
   lua_State* L = vm->L;
   if (vm->fault_length > 0) return;  // a tripped limit already said why
   if (status != LUA_OK && lua_type(L, -1) == LUA_TSTRING) {
-    const char* message = lua_tostring(L, -1);
+    // Escaped first, so a NUL in error("...") cannot cut the message short (record_fault
+    // escapes the rest; escaping twice changes nothing).
+    std::size_t length = 0;
+    const char* raw = lua_tolstring(L, -1, &length);
+    char message[ScriptVm::kFaultBytes];
+    write_printable(std::string_view(raw, length), message, sizeof message);
     // The "did you mean" search of a failed lookup runs here, once, for the reported error.
     char hint[160];
     detail::suggestion_for(vm, L, message, hint, sizeof hint);
