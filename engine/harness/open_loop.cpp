@@ -156,8 +156,14 @@ ScriptFaultLog scan_faults_in_motion(const Scene& scene, const std::vector<doubl
     for (const double v_m_per_s : kMotionScanVelocities_m_per_s) {
       if (v_m_per_s != 0.0 && !scene.needs.velocity) continue;
       open_loop.scan_faults(x_m, v_m_per_s);
+      // The first velocity and time that meet a fault are reported: each further one
+      // that faults would cost a fresh instance per point for what is mostly the same
+      // message.
+      if (!open_loop.faults().empty()) {
+        faults.merge(open_loop.faults());
+        return faults;
+      }
     }
-    faults.merge(open_loop.faults());
   }
   return faults;
 }

@@ -105,7 +105,8 @@ class OpenLoop {
 // The script faults met in motion and over time, which a scan at rest (v = 0, t = 0)
 // misses: scan_faults over `x_m` at each of kMotionScanVelocities_m_per_s (both signs,
 // up to the fastest the handle can move) and kMotionScanTimes_s, skipping velocities or
-// times the scene's scripts do not read. Deterministic; empty for a scene without scripts.
+// times the scene's scripts do not read, in that order, up to the first velocity and time
+// that meet a fault. Deterministic; empty for a scene without scripts.
 inline constexpr double kMotionScanVelocities_m_per_s[] = {0.0, 0.01, -0.01, 0.1, -0.1, 0.5, -0.5, 2.0, -2.0};
 inline constexpr double kMotionScanTimes_s[] = {0.0, 0.5, 3.0};
 ScriptFaultLog scan_faults_in_motion(const Scene& scene, const std::vector<double>& x_m);
