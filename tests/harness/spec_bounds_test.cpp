@@ -8,6 +8,7 @@
 #include <chrono>
 #include <string>
 
+#include "engine/harness/figures.hpp"
 #include "engine/harness/option_ranges.hpp"
 #include "engine/harness/pace.hpp"
 #include "engine/harness/test_spec.hpp"
@@ -202,4 +203,17 @@ TEST_CASE("pace: ordinary scripts keep up with a wide margin") {
     const Scene scene = load_environment_file(test::source_path(name));
     CHECK_FALSE(check_script_pace(scene).has_value());
   }
+}
+
+TEST_CASE("pace: the force field and the force-displacement curve of a slow script are not probed") {
+  const test::ScratchFolder folder("slow_field");
+  const Scene scene = load_environment_file(slow_environment(folder, kSlowScript));
+  const auto start = std::chrono::steady_clock::now();
+  const ForceField field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);
+  CHECK(field.too_slow.starts_with("too slow for the 1000 Hz loop: "));
+  CHECK(field.force_N.empty());
+  const PlotPanel panel = force_displacement_panel(scene);
+  CHECK(panel.series.empty());
+  CHECK(panel.title.find(": not drawn, too slow for the 1000 Hz loop") != std::string::npos);
+  CHECK(seconds_since(start) < 10.0);  // without the check: thousands of 30 ms calls
 }
