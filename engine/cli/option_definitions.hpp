@@ -8,10 +8,16 @@
 #include <limits>
 
 #include "engine/cli/arguments.hpp"
+#include "engine/harness/option_ranges.hpp"
 
 namespace hapscene::option {
 
 inline constexpr double kDay_s = 24.0 * 3600.0;
+
+// An option whose range the harness owns (test specs check the same values).
+constexpr QuantityOption from_range(std::string_view name, const ValueRange& range) {
+  return {name, range.quantity, range.min, range.max, range.min_exclusive, range.unit};
+}
 
 // run
 inline constexpr WholeOption baud{"baud", 1, 100'000'000, "a positive whole number of bits per second"};
@@ -23,21 +29,21 @@ inline constexpr QuantityOption release{"release", Quantity::time_s, 0.0, kDay_s
 inline constexpr QuantityOption run_start{"start", Quantity::length_m, -1.0, 1.0};
 
 // run, validate, plot: the sensor noise and its seed
-inline constexpr QuantityOption noise{"noise", Quantity::dimensionless, 0.0, 1000.0, false, "counts"};
+inline constexpr QuantityOption noise = from_range("noise", value_range::noise);
 inline constexpr WholeOption seed{"seed", 0, std::numeric_limits<std::uint64_t>::max()};
 
 // validate, plot: the virtual hand and the free scenario's start
-inline constexpr QuantityOption hand_stiffness{"hand-stiffness", Quantity::stiffness_N_per_m, 0.0, 1e6, true};
-inline constexpr QuantityOption hand_damping{"hand-damping", Quantity::damping_N_s_per_m, 0.0, 1e4};
-inline constexpr QuantityOption hand_mass{"hand-mass", Quantity::mass_kg, 0.0, 10.0};
-inline constexpr QuantityOption free_start{"start", Quantity::length_m, -1.0, 1.0};
+inline constexpr QuantityOption hand_stiffness = from_range("hand-stiffness", value_range::hand_stiffness);
+inline constexpr QuantityOption hand_damping = from_range("hand-damping", value_range::hand_damping);
+inline constexpr QuantityOption hand_mass = from_range("hand-mass", value_range::hand_mass);
+inline constexpr QuantityOption free_start = from_range("start", value_range::free_start);
 
 // probe: START and STOP of --x, its STEP (at least kMinProbeStep_m in size), and --v
-inline constexpr QuantityOption probe_position{"x", Quantity::length_m, -1000.0, 1000.0};
+inline constexpr QuantityOption probe_position = from_range("x", value_range::probe_position);
 inline constexpr QuantityOption probe_step{"x", Quantity::length_m, -1000.0, 1000.0};
 inline constexpr double kMinProbeStep_m = 1e-9;
 inline constexpr long long kMaxProbePoints = 1'000'000;
-inline constexpr QuantityOption probe_velocity{"v", Quantity::velocity_m_per_s, -1000.0, 1000.0};
+inline constexpr QuantityOption probe_velocity = from_range("v", value_range::probe_velocity);
 // probe --t: the run time each point is evaluated at (from fresh script instances)
 inline constexpr QuantityOption probe_time{"t", Quantity::time_s, 0.0, kDay_s};
 

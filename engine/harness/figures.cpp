@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "engine/harness/open_loop.hpp"
+#include "engine/harness/pace.hpp"
 
 namespace hapscene {
 namespace {
@@ -25,6 +26,11 @@ PlotPanel force_displacement_panel(const Scene& scene, ScriptFaultLog* faults) {
   panel.x_label = "handle position x (mm)";
   panel.y_label = "force (N)";
   panel.lines = limit_lines(scene);
+  // Scripts too slow for the loop are not drawn: 4001 points of them would take hours.
+  if (const std::optional<CheckResult> pace = check_script_pace(scene)) {
+    panel.title += ": not drawn, " + pace->detail;
+    return panel;
+  }
 
   // Velocities as a parameter only when some effect reads velocity.
   std::vector<double> velocities{0.0};

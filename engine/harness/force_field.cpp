@@ -5,6 +5,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
+#include "engine/harness/pace.hpp"
 
 namespace hapscene {
 
@@ -47,6 +48,10 @@ ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m,
   ForceField field;
   field.min_m = scene.safety.workspace_min_m;
   field.step_m = step_m;
+  if (const std::optional<CheckResult> pace = check_script_pace(scene)) {
+    field.too_slow = pace->detail;
+    return field;
+  }
   const double span_m = scene.safety.workspace_max_m - field.min_m;
   const auto points = static_cast<std::size_t>(std::floor(span_m / step_m)) + 1;
 

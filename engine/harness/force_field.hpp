@@ -30,6 +30,9 @@ struct ForceField {
   // inferred and no stored energy is credited (behaviour.note says why).
   ScriptBehaviour behaviour;
   ScriptFaultLog faults;              // script faults met while probing
+  // Not empty when the scripts are too slow for the loop (the "pace" message, see
+  // pace.hpp): then nothing was probed and the grid is empty.
+  std::string too_slow;
 
   // Linear interpolation of the stored energy at x (clamped to the grid).
   double potential_at_J(double x_m) const noexcept;
@@ -46,7 +49,8 @@ inline constexpr std::size_t kMaxFieldPoints = 50'001;
 void require_sampleable_workspace(const Scene& scene, double step_m = 20e-6);
 
 // Probes the scene over its safety workspace every step_m, each point from fresh
-// script instances (see open_loop.hpp).
+// script instances (see open_loop.hpp). Scripts too slow for the loop are not probed
+// (ForceField::too_slow): thousands of points of them would take hours.
 ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m,
                              double step_m = 20e-6);
 

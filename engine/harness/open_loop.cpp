@@ -139,6 +139,35 @@ std::vector<double> OpenLoop::sequential_N(const std::vector<double>& x_m, doubl
   return force_N;
 }
 
+void OpenLoop::scan_faults(const std::vector<double>& x_m, double v_m_per_s) {
+  if (!has_scripts() || x_m.empty()) return;
+  std::vector<bool> live;
+  sequential_N(x_m, v_m_per_s, true, &live);
+  if (live.back()) return;
+  for (const double x : x_m) fresh_force_N(x, v_m_per_s, t_s_, true);
+}
+
+ScriptFaultLog scan_faults_in_motion(const Scene& scene, const std::vector<double>& x_m) {
+  ScriptFaultLog faults;
+  if (scene.script_count == 0) return faults;
+  for (const double t_s : kMotionScanTimes_s) {
+    if (t_s != 0.0 && !scene.needs.time) continue;
+    OpenLoop open_loop(scene, t_s);
+    for (const double v_m_per_s : kMotionScanVelocities_m_per_s) {
+      if (v_m_per_s != 0.0 && !scene.needs.velocity) continue;
+      open_loop.scan_faults(x_m, v_m_per_s);
+      // The first velocity and time that meet a fault are reported: each further one
+      // that faults would cost a fresh instance per point for what is mostly the same
+      // message.
+      if (!open_loop.faults().empty()) {
+        faults.merge(open_loop.faults());
+        return faults;
+      }
+    }
+  }
+  return faults;
+}
+
 OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bool values_if_not_static) {
   OpenLoopScan result;
   const std::size_t n = x_m.size();

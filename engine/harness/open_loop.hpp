@@ -80,6 +80,12 @@ class OpenLoop {
   // Time: fresh instances at several other run times, at a few points.
   OpenLoopScan scan(const std::vector<double>& x_m, double v_m_per_s, bool values_if_not_static = true);
 
+  // Records (in faults()) the script faults fresh instances meet at every x at velocity
+  // v: one instance is swept upwards, and only when a script faults there is every point
+  // computed from a fresh instance, so that a fault is reported only where a fresh run's
+  // first tick meets it. Cheap for a script that does not fault (one call per point).
+  void scan_faults(const std::vector<double>& x_m, double v_m_per_s);
+
   bool has_scripts() const { return scene_.script_count > 0; }
   const ScriptFaultLog& faults() const { return faults_; }
 
@@ -95,6 +101,15 @@ class OpenLoop {
   ScriptList none_;
   ScriptFaultLog faults_;
 };
+
+// The script faults met in motion and over time, which a scan at rest (v = 0, t = 0)
+// misses: scan_faults over `x_m` at each of kMotionScanVelocities_m_per_s (both signs,
+// up to the fastest the handle can move) and kMotionScanTimes_s, skipping velocities or
+// times the scene's scripts do not read, in that order, up to the first velocity and time
+// that meet a fault. Deterministic; empty for a scene without scripts.
+inline constexpr double kMotionScanVelocities_m_per_s[] = {0.0, 0.01, -0.01, 0.1, -0.1, 0.5, -0.5, 2.0, -2.0};
+inline constexpr double kMotionScanTimes_s[] = {0.0, 0.5, 3.0};
+ScriptFaultLog scan_faults_in_motion(const Scene& scene, const std::vector<double>& x_m);
 
 // "x 12.00 mm, v 0 m/s, t 0 s": a point, for messages.
 std::string describe_point(double x_m, double v_m_per_s, double t_s);

@@ -10,11 +10,16 @@
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/harness/open_loop.hpp"
+#include "engine/harness/option_ranges.hpp"
+#include "engine/harness/pace.hpp"
 #include "engine/harness/validate.hpp"
 #include "engine/load/environment.hpp"
 
 namespace hapscene {
 namespace {
+
+// The step of the scan for script faults in motion (scan_faults_in_motion).
+constexpr double kMotionScanStep_m = 1e-4;
 
 // A spec, parsed and checked before anything runs.
 struct ForceExpectation {
@@ -33,6 +38,7 @@ struct ScenarioExpectation {
 struct Spec {
   std::string environment_path;
   HarnessOptions options;
+  std::string start_pointer;  // "/options/start" when the spec sets it
   std::vector<ForceExpectation> forces;
   std::optional<std::pair<double, double>> zero_outside_m;
   std::optional<double> never_exceeds_N;
@@ -40,15 +46,26 @@ struct Spec {
   std::vector<ScenarioExpectation> scenarios;
 };
 
+// A quantity from the spec, refused (with the spec file and JSON pointer) outside the
+// range the command line accepts for the same value; `fallback` when absent.
+double quantity_in(ObjectReader& r, std::string_view key, const ValueRange& range, std::optional<double> fallback) {
+  const double value = fallback ? r.quantity_or(key, range.quantity, *fallback) : r.quantity(key, range.quantity);
+  if (r.has(key)) {
+    const std::string problem = range_problem(range, value);
+    if (!problem.empty()) r.fail(key, problem);
+  }
+  return value;
+}
+
 HarnessOptions parse_options(ObjectReader& r) {
   HarnessOptions o;
-  o.hand_stiffness_N_per_m = r.quantity_or("hand_stiffness", Quantity::stiffness_N_per_m, o.hand_stiffness_N_per_m, Bound::positive);
-  o.hand_damping_N_s_per_m = r.quantity_or("hand_damping", Quantity::damping_N_s_per_m, o.hand_damping_N_s_per_m, Bound::non_negative);
-  o.hand_mass_kg = r.quantity_or("hand_mass", Quantity::mass_kg, o.hand_mass_kg, Bound::non_negative);
-  o.noise_counts = r.quantity_or("noise", Quantity::dimensionless, o.noise_counts, Bound::non_negative);
+  o.hand_stiffness_N_per_m = quantity_in(r, "hand_stiffness", value_range::hand_stiffness, o.hand_stiffness_N_per_m);
+  o.hand_damping_N_s_per_m = quantity_in(r, "hand_damping", value_range::hand_damping, o.hand_damping_N_s_per_m);
+  o.hand_mass_kg = quantity_in(r, "hand_mass", value_range::hand_mass, o.hand_mass_kg);
+  o.noise_counts = quantity_in(r, "noise", value_range::noise, o.noise_counts);
   if (r.has("seed")) o.seed = static_cast<std::uint64_t>(r.integer("seed", 0, 1LL << 53));
   else r.get("seed");
-  o.free_start_m = r.quantity_or("start", Quantity::length_m, o.free_start_m);
+  o.free_start_m = quantity_in(r, "start", value_range::free_start, o.free_start_m);
   r.finish();
   return o;
 }
@@ -109,6 +126,7 @@ Spec parse_spec(const std::string& path) {
   if (const nlohmann::json* options = r.get("options")) {
     ObjectReader o(*options, r.pointer_to("options"), path);
     spec.options = parse_options(o);
+    if (o.has("start")) spec.start_pointer = o.pointer_to("start");
   }
   if (const nlohmann::json* forces = r.get("forces")) {
     if (!forces->is_array()) r.fail("forces", "expected an array, got " + json_type_name(*forces));
@@ -116,8 +134,8 @@ Spec parse_spec(const std::string& path) {
       ObjectReader f((*forces)[i], json_pointer_append(r.pointer_to("forces"), i), path);
       ForceExpectation e;
       e.pointer = f.pointer();
-      e.x_m = f.quantity("x", Quantity::length_m);
-      e.v_m_per_s = f.quantity_or("v", Quantity::velocity_m_per_s, 0.0);
+      e.x_m = quantity_in(f, "x", value_range::probe_position, std::nullopt);
+      e.v_m_per_s = quantity_in(f, "v", value_range::probe_velocity, 0.0);
       e.force_N = f.quantity("force", Quantity::force_N);
       e.tolerance_N = f.quantity_or("tolerance", Quantity::force_N, 1e-6, Bound::non_negative);
       f.finish();
@@ -165,11 +183,26 @@ SpecResult run_test_spec(const std::string& spec_path) {
     throw InputError(referrer + error.what());
   }
   const Scene& scene = *loaded;
+  // The free scenario's start: where this environment's device can start counting.
+  const bool needs_runs = spec.never_exceeds_N || spec.passes_validate || !spec.scenarios.empty();
+  if (!spec.start_pointer.empty() || needs_runs) {
+    const std::string problem = free_start_problem(scene, spec.options);
+    if (!problem.empty() && !spec.start_pointer.empty()) {
+      throw InputError(located_message(spec_path, spec.start_pointer, problem));
+    }
+    if (!problem.empty()) throw InputError(referrer + scene.source_path + ": the free scenario's default start: " + problem);
+  }
   OpenLoop open_loop(scene);
   const auto add = [&](std::string what, bool pass, std::string message) {
     result.outcomes.push_back({std::move(what), pass, std::move(message)});
     result.pass = result.pass && pass;
   };
+
+  // Scripts too slow for the loop: nothing else is evaluated (it would take hours).
+  if (const std::optional<CheckResult> pace = check_script_pace(scene)) {
+    add("/environment", false, pace->detail);
+    return result;
+  }
 
   // Forces at given positions and velocities.
   for (const ForceExpectation& e : spec.forces) {
@@ -219,16 +252,35 @@ SpecResult run_test_spec(const std::string& spec_path) {
   add_faults(open_loop.faults());
 
   // Everything that needs closed-loop runs: one validation of all scenarios.
-  const bool needs_runs = spec.never_exceeds_N || spec.passes_validate || !spec.scenarios.empty();
+  // Last, the faults met in motion or after some time, which the scan at rest misses
+  // (every kMotionScanStep_m of the workspace).
+  const auto add_motion_faults = [&] {
+    if (scene.script_count == 0) return;
+    std::vector<double> grid_m;
+    const double span_m = scene.safety.workspace_max_m - scene.safety.workspace_min_m;
+    const auto steps = static_cast<std::size_t>(std::floor(span_m / kMotionScanStep_m + 1e-9));
+    for (std::size_t i = 0; i <= steps; ++i) {
+      grid_m.push_back(scene.safety.workspace_min_m + static_cast<double>(i) * kMotionScanStep_m);
+    }
+    add_faults(scan_faults_in_motion(scene, grid_m));
+  };
   if (!needs_runs) {
     if (scene.script_count > 0) add_faults(probe_force_field(scene, scene.validate.stiff_threshold_N_per_m).faults);
+    add_motion_faults();
     return result;
   }
-  const ValidationReport report = validate_scene(scene, {}, spec.options);
+  std::optional<ValidationReport> validated;
+  try {
+    validated.emplace(validate_scene(scene, {}, spec.options));
+  } catch (const InputError& error) {
+    throw InputError(referrer + error.what());
+  }
+  const ValidationReport& report = *validated;
   add_faults(report.field.faults);
   for (const ScenarioResult& s : report.scenarios) {
     for (const auto& f : s.metrics.script_faults) add_fault(f.message, f.text() + " in the " + s.scenario.name + " run");
   }
+  add_motion_faults();
 
   if (spec.never_exceeds_N) {
     double largest_N = 0.0;

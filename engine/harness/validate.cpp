@@ -1,13 +1,36 @@
 #include "engine/harness/validate.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
+#include "engine/base/errors.hpp"
 #include "engine/devices/kinematics.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
+#include "engine/harness/pace.hpp"
 #include "engine/run/runner.hpp"
 
 namespace hapscene {
+namespace {
+
+// Records every tick and watches the CPU time of the ticks: a scene whose ticks take
+// longer than the period is stopped (the run's stop flag) rather than simulated for hours.
+class PacedRecorder final : public TickObserver {
+ public:
+  PacedRecorder(Recorder* recorder, PaceWatch* pace, std::atomic<bool>* stop)
+      : recorder_(recorder), pace_(pace), stop_(stop) {}
+  void on_tick(const TickState& s) noexcept override {
+    recorder_->on_tick(s);
+    if (!pace_->tick()) stop_->store(true, std::memory_order_relaxed);
+  }
+
+ private:
+  Recorder* recorder_;
+  PaceWatch* pace_;
+  std::atomic<bool>* stop_;
+};
+
+}  // namespace
 
 PassivityBound passivity_bound(const DeviceProfile& device, double period_s) {
   const double sampled_N_per_m = 2.0 * device.plant.viscous_N_s_per_m / period_s;
@@ -15,6 +38,16 @@ PassivityBound passivity_bound(const DeviceProfile& device, double period_s) {
   const double quantized_N_per_m = 2.0 * device.plant.coulomb_N / count_m;
   if (quantized_N_per_m < sampled_N_per_m) return {quantized_N_per_m, "2fc/D"};
   return {sampled_N_per_m, "2b/T"};
+}
+
+std::string free_start_problem(const Scene& scene, const HarnessOptions& options) {
+  const Scenario free = build_scenario(ScenarioKind::free, scene, ForceField{}, options);
+  try {
+    const SimulatedHapkit device(scene.device, free.simulation);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "";
 }
 
 ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const Scenario& scenario,
@@ -31,13 +64,20 @@ ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const S
   // Run in simulated time, recording every tick into memory reserved up front.
   const auto ticks = static_cast<std::size_t>(std::llround(scenario.duration_s * scene.rate_hz));
   Recorder recorder(&device, ticks + 1);
-  RunOptions run_options{.duration_s = scenario.duration_s, .pacing = Pacing::simulated_time};
-  const RunSummary summary = run_scene(scene, device, run_options, &recorder);
+  PaceWatch pace(scene.period_s);
+  std::atomic<bool> stop{false};
+  PacedRecorder observer(&recorder, &pace, &stop);
+  RunOptions run_options{.duration_s = scenario.duration_s, .pacing = Pacing::simulated_time, .stop_requested = &stop};
+  const RunSummary summary = run_scene(scene, device, run_options, &observer);
 
-  // Measure and judge.
+  // Measure and judge (a run stopped for its pace is judged on that alone).
   result.records = recorder.take();
   result.metrics = measure_run(scene, field, result.records, device.x_m(), summary, scenario.watch_from_s);
-  result.checks = judge_scenario(scene, scenario, field, result.metrics);
+  if (pace.too_slow()) {
+    result.checks = {pace.check(scene)};
+  } else {
+    result.checks = judge_scenario(scene, scenario, field, result.metrics);
+  }
   result.pass = std::all_of(result.checks.begin(), result.checks.end(),
                             [](const CheckResult& c) { return c.pass; });
   return result;
@@ -53,6 +93,13 @@ ValidationReport validate_scene(const Scene& scene, const std::vector<ScenarioKi
   report.passivity_bound_N_per_m = bound.N_per_m;
   report.passivity_bound_name = bound.name;
   report.options = options;
+  // Scripts too slow for the loop: nothing else is run (it would take hours).
+  if (const std::optional<CheckResult> pace = check_script_pace(scene)) {
+    report.load_warnings = scene.load_warnings;
+    report.scene_checks.push_back(*pace);
+    report.pass = false;
+    return report;
+  }
   report.field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);
   for (const StiffRegion& region : report.field.regions) {
     report.stiffest_region_N_per_m = std::max(report.stiffest_region_N_per_m, region.stiffness_N_per_m);

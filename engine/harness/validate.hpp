@@ -32,7 +32,8 @@ struct ValidationReport {
   std::vector<ScenarioResult> scenarios;
   // Checks of the scene as a whole, listed only when they fail: "effects" (an effect that
   // can never act inside the workspace, see Scene::load_warnings) and "script" (a script
-  // fault met by the open-loop force-field scan).
+  // fault met by the open-loop force-field scan), and "pace" (scripts too slow for the
+  // loop: see pace.hpp; then nothing else is run and `scenarios` is empty).
   std::vector<CheckResult> scene_checks;
   std::vector<std::string> load_warnings;  // the scene's, for the JSON report
   bool pass{true};
@@ -45,6 +46,10 @@ struct PassivityBound {
   const char* name{};
 };
 PassivityBound passivity_bound(const DeviceProfile& device, double period_s);
+
+// Empty when the free scenario can start at options.free_start_m on the scene's device,
+// else why not (outside the sensor's home period, where the board starts counting).
+std::string free_start_problem(const Scene& scene, const HarnessOptions& options);
 
 // Runs one scenario (deterministic: the same inputs give bit-identical records).
 ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const Scenario& scenario,

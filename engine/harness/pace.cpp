@@ -1,0 +1,86 @@
+#include "engine/harness/pace.hpp"
+
+#include <ctime>
+
+#include "engine/base/format.hpp"
+#include "engine/scene/step.hpp"
+#include "engine/scene/tick_state.hpp"
+
+namespace hapscene {
+namespace {
+
+// "too slow for the 1000 Hz loop: force() took 48.2 ms of CPU time per call on average
+// over the first 5 calls (the tick period is 1 ms)".
+CheckResult pace_failure(const Scene& scene, const char* what, const char* per, double cpu_s, std::uint64_t count,
+                         const std::string& over) {
+  const double average_s = cpu_s / static_cast<double>(count);
+  CheckResult check;
+  check.name = "pace";
+  check.value = average_s;
+  check.threshold = scene.period_s;
+  check.unit = "s";
+  check.pass = false;
+  check.detail = printf_string("too slow for the %g Hz loop: %s took %.3g ms of CPU time per %s on average over %s "
+                               "(the tick period is %g ms)",
+                               scene.rate_hz, what, average_s * 1e3, per, over.c_str(), scene.period_s * 1e3);
+  return check;
+}
+
+}  // namespace
+
+double thread_cpu_time_s() noexcept {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+std::optional<CheckResult> check_script_pace(const Scene& scene) {
+  if (scene.script_count == 0) return std::nullopt;
+  ScriptList scripts = make_script_instances(scene);
+  const double allowed_s = static_cast<double>(kPaceWindowCalls) * scene.period_s;
+  const double span_m = scene.safety.workspace_max_m - scene.safety.workspace_min_m;
+  EffectInput input;
+  input.dt_s = scene.period_s;
+  double cpu_s = 0.0;
+  for (std::uint64_t k = 0; k < kPaceWindowCalls; ++k) {
+    input.x_m = scene.safety.workspace_min_m + span_m * (static_cast<double>(k) + 0.5) / kPaceWindowCalls;
+    input.t_s = static_cast<double>(k) * scene.period_s;
+    const double start_s = thread_cpu_time_s();
+    sum_effects_N(scene, input, scripts);
+    cpu_s += thread_cpu_time_s() - start_s;
+    if (cpu_s > allowed_s) {
+      return pace_failure(scene, "force()", "call", cpu_s, k + 1,
+                          printf_string("the first %llu calls", static_cast<unsigned long long>(k + 1)));
+    }
+  }
+  return std::nullopt;
+}
+
+bool PaceWatch::tick() noexcept {
+  if (too_slow_) return false;
+  if (window_start_s_ < 0.0) window_start_s_ = thread_cpu_time_s();
+  ++ticks_;
+  ++window_ticks_;
+  if (window_ticks_ % kPaceCheckEvery != 0 && window_ticks_ != kPaceWindowCalls) return true;
+  const double used_s = thread_cpu_time_s() - window_start_s_;
+  if (used_s > static_cast<double>(kPaceWindowCalls) * period_s_) {
+    too_slow_ = true;
+    measured_s_ = used_s;
+    measured_ticks_ = window_ticks_;
+    measured_from_tick_ = ticks_ - window_ticks_;
+    return false;
+  }
+  if (window_ticks_ == kPaceWindowCalls) {
+    window_ticks_ = 0;
+    window_start_s_ = thread_cpu_time_s();
+  }
+  return true;
+}
+
+CheckResult PaceWatch::check(const Scene& scene) const {
+  return pace_failure(scene, "the run's ticks", "tick", measured_s_, measured_ticks_,
+                      printf_string("the %llu ticks from t = %g s", static_cast<unsigned long long>(measured_ticks_),
+                                    static_cast<double>(measured_from_tick_) * period_s_));
+}
+
+}  // namespace hapscene
