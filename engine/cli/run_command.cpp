@@ -200,15 +200,22 @@ void print_summary(const Scene& scene, const RunSettings& settings, const RunSum
     bands += "  >1ms " + std::to_string(late.count() - below);
     std::printf("  jitter bands     %s\n", bands.c_str());
     std::printf("  scheduling       %s\n", summary.realtime_note.c_str());
-    if (summary.overrun_warnings > 0 || summary.overrun_fault) {
-      std::printf("  overruns         %llu warnings (first at %.3f s), longest streak %u misses\n",
+    if (summary.overrun_warnings > 0 || summary.overrun_fault) {  // (a window fault may come without a warning)
+      std::printf("  overruns         %llu warnings (first at %.3f s), longest streak %u misses, "
+                  "at most %u misses in %u deadlines\n",
                   static_cast<unsigned long long>(summary.overrun_warnings),
-                  summary.first_overrun_warning_s, summary.longest_miss_streak);
+                  summary.first_overrun_warning_s, summary.longest_miss_streak, summary.most_misses_in_window,
+                  settings.options.overrun_window_deadlines);
     }
-    if (summary.overrun_fault) {
+    if (summary.overrun_fault_kind == OverrunFault::streak) {
       std::printf("  FAULT            sustained overrun at %.3f s (%u deadline misses in a row): "
                   "zero force commanded, run stopped\n",
                   summary.overrun_fault_s, settings.options.overrun_fault_ticks);
+    } else if (summary.overrun_fault_kind == OverrunFault::window) {
+      std::printf("  FAULT            frequent overruns at %.3f s (%u deadline misses within the last %u "
+                  "deadlines, more than %u): zero force commanded, run stopped\n",
+                  summary.overrun_fault_s, summary.most_misses_in_window,
+                  settings.options.overrun_window_deadlines, settings.options.overrun_window_misses);
     }
   }
   std::fflush(stdout);
