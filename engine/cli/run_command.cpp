@@ -204,15 +204,22 @@ void print_summary(const Scene& scene, const RunSettings& settings, const RunSum
     bands += "  >1ms " + std::to_string(late.count() - below);
     print_out("  jitter bands     %s\n", bands.c_str());
     print_out("  scheduling       %s\n", summary.realtime_note.c_str());
-    if (summary.overrun_warnings > 0 || summary.overrun_fault) {
-      print_out("  overruns         %llu warnings (first at %.3f s), longest streak %u misses\n",
-                static_cast<unsigned long long>(summary.overrun_warnings),
-                summary.first_overrun_warning_s, summary.longest_miss_streak);
+    if (summary.overrun_warnings > 0 || summary.overrun_fault) {  // (a window fault may come without a warning)
+      print_out("  overruns         %llu warnings (first at %.3f s), longest streak %u misses, "
+                "at most %u misses in %u deadlines\n",
+                  static_cast<unsigned long long>(summary.overrun_warnings),
+                  summary.first_overrun_warning_s, summary.longest_miss_streak, summary.most_misses_in_window,
+                  settings.options.overrun_window_deadlines);
     }
-    if (summary.overrun_fault) {
+    if (summary.overrun_fault_kind == OverrunFault::streak) {
       print_out("  FAULT            sustained overrun at %.3f s (%u deadline misses in a row): "
-                "zero force commanded, run stopped\n",
-                summary.overrun_fault_s, settings.options.overrun_fault_ticks);
+                  "zero force commanded, run stopped\n",
+                  summary.overrun_fault_s, settings.options.overrun_fault_ticks);
+    } else if (summary.overrun_fault_kind == OverrunFault::window) {
+      print_out("  FAULT            frequent overruns at %.3f s (%u deadline misses within the last %u "
+                  "deadlines, more than %u): zero force commanded, run stopped\n",
+                  summary.overrun_fault_s, summary.most_misses_in_window,
+                  settings.options.overrun_window_deadlines, settings.options.overrun_window_misses);
     }
   }
   flush_out();

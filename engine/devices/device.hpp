@@ -48,6 +48,9 @@ class Device {
   // True when the device saw a fault that should fail the run (exit 1); its report()
   // says what.
   virtual bool fault_seen() const noexcept { return false; }
+  // True when the device is gone for good (a simulated board's process died): the loop
+  // commands zero force and the run ends; fault_seen() is true and report() says why.
+  virtual bool lost() const noexcept { return false; }
   // Lines for the run summary (link health, latency, board timing); called outside the
   // loop. Empty for devices with nothing to add.
   virtual std::string report() const { return {}; }

@@ -3,6 +3,7 @@
 #include <sys/prctl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <ctime>
@@ -40,6 +41,38 @@ void wait_until(std::int64_t deadline_ns) noexcept {
   }
 }
 
+// Deadline misses among the last `size` deadlines: one bit per deadline in a fixed ring
+// (1: missed), with a running count. Pushing costs a bit flip; nothing allocates.
+class MissWindow {
+ public:
+  explicit MissWindow(std::uint32_t size) noexcept : size_(std::clamp<std::uint32_t>(size, 1, kMaxOverrunWindow)) {}
+
+  // Records `count` deadlines, all met or all missed (only the last `size` matter).
+  void push(std::uint64_t count, bool missed) noexcept {
+    for (std::uint64_t i = 0; i < std::min<std::uint64_t>(count, size_); ++i) push_one(missed);
+  }
+  std::uint32_t misses() const noexcept { return misses_; }
+
+ private:
+  void push_one(bool missed) noexcept {
+    std::uint64_t& word = bits_[next_ / 64];
+    const std::uint64_t mask = std::uint64_t{1} << (next_ % 64);
+    if ((word & mask) != 0) --misses_;  // the oldest deadline leaves the window
+    if (missed) {
+      word |= mask;
+      ++misses_;
+    } else {
+      word &= ~mask;
+    }
+    next_ = next_ + 1 == size_ ? 0 : next_ + 1;
+  }
+
+  std::uint32_t size_;
+  std::uint32_t next_{};
+  std::uint32_t misses_{};
+  std::array<std::uint64_t, kMaxOverrunWindow / 64> bits_{};
+};
+
 }  // namespace
 
 RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOptions& options,
@@ -59,6 +92,7 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
   const RealtimeGuard realtime(real_time && options.realtime_scheduling);
   summary.realtime_note = realtime.note();
   std::uint32_t miss_streak = 0;
+  MissWindow miss_window(options.overrun_window_deadlines);
 
   if (observer != nullptr) observer->on_start(state);
   const std::int64_t start_ns = monotonic_now_ns();
@@ -92,6 +126,10 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
     summary.max_abs_output_N = std::fmax(summary.max_abs_output_N, std::abs(state.output_N));
     if (observer != nullptr) observer->on_tick(state);
     device.advance(scene.period_s);
+    if (device.lost()) {  // nothing left to drive: zero force below, and stop
+      summary.device_lost = true;
+      break;
+    }
 
     deadline_ns += period_ns;
     if (real_time && monotonic_now_ns() > deadline_ns) {
@@ -109,13 +147,19 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
         ++summary.overrun_warnings;
         if (summary.first_overrun_warning_s < 0.0) summary.first_overrun_warning_s = state.t_s;
       }
-      if (miss_streak >= options.overrun_fault_ticks) {
+      // Frequent overruns: too many misses within the sliding window of deadlines.
+      miss_window.push(static_cast<std::uint64_t>(missed), /*missed=*/true);
+      summary.most_misses_in_window = std::max(summary.most_misses_in_window, miss_window.misses());
+      const bool streak_fault = miss_streak >= options.overrun_fault_ticks;
+      if (streak_fault || miss_window.misses() > options.overrun_window_misses) {
         summary.overrun_fault = true;
+        summary.overrun_fault_kind = streak_fault ? OverrunFault::streak : OverrunFault::window;
         summary.overrun_fault_s = state.t_s;
         break;
       }
     } else {
       miss_streak = 0;
+      if (real_time) miss_window.push(1, /*missed=*/false);
     }
   }
 

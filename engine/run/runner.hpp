@@ -37,6 +37,24 @@ struct RunOptions {
   // the run ends.
   std::uint32_t overrun_warn_ticks{3};
   std::uint32_t overrun_fault_ticks{10};
+  // Frequent overruns: more than overrun_window_misses deadline misses among the last
+  // overrun_window_deadlines deadlines (a sliding window; at most kMaxOverrunWindow) is a
+  // fault too. Periodic slow ticks never make a streak of 10, yet leave the device
+  // running at a fraction of its rate. 100 of 1000: a loaded machine without real-time
+  // scheduling misses far fewer (README "The loop" gives the measurement).
+  std::uint32_t overrun_window_deadlines{1000};
+  std::uint32_t overrun_window_misses{100};
+};
+
+// The longest sliding window of deadlines the runner can judge (a fixed bit ring: no
+// allocation in the loop).
+inline constexpr std::uint32_t kMaxOverrunWindow = 4096;
+
+// Why the loop stopped on overruns.
+enum class OverrunFault : std::uint8_t {
+  none,
+  streak,  // overrun_fault_ticks deadline misses in a row
+  window,  // more than overrun_window_misses misses within overrun_window_deadlines
 };
 
 // What happened to one script effect during a run.
@@ -68,8 +86,11 @@ struct RunSummary {
   std::uint32_t longest_miss_streak{};  // most deadline misses in a row
   std::uint64_t overrun_warnings{};     // times a streak reached overrun_warn_ticks
   double first_overrun_warning_s{-1.0}; // device time of the first warning (-1: none)
-  bool overrun_fault{};                 // the run ended on sustained overruns
+  bool overrun_fault{};                 // the run ended on sustained or frequent overruns
+  OverrunFault overrun_fault_kind{OverrunFault::none};  // which criterion ended it
   double overrun_fault_s{};             // device time of the fault
+  std::uint32_t most_misses_in_window{};
+  bool device_lost{};                   // the run ended because the device was lost (Device::lost)  // most misses within any overrun window seen
   // The safety limits at the start and at the end of the run (a hot reload may tighten
   // them, never loosen them): what the summary reports as in force.
   SafetyConfig limits_at_start;

@@ -22,6 +22,7 @@ HilHapkit::HilHapkit(const DeviceProfile& profile, const HilConfig& config)
     link_.send(MotorCommand{}, now_ns());
     substep(h_s, /*move_plant=*/false);
   }
+  if (board_.lost()) throw std::runtime_error("--device hil: " + board_.failure() + " during the handshake");
   if (link_.state() != LinkState::running) {
     throw std::runtime_error("--device hil: the simulated board did not complete the handshake within " +
                              printf_string("%g", config.handshake_timeout_s) + " s: " + handshake_failure(link_) + " (" +
@@ -64,7 +65,11 @@ void HilHapkit::substep(double h_s, bool move_plant) noexcept {
 }
 
 std::string HilHapkit::report() const {
-  return board_report(link_, static_cast<std::int64_t>(start_cycle_ * 125 / 2));
+  std::string lines = board_report(link_, static_cast<std::int64_t>(start_cycle_ * 125 / 2));
+  if (board_.lost()) {
+    lines += "  FAULT            " + board_.failure() + ": zero force commanded, run stopped\n";
+  }
+  return lines;
 }
 
 }  // namespace hapscene

@@ -42,7 +42,8 @@ class HilHapkit final : public Device {
   void advance(double dt_s) noexcept override;
   bool take_restart() noexcept override { return link_.take_restart(); }
   PositionStatus position_status() const noexcept override { return link_.position_status(); }
-  bool fault_seen() const noexcept override { return link_.fault_seen(); }
+  bool fault_seen() const noexcept override { return link_.fault_seen() || board_.lost(); }
+  bool lost() const noexcept override { return board_.lost(); }
   std::string report() const override;
 
   // The plant and the board pins, for tests.
@@ -54,6 +55,7 @@ class HilHapkit final : public Device {
   const BoardLink& link() const noexcept { return link_; }
   BoardLink& mutable_link() noexcept { return link_; }
   Wire& wire() noexcept { return wire_; }
+  const SimulatedBoard& board() const noexcept { return board_; }
   // Pulls the board's reset pin.
   void reset_board() noexcept { board_.reset(); }
 

@@ -1,264 +1,339 @@
 #include "engine/devices/hil/simulated_board.hpp"
 
-#include <cmath>
-#include <cstdarg>
-#include <cstring>
-#include <filesystem>
-
+#include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/uio.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 #include "engine/devices/hil/firmware_image.hpp"
 
-extern "C" {
-#include <avr_adc.h>
-#include <avr_ioport.h>
-#include <avr_uart.h>
-#include <sim_avr.h>
-#include <sim_elf.h>
-}
+extern char** environ;
 
 namespace hapscene {
 namespace {
 
-// Register addresses in the data space of the ATmega328P (I/O address + 0x20).
-constexpr std::uint16_t kPortB = 0x25;
-constexpr std::uint16_t kDdrD = 0x2A;
-constexpr std::uint16_t kPortD = 0x2B;
-constexpr std::uint16_t kTccr0A = 0x44;
-constexpr std::uint16_t kOcr0B = 0x48;
-constexpr std::uint8_t kCom0B1 = 1u << 5;
-constexpr std::uint8_t kPin5 = 1u << 5;
+using namespace board_protocol;
 
-constexpr std::uint32_t kVref_mV = 5000;
+// The board process loads and trial-boots within 10 s of its own clock (then it ends
+// itself with SIGALRM); this bounds the wait for its first reply from this side.
+constexpr int kStartTimeout_ms = 15'000;
 
-// simavr's own messages would print from inside the tick: keep only errors, once.
-void quiet_logger(avr_t* /*avr*/, const int level, const char* format, va_list args) {
-  if (level <= LOG_ERROR) std::vfprintf(stderr, format, args);
+// hapscene-board next to the running executable (an installed or built hapscene), or
+// where this build put it (the tests run from another folder).
+std::string board_executable() {
+  std::error_code error;
+  const auto self = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const auto beside = self.parent_path() / "hapscene-board";
+    if (access(beside.c_str(), X_OK) == 0) return beside.string();
+  }
+#ifdef HAPSCENE_BOARD_EXE
+  if (access(HAPSCENE_BOARD_EXE, X_OK) == 0) return HAPSCENE_BOARD_EXE;
+#endif
+  throw std::runtime_error("--device hil: the board simulator hapscene-board was not found next to " +
+                           (error ? std::string("hapscene") : self.string()) + " (build it with cmake)");
 }
 
-// The simulated board never waits in real time.
-void no_sleep(avr_t* /*avr*/, avr_cycle_count_t /*how_long*/) {}
+// Non-blocking reads tried before sleeping in poll (about 100 us of this VM's time).
+constexpr int kSpinReads = 200;
 
-// Loads and boots `firmware_elf` in a child process first, so that anything the checks
-// missed and simavr cannot take (a crash, an abort, a hang) ends the child, not hapscene.
-// What simavr printed there is kept for the message.
-void trial_boot(const std::string& firmware_elf) {
-  constexpr std::uint64_t kTrialCycles = 16'000'000 / 100;  // 10 ms of the board's life
-  constexpr unsigned kTrialSeconds = 10;                     // wall-clock bound of the child
-  int channel[2];
-  if (pipe(channel) != 0) return;  // no isolation available: the checks must do
-  const pid_t child = fork();
-  if (child < 0) {
-    close(channel[0]);
-    close(channel[1]);
-    return;
-  }
-  if (child == 0) {
-    close(channel[0]);
-    dup2(channel[1], STDERR_FILENO);
-    alarm(kTrialSeconds);
-    avr_global_logger_set(quiet_logger);
-    static elf_firmware_t firmware;
-    std::memset(&firmware, 0, sizeof firmware);
-    if (elf_read_firmware(firmware_elf.c_str(), &firmware) != 0) _exit(3);
-    avr_t* avr = avr_make_mcu_by_name("atmega328p");
-    if (avr == nullptr) _exit(4);
-    avr_init(avr);
-    avr->frequency = SimulatedBoard::kClock_Hz;
-    avr->log = LOG_ERROR;
-    avr->sleep = no_sleep;
-    avr_load_firmware(avr, &firmware);
-    while (avr->cycle < kTrialCycles) {
-      const int state = avr_run(avr);
-      if (state == cpu_Done || state == cpu_Crashed) break;
+// Reads exactly `size` bytes before `deadline_ms` (monotonic); false on a timeout, an end
+// of file or an error (*timed_out says which).
+bool read_exactly(int fd, void* data, std::size_t size, int timeout_ms, bool* timed_out) noexcept {
+  auto* at = static_cast<std::uint8_t*>(data);
+  timespec start{};
+  clock_gettime(CLOCK_MONOTONIC, &start);
+  // The board answers a substep in tens of microseconds: wait for it spinning first,
+  // which spares two context switches per round trip when it is running on the other core.
+  for (int spin = 0; spin < kSpinReads && size > 0; ++spin) {
+    const ssize_t n = recv(fd, at, size, MSG_DONTWAIT);
+    if (n == 0) return false;
+    if (n > 0) {
+      at += n;
+      size -= static_cast<std::size_t>(n);
     }
-    _exit(0);
   }
-  close(channel[1]);
-  std::string said;
-  char buffer[512];
-  for (;;) {
-    const ssize_t n = read(channel[0], buffer, sizeof buffer);
-    if (n <= 0) break;
-    if (said.size() < 2000) said.append(buffer, static_cast<std::size_t>(n));
+  while (size > 0) {
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    const long elapsed_ms = (now.tv_sec - start.tv_sec) * 1000 + (now.tv_nsec - start.tv_nsec) / 1'000'000;
+    if (elapsed_ms >= timeout_ms) {
+      *timed_out = true;
+      return false;
+    }
+    pollfd waiting{fd, POLLIN, 0};
+    const int ready = poll(&waiting, 1, static_cast<int>(timeout_ms - elapsed_ms));
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready == 0) {
+      *timed_out = true;
+      return false;
+    }
+    if (ready < 0) return false;
+    const ssize_t n = read(fd, at, size);
+    if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+    if (n <= 0) return false;
+    at += n;
+    size -= static_cast<std::size_t>(n);
   }
-  close(channel[0]);
-  int status = 0;
-  while (waitpid(child, &status, 0) < 0) {
-  }
-  while (!said.empty() && (said.back() == '\n' || said.back() == '\r')) said.pop_back();
-  const std::string detail = said.empty() ? "" : " (simavr said: " + said + ")";
-  if (WIFSIGNALED(status)) {
-    const int signal_number = WTERMSIG(status);
-    throw InputError("--device hil:" + firmware_elf + ": not a valid ATmega328P firmware: " +
-                     (signal_number == SIGALRM ? std::string("simavr did not finish loading it")
-                                               : "it crashed simavr while loading (" +
-                                                     std::string(strsignal(signal_number)) + ")") +
-                     detail);
-  }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 3) {
-    throw InputError("--device hil:" + firmware_elf + ": not a readable AVR firmware image" + detail);
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw InputError("--device hil:" + firmware_elf + ": simavr could not load it" + detail);
-  }
+  return true;
 }
 
 }  // namespace
 
-struct SimulatedBoard::Impl {
-  avr_t* avr{};
-  std::unique_ptr<elf_firmware_t> firmware;
-  avr_irq_t* uart_input{};
-  avr_irq_t* adc2{};
-  bool uart_blocked{};
-  // Host -> board bytes waiting for FIFO room; board -> host bytes waiting to be taken.
-  std::array<std::uint8_t, 4096> to_board{};
-  std::size_t to_board_head{}, to_board_count{};
-  std::array<std::uint8_t, 4096> to_host{};
-  std::size_t to_host_head{}, to_host_count{};
-
-  // Pushes queued bytes into the UART until its FIFO says it is full.
-  void pump() noexcept {
-    while (!uart_blocked && to_board_count > 0) {
-      const std::uint8_t byte = to_board[to_board_head];
-      to_board_head = (to_board_head + 1) % to_board.size();
-      --to_board_count;
-      avr_raise_irq(uart_input, byte);
-    }
-  }
-
-  static void on_output(avr_irq_t* /*irq*/, std::uint32_t value, void* param) {
-    auto* self = static_cast<Impl*>(param);
-    if (self->to_host_count == self->to_host.size()) return;  // nobody reads: drop
-    self->to_host[(self->to_host_head + self->to_host_count) % self->to_host.size()] =
-        static_cast<std::uint8_t>(value);
-    ++self->to_host_count;
-  }
-  static void on_xon(avr_irq_t* /*irq*/, std::uint32_t /*value*/, void* param) {
-    auto* self = static_cast<Impl*>(param);
-    self->uart_blocked = false;
-    self->pump();
-  }
-  static void on_xoff(avr_irq_t* /*irq*/, std::uint32_t /*value*/, void* param) {
-    static_cast<Impl*>(param)->uart_blocked = true;
-  }
-};
-
-SimulatedBoard::SimulatedBoard(const std::string& firmware_elf) : impl_(std::make_unique<Impl>()) {
-  // Load the firmware image.
+SimulatedBoard::SimulatedBoard(const std::string& firmware_elf) : firmware_elf_(firmware_elf) {
+  // Check the firmware image before simavr sees it.
   if (!std::filesystem::is_regular_file(firmware_elf)) {
     throw InputError("--device hil: firmware " + firmware_elf + " not found (build it with cmake; "
                      "it needs gcc-avr and avr-libc)");
   }
   check_avr_firmware(firmware_elf);
-  trial_boot(firmware_elf);
-  avr_global_logger_set(quiet_logger);
-  impl_->firmware = std::make_unique<elf_firmware_t>();
-  std::memset(impl_->firmware.get(), 0, sizeof(elf_firmware_t));
-  if (elf_read_firmware(firmware_elf.c_str(), impl_->firmware.get()) != 0) {
-    throw InputError("--device hil: " + firmware_elf + " is not a readable AVR firmware image");
+
+  // Start the board process: the channel on its descriptor 3, its stderr into a pipe.
+  const std::string executable = board_executable();
+  int channel[2];
+  if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, channel) != 0) {
+    throw std::runtime_error(std::string("--device hil: no channel to the board process: ") + std::strerror(errno));
+  }
+  int errors[2];
+  if (pipe2(errors, O_CLOEXEC) != 0) {
+    close(channel[0]);
+    close(channel[1]);
+    throw std::runtime_error(std::string("--device hil: no pipe for the board process: ") + std::strerror(errno));
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, channel[1], kChannelFd);
+  posix_spawn_file_actions_adddup2(&actions, errors[1], STDERR_FILENO);
+  std::string argument = firmware_elf;
+  char* argv[] = {const_cast<char*>(executable.c_str()), argument.data(), nullptr};
+  const int spawned = posix_spawn(&child_, executable.c_str(), &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(channel[1]);
+  close(errors[1]);
+  channel_ = channel[0];
+  stderr_pipe_ = errors[0];
+  if (spawned != 0) {
+    child_ = -1;
+    close(channel_);
+    close(stderr_pipe_);
+    throw std::runtime_error("--device hil: could not start " + executable + ": " + std::strerror(spawned));
   }
 
-  // An ATmega328P at 16 MHz with a 5 V supply and reference.
-  avr_t* avr = avr_make_mcu_by_name("atmega328p");
-  if (avr == nullptr) throw std::runtime_error("simavr has no atmega328p core");
-  impl_->avr = avr;
-  avr_init(avr);
-  avr->frequency = kClock_Hz;
-  avr->vcc = avr->avcc = avr->aref = kVref_mV;
-  avr->log = LOG_ERROR;
-  avr->sleep = no_sleep;
-  avr_load_firmware(avr, impl_->firmware.get());
-  avr->frequency = kClock_Hz;  // the image may carry another one
-
-  // UART0: no console echo, no real-time sleeping while the firmware polls.
-  std::uint32_t flags = 0;
-  avr_ioctl(avr, AVR_IOCTL_UART_GET_FLAGS('0'), &flags);
-  flags &= ~static_cast<std::uint32_t>(AVR_UART_FLAG_POLL_SLEEP | AVR_UART_FLAG_STDIO);
-  avr_ioctl(avr, AVR_IOCTL_UART_SET_FLAGS('0'), &flags);
-  impl_->uart_input = avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
-  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT),
-                          Impl::on_output, impl_.get());
-  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XON),
-                          Impl::on_xon, impl_.get());
-  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XOFF),
-                          Impl::on_xoff, impl_.get());
-
-  // ADC2: the MR sensor.
-  impl_->adc2 = avr_io_getirq(avr, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC2);
+  // Its first reply says the firmware is loaded and booted; anything else is the
+  // firmware's fault (the process checked nothing but what simavr makes of the file).
+  Reply first;
+  bool timed_out = false;
+  if (read_exactly(channel_, &first, sizeof first, kStartTimeout_ms, &timed_out) &&
+      first.byte_count <= to_host_.size() &&
+      read_exactly(channel_, to_host_.data(), first.byte_count, kReplyTimeout_ms, &timed_out)) {
+    to_host_count_ = first.byte_count;
+    cycle_ = first.cycle;
+    motor_duty_ = first.motor_duty;
+    direction_high_ = first.direction_high != 0;
+    halted_ = first.halted != 0;
+    return;
+  }
+  lose(timed_out ? Loss::timed_out : Loss::channel);
+  const std::string text = said();
+  const std::string detail = text.empty() ? "" : " (simavr said: " + text + ")";
+  const std::string prefix = "--device hil:" + firmware_elf + ": ";
+  if (loss_ == Loss::signalled && WTERMSIG(wait_status_) != SIGALRM && WTERMSIG(wait_status_) != SIGKILL) {
+    throw InputError(prefix + "not a valid ATmega328P firmware: it crashed simavr while loading (" +
+                     std::string(strsignal(WTERMSIG(wait_status_))) + ")" + detail);
+  }
+  if (loss_ == Loss::signalled || loss_ == Loss::timed_out) {
+    throw InputError(prefix + "not a valid ATmega328P firmware: simavr did not finish loading it" + detail);
+  }
+  if (loss_ == Loss::exited && WEXITSTATUS(wait_status_) == 3) {
+    throw InputError(prefix + "not a readable AVR firmware image" + detail);
+  }
+  throw InputError(prefix + "simavr could not load it" + detail);
 }
 
 SimulatedBoard::~SimulatedBoard() {
-  if (impl_ && impl_->avr != nullptr) {
-    avr_terminate(impl_->avr);
-    std::free(impl_->avr);
+  // Closing the channel ends the process; wait for it (kill it if it does not end).
+  if (channel_ >= 0) close(channel_);
+  if (child_ > 0 && !lost_) {
+    int status = 0;
+    for (int i = 0; i < 200; ++i) {  // up to 1 s
+      if (waitpid(child_, &status, WNOHANG) == child_) {
+        child_ = -1;
+        break;
+      }
+      usleep(5000);
+    }
+    if (child_ > 0) {
+      kill(child_, SIGKILL);
+      while (waitpid(child_, &status, 0) < 0 && errno == EINTR) {
+      }
+    }
   }
+  if (stderr_pipe_ >= 0) close(stderr_pipe_);
 }
 
 void SimulatedBoard::run_until(std::uint64_t cycle) noexcept {
-  avr_t* avr = impl_->avr;
-  impl_->pump();
-  while (avr->cycle < cycle) {
-    const int state = avr_run(avr);
-    if (state == cpu_Done || state == cpu_Crashed) {
-      avr->cycle = cycle;  // a dead CPU: time passes, nothing runs
-      break;
-    }
-  }
+  if (!exchange(Op::run_until, cycle)) cycle_ = std::max(cycle_, cycle);  // a lost board: time passes
 }
 
-std::uint64_t SimulatedBoard::cycle() const noexcept { return impl_->avr->cycle; }
-
-bool SimulatedBoard::halted() const noexcept {
-  return impl_->avr->state == cpu_Done || impl_->avr->state == cpu_Crashed;
-}
-
-// counts = mV * 1023 / Vref (simavr truncates), so the smallest mV that reaches `counts`.
-void SimulatedBoard::set_sensor_counts(std::int32_t counts) noexcept {
-  const std::int64_t clamped = counts < 0 ? 0 : (counts > 1023 ? 1023 : counts);
-  const std::int64_t mV = (clamped * kVref_mV + 1022) / 1023;
-  avr_raise_irq(impl_->adc2, static_cast<std::uint32_t>(mV));
-}
-
-// OC0B connected (non-inverting fast PWM): high for OCR0B + 1 of 256 counts; otherwise
-// the pin is a plain output at the PORTD5 level.
-double SimulatedBoard::motor_duty() const noexcept {
-  const std::uint8_t* data = impl_->avr->data;
-  if ((data[kDdrD] & kPin5) == 0) return 0.0;  // an input pin drives nothing
-  if (data[kTccr0A] & kCom0B1) return (data[kOcr0B] + 1.0) / 256.0;
-  return (data[kPortD] & kPin5) ? 1.0 : 0.0;
-}
-
-bool SimulatedBoard::direction_high() const noexcept {
-  return (impl_->avr->data[kPortB] & 0x01) != 0;
-}
+void SimulatedBoard::reset() noexcept { exchange(Op::reset, 0); }
 
 bool SimulatedBoard::send_byte(std::uint8_t byte) noexcept {
-  Impl& impl = *impl_;
-  if (impl.to_board_count == impl.to_board.size()) return false;
-  impl.to_board[(impl.to_board_head + impl.to_board_count) % impl.to_board.size()] = byte;
-  ++impl.to_board_count;
+  if (to_board_count_ + to_board_pending_ >= kQueueBytes) return false;
+  to_board_[to_board_count_++] = byte;
   return true;
 }
 
 std::size_t SimulatedBoard::take_bytes(std::uint8_t* out, std::size_t capacity) noexcept {
-  Impl& impl = *impl_;
   std::size_t n = 0;
-  while (n < capacity && impl.to_host_count > 0) {
-    out[n++] = impl.to_host[impl.to_host_head];
-    impl.to_host_head = (impl.to_host_head + 1) % impl.to_host.size();
-    --impl.to_host_count;
+  while (n < capacity && to_host_count_ > 0) {
+    out[n++] = to_host_[to_host_head_];
+    to_host_head_ = (to_host_head_ + 1) % to_host_.size();
+    --to_host_count_;
   }
   return n;
 }
 
-void SimulatedBoard::reset() noexcept {
-  avr_reset(impl_->avr);
-  impl_->uart_blocked = false;
+bool SimulatedBoard::exchange(Op op, std::uint64_t cycle) noexcept {
+  if (lost_) return false;
+  // The request: sensor, host bytes, what to do.
+  Request request;
+  request.op = op;
+  request.byte_count = static_cast<std::uint16_t>(to_board_count_);
+  request.sensor_counts = sensor_counts_;
+  request.cycle = cycle;
+  iovec parts[2] = {{&request, sizeof request}, {to_board_.data(), to_board_count_}};
+  msghdr message{};
+  message.msg_iov = parts;
+  message.msg_iovlen = to_board_count_ > 0 ? 2 : 1;
+  std::size_t unsent = sizeof request + to_board_count_;
+  while (unsent > 0) {
+    const ssize_t n = sendmsg(channel_, &message, MSG_NOSIGNAL);  // no SIGPIPE from a dead process
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      lose(Loss::channel);
+      return false;
+    }
+    unsent -= static_cast<std::size_t>(n);
+    // A partial send: skip what went out.
+    std::size_t skip = static_cast<std::size_t>(n);
+    while (skip > 0 && message.msg_iovlen > 0) {
+      iovec& first = message.msg_iov[0];
+      const std::size_t used = std::min(skip, first.iov_len);
+      first.iov_base = static_cast<std::uint8_t*>(first.iov_base) + used;
+      first.iov_len -= used;
+      skip -= used;
+      if (first.iov_len == 0) {
+        ++message.msg_iov;
+        --message.msg_iovlen;
+      }
+    }
+  }
+  to_board_count_ = 0;
+
+  // The reply: pins, cycle, the board's bytes (kept in order; dropped past a full queue,
+  // as the board's own queue would).
+  Reply reply;
+  bool timed_out = false;
+  if (!read_exactly(channel_, &reply, sizeof reply, kReplyTimeout_ms, &timed_out) ||
+      reply.byte_count > reply_bytes_.size() ||
+      !read_exactly(channel_, reply_bytes_.data(), reply.byte_count, kReplyTimeout_ms, &timed_out)) {
+    lose(timed_out ? Loss::timed_out : Loss::channel);
+    return false;
+  }
+  for (std::size_t i = 0; i < reply.byte_count && to_host_count_ < to_host_.size(); ++i) {
+    to_host_[(to_host_head_ + to_host_count_++) % to_host_.size()] = reply_bytes_[i];
+  }
+  cycle_ = reply.cycle;
+  motor_duty_ = reply.motor_duty;
+  direction_high_ = reply.direction_high != 0;
+  halted_ = reply.halted != 0;
+  to_board_pending_ = reply.to_board_pending;
+  return true;
+}
+
+// The process is gone or useless: make sure it is gone, learn how it ended, and leave
+// the pins at zero.
+void SimulatedBoard::lose(Loss why) noexcept {
+  lost_ = true;
+  lost_at_cycle_ = cycle_;
+  motor_duty_ = 0.0;
+  direction_high_ = false;
+  to_board_count_ = 0;
+  if (child_ <= 0) {
+    loss_ = why;
+    return;
+  }
+  // A process that closed the channel is usually dying: give it a moment to say how.
+  int status = 0;
+  pid_t ended = 0;
+  if (why == Loss::channel) {
+    for (int i = 0; i < 100 && ended == 0; ++i) {  // up to 0.5 s
+      ended = waitpid(child_, &status, WNOHANG);
+      if (ended == 0) usleep(5000);
+    }
+  }
+  if (ended != child_) {
+    kill(child_, SIGKILL);
+    while (waitpid(child_, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (why == Loss::channel) why = Loss::timed_out;  // it broke the channel, then hung
+  } else if (WIFSIGNALED(status)) {
+    why = Loss::signalled;
+  } else {
+    why = Loss::exited;
+  }
+  wait_status_ = status;
+  loss_ = why;
+  child_ = -1;
+}
+
+std::string SimulatedBoard::said() const {
+  if (stderr_pipe_ >= 0) {
+    const int flags = fcntl(stderr_pipe_, F_GETFL);
+    fcntl(stderr_pipe_, F_SETFL, flags | O_NONBLOCK);
+    char buffer[512];
+    for (;;) {
+      const ssize_t n = read(stderr_pipe_, buffer, sizeof buffer);
+      if (n <= 0) break;
+      if (said_.size() < 2000) said_.append(buffer, static_cast<std::size_t>(n));
+    }
+  }
+  std::string text = said_;
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  return text;
+}
+
+std::string SimulatedBoard::failure() const {
+  if (!lost_) return {};
+  std::string how;
+  switch (loss_) {
+    case Loss::signalled:
+      how = "was killed by signal " + std::to_string(WTERMSIG(wait_status_)) + " (" +
+            strsignal(WTERMSIG(wait_status_)) + ")";
+      break;
+    case Loss::exited: how = "exited with status " + std::to_string(WEXITSTATUS(wait_status_)); break;
+    case Loss::timed_out:
+      how = "did not answer within " + printf_string("%g", kReplyTimeout_ms * 1e-3) + " s (killed)";
+      break;
+    case Loss::channel:
+    case Loss::none: how = "broke its channel"; break;
+  }
+  const std::string text = said();
+  return "the simulated board process (hapscene-board on " + firmware_elf_ + ") " + how + " at board time " +
+         printf_string("%.4f", static_cast<double>(lost_at_cycle_) / kClock_Hz) + " s" +
+         (text.empty() ? "" : " (simavr said: " + text + ")");
 }
 
 }  // namespace hapscene

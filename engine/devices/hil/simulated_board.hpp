@@ -1,27 +1,38 @@
 #pragma once
-// The Hapkit board on simavr: the real firmware .elf running on a simulated ATmega328P
-// at 16 MHz, with the board's wiring exposed to the host side of the simulation:
+// The Hapkit board on simavr, as hapscene sees it: the real firmware .elf running on a
+// simulated ATmega328P at 16 MHz in a process of its own (hapscene-board, started with
+// posix_spawn), with the board's wiring exposed to the host side of the simulation:
 //   UART0     bytes in (paced by simavr at the firmware's baud rate) and out
 //   ADC2 (A2) the MR sensor voltage, set in counts of the 10-bit ADC
 //   OC0B (D5) the motor PWM duty, read from the timer and port registers
 //   PB0 (D8)  the motor direction pin
-// Time only moves in run_until(); nothing sleeps, so it runs as fast as the host can.
-// simavr's headers stay inside simulated_board.cpp.
+// Time only moves in run_until() and reset(), each one round trip to the board process
+// carrying the sensor reading and the host's bytes, and bringing back the pins and the
+// board's bytes; the other calls use what the last round trip brought. Nothing sleeps.
+//
+// A board process that crashes, aborts, hangs (no reply within kReplyTimeout_ms) or
+// breaks the channel is lost: it is killed, its pins read zero (no motor force), time
+// still passes and nothing runs; lost() says so and failure() says why.
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <string>
+
+#include <sys/types.h>
+
+#include "engine/devices/hil/board_protocol.hpp"
 
 namespace hapscene {
 
 class SimulatedBoard {
  public:
   static constexpr std::uint32_t kClock_Hz = 16'000'000;
+  static constexpr int kReplyTimeout_ms = 5000;  // wall clock, per round trip
 
-  // Loads and boots the firmware. Throws InputError for a missing or unreadable .elf, one
-  // that fails check_avr_firmware(), or one that simavr cannot load in a trial boot in a
-  // child process (a crash or an abort there is this error, not a crash of hapscene).
+  // Checks the firmware and starts the board process on it. Throws InputError for a
+  // missing or unreadable .elf, one that fails check_avr_firmware(), or one that simavr
+  // cannot load or crashes on in the process's 10 ms trial boot; std::runtime_error when
+  // the board process cannot be started.
   explicit SimulatedBoard(const std::string& firmware_elf);
   ~SimulatedBoard();
   SimulatedBoard(const SimulatedBoard&) = delete;
@@ -29,15 +40,16 @@ class SimulatedBoard {
 
   // Runs the CPU (timers, interrupts, UART) until `cycle`.
   void run_until(std::uint64_t cycle) noexcept;
-  std::uint64_t cycle() const noexcept;
-  // Whether the core stopped for good (crashed or ended); a reset revives it.
-  bool halted() const noexcept;
+  std::uint64_t cycle() const noexcept { return cycle_; }
+  // Whether the core stopped for good (crashed or ended, or the process is lost); a reset
+  // revives a stopped core, not a lost process.
+  bool halted() const noexcept { return halted_ || lost_; }
 
   // The MR sensor output as the ADC will convert it (clamped to 0..1023 counts).
-  void set_sensor_counts(std::int32_t counts) noexcept;
+  void set_sensor_counts(std::int32_t counts) noexcept { sensor_counts_ = counts; }
   // The motor output now: duty in [0, 1] from OC0B or the plain pin, and the direction.
-  double motor_duty() const noexcept;
-  bool direction_high() const noexcept;
+  double motor_duty() const noexcept { return motor_duty_; }
+  bool direction_high() const noexcept { return direction_high_; }
 
   // Bytes for the board's UART receiver, delivered as its 64-byte FIFO has room.
   // Returns false (byte dropped) when the host-side queue is full.
@@ -48,9 +60,46 @@ class SimulatedBoard {
   // The external reset pin: the CPU restarts from its reset vector.
   void reset() noexcept;
 
+  // The board process, and whether and why it was lost (failure() is for after the run:
+  // it builds the message).
+  pid_t process_id() const noexcept { return child_; }
+  bool lost() const noexcept { return lost_; }
+  std::string failure() const;
+
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  enum class Loss : std::uint8_t { none, exited, signalled, timed_out, channel };
+
+  // One round trip; false (and the board lost) when the process does not answer.
+  bool exchange(board_protocol::Op op, std::uint64_t cycle) noexcept;
+  void lose(Loss why) noexcept;
+  std::string said() const;  // what the process wrote on its stderr (simavr's errors)
+  mutable std::string said_;
+
+  pid_t child_{-1};
+  int channel_{-1};
+  int stderr_pipe_{-1};
+  std::string firmware_elf_;
+
+  // The state the last reply brought.
+  std::uint64_t cycle_{};
+  double motor_duty_{};
+  bool direction_high_{};
+  bool halted_{};
+  std::size_t to_board_pending_{};  // host bytes queued in the process
+  std::int32_t sensor_counts_{board_protocol::kNoSensor};
+
+  // Host -> board bytes for the next request; board -> host bytes not yet taken.
+  std::array<std::uint8_t, board_protocol::kQueueBytes> to_board_{};
+  std::size_t to_board_count_{};
+  std::array<std::uint8_t, board_protocol::kQueueBytes> to_host_{};
+  std::size_t to_host_head_{}, to_host_count_{};
+  std::array<std::uint8_t, board_protocol::kQueueBytes> reply_bytes_{};
+
+  // Why the process was lost.
+  Loss loss_{Loss::none};
+  bool lost_{};
+  int wait_status_{};
+  std::uint64_t lost_at_cycle_{};
 };
 
 }  // namespace hapscene

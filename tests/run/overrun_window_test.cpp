@@ -1,0 +1,103 @@
+// The runner's second overrun criterion: too many deadline misses within a sliding window
+// of deadlines, for slow ticks that come periodically and never make a streak.
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+
+#include "engine/devices/simulated_hapkit.hpp"
+#include "engine/run/runner.hpp"
+#include "tests/support.hpp"
+
+using namespace hapscene;
+using hapscene::test::scene_from;
+
+namespace {
+
+// A simulated Hapkit whose advance() burns real time on chosen ticks, so that the
+// real-time loop overruns its deadline there.
+class PeriodicallySlowDevice final : public Device {
+ public:
+  PeriodicallySlowDevice(const Scene& scene, std::function<bool(std::uint64_t)> slow_tick,
+                         std::chrono::microseconds slow_for)
+      : inner_(scene.device, SimulationConfig{}), slow_tick_(std::move(slow_tick)), slow_for_(slow_for) {}
+  std::int32_t read_counts() noexcept override { return inner_.read_counts(); }
+  void write(const MotorCommand& command) noexcept override {
+    last = command;
+    inner_.write(command);
+  }
+  void advance(double dt_s) noexcept override {
+    if (slow_tick_(ticks_++)) {
+      const auto until = std::chrono::steady_clock::now() + slow_for_;
+      while (std::chrono::steady_clock::now() < until) {
+      }
+    }
+    inner_.advance(dt_s);
+  }
+  MotorCommand last{};
+
+ private:
+  SimulatedHapkit inner_;
+  std::function<bool(std::uint64_t)> slow_tick_;
+  std::chrono::microseconds slow_for_;
+  std::uint64_t ticks_{};
+};
+
+}  // namespace
+
+TEST_CASE("run: every third tick overrunning by two periods is a fault of frequent overruns" *
+          doctest::test_suite("threaded")) {
+  // Each slow tick misses 2 deadlines, then two ticks keep time: never 10 in a row, yet the
+  // device gets 3 commands in 5 periods. Default numbers: > 100 misses in 1000 deadlines.
+  const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 500}]})");
+  PeriodicallySlowDevice device(scene, [](std::uint64_t tick) { return tick % 3 == 2; },
+                                std::chrono::microseconds(2600));
+  const RunOptions options{.duration_s = 2.0, .pacing = Pacing::real_time};
+  const RunSummary summary = run_scene(scene, device, options, nullptr);
+  CHECK(summary.overrun_fault);
+  CHECK(summary.overrun_fault_kind == OverrunFault::window);
+  CHECK(summary.longest_miss_streak < options.overrun_fault_ticks);
+  CHECK(summary.most_misses_in_window > options.overrun_window_misses);
+  CHECK(summary.ticks < 400);  // stopped within about 250 deadlines, not run to 2000 ticks
+  CHECK(summary.overrun_fault_s < 0.4);
+  CHECK(device.last.duty == 0.0);
+}
+
+TEST_CASE("run: misses spread thinner than the window's limit never fault, however many in all" *
+          doctest::test_suite("threaded")) {
+  // One miss every 15 ticks: about 13 in any 200 deadlines (limit 20), 40 in the run (more
+  // than 20): the window slides, old misses leave it.
+  const Scene scene = scene_from(R"({"effects": []})");
+  PeriodicallySlowDevice device(scene, [](std::uint64_t tick) { return tick % 15 == 7; },
+                                std::chrono::microseconds(1500));
+  const RunOptions options{.duration_s = 0.6,
+                           .pacing = Pacing::real_time,
+                           .overrun_window_deadlines = 200,
+                           .overrun_window_misses = 20};
+  const RunSummary summary = run_scene(scene, device, options, nullptr);
+  CHECK_FALSE(summary.overrun_fault);
+  CHECK(summary.overrun_fault_kind == OverrunFault::none);
+  CHECK(summary.deadline_misses > 20);
+  CHECK(summary.most_misses_in_window <= 20);
+  CHECK(summary.ticks > 500);
+}
+
+TEST_CASE("run: a streak still faults as a streak, not as frequent overruns" * doctest::test_suite("threaded")) {
+  const Scene scene = scene_from(R"({"effects": []})");
+  PeriodicallySlowDevice device(scene, [](std::uint64_t tick) { return tick == 20; },
+                                std::chrono::milliseconds(30));
+  const RunOptions options{.duration_s = 0.2, .pacing = Pacing::real_time};
+  const RunSummary summary = run_scene(scene, device, options, nullptr);
+  CHECK(summary.overrun_fault_kind == OverrunFault::streak);
+}
+
+TEST_CASE("run: simulated time never counts overruns") {
+  const Scene scene = scene_from(R"({"effects": []})");
+  PeriodicallySlowDevice device(scene, [](std::uint64_t tick) { return tick % 3 == 2; },
+                                std::chrono::microseconds(2600));
+  const RunOptions options{.duration_s = 0.3, .pacing = Pacing::simulated_time};
+  const RunSummary summary = run_scene(scene, device, options, nullptr);
+  CHECK_FALSE(summary.overrun_fault);
+  CHECK(summary.ticks == 300);
+}
