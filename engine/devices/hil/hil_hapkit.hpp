@@ -31,7 +31,7 @@ struct HilConfig {
   double handshake_timeout_s{0.5};  // simulated time
 };
 
-class HilHapkit final : public Device {
+class HilHapkit final : public Device, public SimulationTruth {
  public:
   // Loads the firmware (InputError when missing) and runs the handshake in simulated
   // time with the handle held still (std::runtime_error when the board never answers).
@@ -45,11 +45,16 @@ class HilHapkit final : public Device {
   bool fault_seen() const noexcept override { return link_.fault_seen() || board_.lost(); }
   bool lost() const noexcept override { return board_.lost(); }
   std::string report() const override;
+  const SimulationTruth* truth() const noexcept override { return this; }
 
-  // The plant and the board pins, for tests.
-  double x_m() const noexcept { return plant_.x_m(); }
+  // The plant's true state (observers: `run --plot`, the recorder).
+  double x_m() const noexcept override { return plant_.x_m(); }
+  double v_m_per_s() const noexcept override { return plant_.v_m_per_s(); }
+  double motor_force_N() const noexcept override { return motor_force_N_; }
+  double hand_force_N() const noexcept override { return plant_.hand_force_N(); }
+
+  // The board pins and the link, for tests.
   double t_s() const noexcept { return plant_.t_s(); }
-  double motor_force_N() const noexcept { return motor_force_N_; }
   double motor_duty() const noexcept { return board_.motor_duty(); }
   std::uint64_t cycle() const noexcept { return board_.cycle(); }
   const BoardLink& link() const noexcept { return link_; }
