@@ -8,11 +8,11 @@
 //
 // Fresh instances re-run each script's top-level code, so an evaluation costs about
 // (instances x creation time). That is bounded: an OpenLoop spends at most
-// kOpenLoopCreateBudget_s of CPU time creating instances. The first creation is timed;
-// an evaluation that would need more (many points of a script that keeps state or
-// faults, or any scan of a script whose top level takes seconds) is refused before the
-// work starts, with an InputError (exit 2) naming the scripts, their creation time and
-// the number of points.
+// kOpenLoopCreateBudget_s of CPU time creating instances (plus at most one creation).
+// Each creation is timed; an evaluation that would need more (many points of a script
+// that keeps state or faults, or any scan of a script whose top level takes seconds) is
+// refused before the work starts, with an InputError (exit 2) naming the scripts, their
+// creation time and the number of points.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -119,7 +119,7 @@ class OpenLoop {
   double t_s_{};
   ScriptList none_;
   ScriptFaultLog faults_;
-  double create_cpu_s_{-1.0};  // CPU time of the first creation (-1: none yet)
+  double create_cpu_s_{-1.0};  // CPU time of the cheapest creation so far (-1: none yet)
   double spent_cpu_s_{};       // CPU time of all creations so far
   std::size_t created_{};
   std::size_t points_{};  // size of the current evaluation, for the message
