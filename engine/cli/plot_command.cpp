@@ -1,7 +1,8 @@
 // `hapscene plot ENV [--scenario NAME] [--output FILE.svg]`: the force-displacement curve and
 // one scenario's time series (default: sweep) as an SVG figure. Script faults met on the
 // way (open loop or in the run) go to stderr, each once, after the figure is written;
-// then the exit code is 1.
+// then the exit code is 1. So does a failed "pace" check (scripts too slow for the loop,
+// seen before the field scan or during the run): its message once, exit 1.
 #include <cmath>
 #include <cstdio>
 
@@ -45,12 +46,18 @@ int plot_command(std::vector<std::string> args) {
   write_output_file(path, svg);
   print_out("wrote %s\n", printable(path).c_str());
   flush_out();
+  // Too slow for the loop: the field scan's verdict, else the run's (one message).
+  std::string too_slow = field.too_slow;
+  for (const CheckResult& check : result.checks) {
+    if (too_slow.empty() && check.name == "pace" && !check.pass) too_slow = check.detail;
+  }
+  if (!too_slow.empty()) std::fprintf(stderr, "pace: %s\n", too_slow.c_str());
   for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
   if (faults.omitted()) {
     std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the workspace are shown)\n",
                  ScriptFaultLog::kMaxMessages);
   }
-  return faults.empty() ? kExitOk : kExitFailure;
+  return faults.empty() && too_slow.empty() ? kExitOk : kExitFailure;
 }
 
 }  // namespace hapscene

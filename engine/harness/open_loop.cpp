@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
+#include "engine/harness/pace.hpp"
 #include "engine/scene/step.hpp"
 
 namespace hapscene {
@@ -105,13 +107,44 @@ double OpenLoop::fresh_force_N(double x_m, double v_m_per_s, double t_s, bool re
   input.dt_s = scene_.period_s;
   if (!has_scripts()) return sum_effects_N(scene_, input, none_);
   // New instances, each reset, as at the start of a run: nothing carries over.
-  ScriptList scripts = make_script_instances(scene_);
+  ScriptList scripts = create_instances();
   const double force_N = sum_effects_N(scene_, input, scripts);
   if (record) faults_.collect(scripts, describe_point(x_m, v_m_per_s, t_s), x_m);
   return force_N;
 }
 
-double OpenLoop::force_N(double x_m, double v_m_per_s) { return fresh_force_N(x_m, v_m_per_s, t_s_, true); }
+void OpenLoop::require_creations(std::size_t count) const {
+  if (create_cpu_s_ < 0.0 || count == 0) return;
+  const double needed_s = spent_cpu_s_ + static_cast<double>(count) * create_cpu_s_;
+  if (needed_s <= kOpenLoopCreateBudget_s) return;
+  // The environment file, then its scripts (once when the environment is a script).
+  const std::string scripts = script_names(scene_);
+  const std::string where = scripts == scene_.source_path ? scripts : scene_.source_path + ": " + scripts;
+  throw InputError(printf_string(
+      "%s: creating a fresh instance takes %.3g s of CPU time (its top-level code runs every time); "
+      "this open-loop evaluation of %zu point%s needs %zu more after the %zu made, about %.3g s in all, over the "
+      "%g s budget: fewer points (probe --x), or a cheaper top level",
+      where.c_str(), create_cpu_s_, points_, points_ == 1 ? "" : "s",
+      count, created_, needed_s, kOpenLoopCreateBudget_s));
+}
+
+ScriptList OpenLoop::create_instances() {
+  require_creations(1);
+  const double start_s = thread_cpu_time_s();
+  ScriptList scripts = make_script_instances(scene_);
+  const double used_s = thread_cpu_time_s() - start_s;
+  // The estimate for planned creations: the cheapest so far (the first is often slowed
+  // by cold caches); what is really spent is charged in full.
+  if (create_cpu_s_ < 0.0 || used_s < create_cpu_s_) create_cpu_s_ = used_s;
+  spent_cpu_s_ += used_s;
+  ++created_;
+  return scripts;
+}
+
+double OpenLoop::force_N(double x_m, double v_m_per_s) {
+  points_ = 1;
+  return fresh_force_N(x_m, v_m_per_s, t_s_, true);
+}
 
 double OpenLoop::output_N(double x_m, double force_N) const {
   SafetyCounters counters;
@@ -123,7 +156,7 @@ std::vector<double> OpenLoop::sequential_N(const std::vector<double>& x_m, doubl
   const std::size_t n = x_m.size();
   std::vector<double> force_N(n);
   live->assign(n, true);
-  ScriptList scripts = make_script_instances(scene_);
+  ScriptList scripts = create_instances();
   bool faulted = false;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = upward ? k : n - 1 - k;
@@ -141,18 +174,22 @@ std::vector<double> OpenLoop::sequential_N(const std::vector<double>& x_m, doubl
 
 void OpenLoop::scan_faults(const std::vector<double>& x_m, double v_m_per_s) {
   if (!has_scripts() || x_m.empty()) return;
+  points_ = x_m.size();
   std::vector<bool> live;
   sequential_N(x_m, v_m_per_s, true, &live);
   if (live.back()) return;
+  require_creations(x_m.size());
   for (const double x : x_m) fresh_force_N(x, v_m_per_s, t_s_, true);
 }
 
 ScriptFaultLog scan_faults_in_motion(const Scene& scene, const std::vector<double>& x_m) {
   ScriptFaultLog faults;
   if (scene.script_count == 0) return faults;
+  // One OpenLoop for every time and velocity: one creation budget for the whole search.
+  OpenLoop open_loop(scene);
   for (const double t_s : kMotionScanTimes_s) {
     if (t_s != 0.0 && !scene.needs.time) continue;
-    OpenLoop open_loop(scene, t_s);
+    open_loop.set_time_s(t_s);
     for (const double v_m_per_s : kMotionScanVelocities_m_per_s) {
       if (v_m_per_s != 0.0 && !scene.needs.velocity) continue;
       open_loop.scan_faults(x_m, v_m_per_s);
@@ -185,19 +222,23 @@ OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bo
 
   // State: one instance upwards, one downwards, fresh ones at up to 9 spread points.
   // Points after a script faulted are not compared (a disabled script answers 0).
+  points_ = n;
   std::vector<bool> live_up;
   std::vector<bool> live_down;
   std::vector<double> up_N = sequential_N(x_m, v_m_per_s, true, &live_up);
+  const std::size_t stride = std::max<std::size_t>(1, (n - 1) / 8);
+  std::vector<std::size_t> spread;
+  for (std::size_t i = 0; i < n; i += stride) spread.push_back(i);
+  if (spread.back() != n - 1) spread.push_back(n - 1);
+  // The creations the comparisons below need at most (the downward pass, and per spread
+  // point one fresh instance, plus five at other times), now that one has been timed.
+  require_creations(1 + spread.size() * (scene_.needs.time ? 6 : 1));
   const std::vector<double> down_N = sequential_N(x_m, v_m_per_s, false, &live_down);
   bool faulted = false;
   for (std::size_t i = 0; i < n; ++i) {
     faulted = faulted || !live_up[i] || !live_down[i];
     if (live_up[i] && live_down[i] && !same_force(up_N[i], down_N[i])) result.behaviour.stateful = true;
   }
-  const std::size_t stride = std::max<std::size_t>(1, (n - 1) / 8);
-  std::vector<std::size_t> spread;
-  for (std::size_t i = 0; i < n; i += stride) spread.push_back(i);
-  if (spread.back() != n - 1) spread.push_back(n - 1);
   for (const std::size_t i : spread) {
     if (result.behaviour.stateful) break;
     const double fresh_N = fresh_force_N(x_m[i], v_m_per_s, t_s_, false);
@@ -231,6 +272,7 @@ OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bo
   if (!faulted && !result.behaviour.stateful) {
     result.force_N = std::move(up_N);
   } else if (faulted || values_if_not_static) {
+    require_creations(n);
     result.force_N.resize(n);
     for (std::size_t i = 0; i < n; ++i) result.force_N[i] = fresh_force_N(x_m[i], v_m_per_s, t_s_, true);
   }

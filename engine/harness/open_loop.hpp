@@ -5,6 +5,14 @@
 // one run time t (default 0), so the result never depends on which points were asked
 // before or in what order. A script that faults is recorded (each message once, with the
 // first point that raised it), never hidden behind the 0 N that a disabled script gives.
+//
+// Fresh instances re-run each script's top-level code, so an evaluation costs about
+// (instances x creation time). That is bounded: an OpenLoop spends at most
+// kOpenLoopCreateBudget_s of CPU time creating instances (plus at most one creation).
+// Each creation is timed; an evaluation that would need more (many points of a script
+// that keeps state or faults, or any scan of a script whose top level takes seconds) is
+// refused before the work starts, with an InputError (exit 2) naming the scripts, their
+// creation time and the number of points.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -60,6 +68,9 @@ struct OpenLoopScan {
   ScriptBehaviour behaviour;
 };
 
+// CPU time an OpenLoop may spend creating fresh script instances.
+inline constexpr double kOpenLoopCreateBudget_s = 20.0;
+
 class OpenLoop {
  public:
   // `t_s`: the run time every point is evaluated at (s.t of scripts that read time).
@@ -87,10 +98,18 @@ class OpenLoop {
   void scan_faults(const std::vector<double>& x_m, double v_m_per_s);
 
   bool has_scripts() const { return scene_.script_count > 0; }
+  // The run time later points are evaluated at (the creation budget stays charged).
+  void set_time_s(double t_s) { t_s_ = t_s; }
   const ScriptFaultLog& faults() const { return faults_; }
 
  private:
   double fresh_force_N(double x_m, double v_m_per_s, double t_s, bool record);
+  // New, reset instances of the scene's scripts, charged to the creation budget (throws
+  // InputError before a creation that would exceed it).
+  ScriptList create_instances();
+  // Throws InputError when `count` more creations would exceed the budget (no-op until
+  // the first creation has been timed).
+  void require_creations(std::size_t count) const;
   // One instance per script called at the points in the given order; `live[i]` is false
   // where a script had faulted before or at that call.
   std::vector<double> sequential_N(const std::vector<double>& x_m, double v_m_per_s, bool upward,
@@ -100,6 +119,10 @@ class OpenLoop {
   double t_s_{};
   ScriptList none_;
   ScriptFaultLog faults_;
+  double create_cpu_s_{-1.0};  // CPU time of the cheapest creation so far (-1: none yet)
+  double spent_cpu_s_{};       // CPU time of all creations so far
+  std::size_t created_{};
+  std::size_t points_{};  // size of the current evaluation, for the message
 };
 
 // The script faults met in motion and over time, which a scan at rest (v = 0, t = 0)
