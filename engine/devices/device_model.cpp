@@ -5,6 +5,7 @@ namespace hapscene {
 DeviceModel compile_device_model(const DeviceProfile& profile) noexcept {
   DeviceModel model;
   model.kinematics = compile_kinematics(profile);
+  model.unwraps = profile.sensor.kind == SensorKind::mr;
   model.flip_threshold_counts = profile.sensor.flip_threshold_counts;
   model.span_counts = profile.sensor.span_counts;
   return model;

@@ -4,10 +4,11 @@
 // device's motor driver takes. step() calls sense_position_m() and motor_command() and
 // knows nothing of sensors, drives or duty laws.
 //
-// The Hapkit's model: an MR sensor whose raw counts wrap every half turn of the motor
-// shaft (unwrapped by the FlipCounter the firmware shares), a linear map from counts to
-// sector angle, and the capstan to the handle; force to motor torque through the same
-// ratios, the sqrt duty law and a direction pin (engine/devices/kinematics.hpp).
+// The profile chooses the parts: the sensor (an MR sensor whose raw counts wrap every
+// half turn of the motor shaft, unwrapped by the FlipCounter the firmware shares; or an
+// encoder's continuous counter), a linear map from counts to sector angle and the capstan
+// to the handle; force to motor torque through the same ratios, then the duty law (the
+// Hapkit's sqrt law, or linear) and a direction pin (engine/devices/kinematics.hpp).
 // docs/n-axis.md says how models for other devices and more axes plug in here.
 #include <cstdint>
 
@@ -27,6 +28,7 @@ struct SensorState {
 // A profile compiled for the tick: immutable, read through a const reference.
 struct DeviceModel {
   Kinematics kinematics;
+  bool unwraps{true};  // an MR sensor's wrapping counts; false: an encoder's continuous ones
   std::int32_t flip_threshold_counts{};
   std::int32_t span_counts{};
 };
@@ -39,7 +41,7 @@ SensorState make_sensor_state(const DeviceModel& model) noexcept;
 // Sensor stage: one raw reading to the handle position.
 inline double sense_position_m(const DeviceModel& model, std::int32_t raw_counts, SensorState* sensor) noexcept {
   sensor->raw_counts = raw_counts;
-  sensor->unwrapped_counts = sensor->flip_counter.update(raw_counts);
+  sensor->unwrapped_counts = model.unwraps ? sensor->flip_counter.update(raw_counts) : raw_counts;
   return counts_to_position_m(model.kinematics, sensor->unwrapped_counts);
 }
 

@@ -15,13 +15,14 @@ HapkitPlant::HapkitPlant(const DeviceProfile& profile, const SimulationConfig& c
       hand_(config.hand, config.start_x_m),
       noise_(config.noise_seed),
       x_m_(config.start_x_m) {
-  // The sensor's home period: where raw counts equal unwrapped counts.
+  // The MR sensor's home period: where raw counts equal unwrapped counts. (An encoder
+  // counts from wherever it starts.)
   const SensorModel& sensor = profile.sensor;
   const double a_m = counts_to_position_m(profile, sensor.min_counts);
   const double b_m = counts_to_position_m(profile, sensor.min_counts + sensor.span_counts - 1);
   const double low_m = std::min(a_m, b_m);
   const double high_m = std::max(a_m, b_m);
-  if (!(config.start_x_m >= low_m && config.start_x_m <= high_m)) {
+  if (sensor.kind == SensorKind::mr && !(config.start_x_m >= low_m && config.start_x_m <= high_m)) {
     throw InputError("start position " + format_number(config.start_x_m) +
                      " m is outside the sensor's home period [" + format_number(low_m) + ", " +
                      format_number(high_m) + "] m, where the board starts counting");
@@ -47,6 +48,15 @@ std::int32_t HapkitPlant::sensor_counts() noexcept {
   }
   const SensorModel& sensor = profile_.sensor;
   const auto quantized = static_cast<std::int64_t>(std::nearbyint(counts));
+  if (sensor.kind == SensorKind::encoder) {
+    // A 32-bit counter; a reading beyond it is a fault like the non-finite ones.
+    if (quantized < INT32_MIN || quantized > INT32_MAX) {
+      ++sensor_faults_;
+      return last_counts_;
+    }
+    last_counts_ = static_cast<std::int32_t>(quantized);
+    return last_counts_;
+  }
   std::int64_t within = (quantized - sensor.min_counts) % sensor.span_counts;
   if (within < 0) within += sensor.span_counts;
   last_counts_ = static_cast<std::int32_t>(sensor.min_counts + within);

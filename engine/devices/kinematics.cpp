@@ -18,6 +18,7 @@ Kinematics compile_kinematics(const DeviceProfile& profile) noexcept {
   k.inverse_motor_constant = 1.0 / drive.motor_constant_N_m;
   k.duty_max = drive.duty_max;
   k.direction_sign = drive.direction_sign;
+  k.duty_law = drive.duty_law;
   return k;
 }
 
@@ -36,7 +37,9 @@ double position_to_counts(const DeviceProfile& profile, double x_m) noexcept {
 
 double motor_to_force_N(const DeviceProfile& profile, const MotorCommand& command) noexcept {
   const Kinematics k = compile_kinematics(profile);
-  const double magnitude_N = k.motor_constant_N_m * command.duty * command.duty / k.torque_N_m_per_N;
+  const double torque_N_m = k.duty_law == DutyLaw::sqrt ? k.motor_constant_N_m * command.duty * command.duty
+                                                       : k.motor_constant_N_m * command.duty;
+  const double magnitude_N = torque_N_m / k.torque_N_m_per_N;
   const bool positive = command.direction_high == (k.direction_sign > 0);
   return positive ? magnitude_N : -magnitude_N;
 }

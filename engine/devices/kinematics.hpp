@@ -4,7 +4,8 @@
 //   handle force -> motor torque -> PWM duty and direction pin.
 // Sector angle (deg) = slope * counts + offset; handle x = handle_radius * angle (rad).
 // Motor torque Tp = pulley_radius / sector_radius * handle_radius * F;
-// duty = sqrt(|Tp| / Km) clamped to [0, duty_max]; direction from the sign of F.
+// duty = sqrt(|Tp| / Km) (the Hapkit's law) or |Tp| / Km (a linear driver), clamped to
+// [0, duty_max]; direction from the sign of F.
 //
 // The constants are combined once (compile_kinematics), so a tick multiplies and never
 // divides.
@@ -30,6 +31,7 @@ struct Kinematics {
   double inverse_motor_constant{};  // 1 / Km
   double duty_max{};
   int direction_sign{1};
+  DutyLaw duty_law{DutyLaw::sqrt};
 };
 
 Kinematics compile_kinematics(const DeviceProfile& profile) noexcept;
@@ -41,7 +43,9 @@ inline double counts_to_position_m(const Kinematics& k, double unwrapped_counts)
 inline MotorCommand force_to_motor(const Kinematics& k, double force_N) noexcept {
   const double torque_N_m = k.torque_N_m_per_N * std::abs(force_N);
   MotorCommand command;
-  command.duty = std::min(std::sqrt(torque_N_m * k.inverse_motor_constant), k.duty_max);
+  const double duty_at_full_range = torque_N_m * k.inverse_motor_constant;
+  const double duty = k.duty_law == DutyLaw::sqrt ? std::sqrt(duty_at_full_range) : duty_at_full_range;
+  command.duty = std::min(duty, k.duty_max);
   command.direction_high = force_N * k.direction_sign > 0.0;
   return command;
 }

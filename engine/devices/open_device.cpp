@@ -19,9 +19,26 @@ std::string default_firmware_elf() {
 #endif
 }
 
+namespace {
+
+// The hapscene firmware reads an MR sensor and drives the Hapkit's sqrt law: a profile that
+// describes other hardware cannot be rendered through it.
+void require_hapkit_board(const std::string& spec, const DeviceProfile& profile) {
+  const std::string device = spec.substr(0, spec.find(':'));
+  if (profile.sensor.kind != SensorKind::mr) {
+    throw InputError("--device " + device + ": profile \"" + profile.name +
+                     "\" has an encoder, but the hapscene firmware reads the Hapkit's MR sensor");
+  }
+}
+
+}  // namespace
+
 std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile& profile,
                                     const SimulationConfig& simulation, const LinkOptions& link) {
   if (spec == "sim") return std::make_unique<SimulatedHapkit>(profile, simulation);
+  if (spec == "serial" || spec.starts_with("serial:") || spec == "hil" || spec.starts_with("hil:")) {
+    require_hapkit_board(spec, profile);
+  }
 
   // serial:PATH
   if (spec.starts_with("serial:") || spec == "serial") {

@@ -25,6 +25,7 @@ constexpr Range kNoise_counts{0.0, 1000.0};
 
 SensorModel parse_sensor(ObjectReader& reader) {
   SensorModel sensor;
+  sensor.kind = reader.choice("type", {"mr", "encoder"}, "mr") == "encoder" ? SensorKind::encoder : SensorKind::mr;
   sensor.counts_to_deg_slope = reader.quantity("counts_to_deg_slope", Quantity::dimensionless);
   if (sensor.counts_to_deg_slope == 0.0) reader.fail("counts_to_deg_slope", "must not be 0");
   const double slope_magnitude = std::abs(sensor.counts_to_deg_slope);
@@ -34,10 +35,17 @@ SensorModel parse_sensor(ObjectReader& reader) {
   }
   sensor.counts_to_deg_offset =
       reader.quantity("counts_to_deg_offset", Quantity::dimensionless, kAngleOffset_deg);
-  sensor.min_counts = static_cast<std::int32_t>(reader.integer("min_counts", 0, 65535));
-  sensor.span_counts = static_cast<std::int32_t>(reader.integer("span_counts", 2, 65535));
-  sensor.flip_threshold_counts = static_cast<std::int32_t>(
-      reader.integer("flip_threshold_counts", 1, sensor.span_counts - 1));
+  if (sensor.kind == SensorKind::encoder) {
+    // A counter does not wrap: the keys of the MR sensor's period mean nothing for it.
+    for (const char* key : {"min_counts", "span_counts", "flip_threshold_counts"}) {
+      if (reader.has(key)) reader.fail(key, "not used by an encoder (its counts never wrap): remove it");
+    }
+  } else {
+    sensor.min_counts = static_cast<std::int32_t>(reader.integer("min_counts", 0, 65535));
+    sensor.span_counts = static_cast<std::int32_t>(reader.integer("span_counts", 2, 65535));
+    sensor.flip_threshold_counts = static_cast<std::int32_t>(
+        reader.integer("flip_threshold_counts", 1, sensor.span_counts - 1));
+  }
   reader.finish();
   return sensor;
 }
@@ -47,6 +55,7 @@ DriveModel parse_drive(ObjectReader& reader) {
   drive.handle_radius_m = reader.quantity("handle_radius", Quantity::length_m, kRadius_m);
   drive.pulley_radius_m = reader.quantity("pulley_radius", Quantity::length_m, kRadius_m);
   drive.sector_radius_m = reader.quantity("sector_radius", Quantity::length_m, kRadius_m);
+  drive.duty_law = reader.choice("duty_law", {"sqrt", "linear"}, "sqrt") == "linear" ? DutyLaw::linear : DutyLaw::sqrt;
   drive.motor_constant_N_m =
       reader.quantity("motor_constant", Quantity::dimensionless, kMotorConstant_N_m);
   drive.duty_max = reader.quantity("duty_max", Quantity::dimensionless, Bound::positive);

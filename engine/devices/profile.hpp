@@ -10,9 +10,24 @@
 
 namespace hapscene {
 
-// Magnetoresistive angle sensor read by a 10-bit ADC, repeating every half turn of the
-// motor shaft. Unwrapped counts = raw + flips * span_counts.
+// What the sensor reports ("sensor": {"type": ...}).
+enum class SensorKind : std::uint8_t {
+  mr,       // magnetoresistive angle sensor on an ADC: wraps every period, unwrapped by flips
+  encoder,  // an incremental encoder's counter: continuous, never wraps
+};
+
+// How a motor torque becomes a PWM duty ("drive": {"duty_law": ...}).
+enum class DutyLaw : std::uint8_t {
+  sqrt,    // torque = Km * duty^2: the Hapkit 3.0 reference code's law
+  linear,  // torque = Km * duty: a driver whose torque follows the duty (the Haplink's)
+};
+
+// The sensor: raw counts to sector angle. An MR sensor (the Hapkit's) is read by a 10-bit
+// ADC and repeats every half turn of the motor shaft: unwrapped counts = raw + flips *
+// span_counts. An encoder's counts are already continuous (min, span and flip threshold
+// are not used).
 struct SensorModel {
+  SensorKind kind{SensorKind::mr};
   double counts_to_deg_slope{};     // sector angle per unwrapped count (deg/count)
   double counts_to_deg_offset{};    // sector angle at count 0 (deg)
   std::int32_t min_counts{};        // lowest raw reading of one period
@@ -25,7 +40,8 @@ struct DriveModel {
   double handle_radius_m{};
   double pulley_radius_m{};
   double sector_radius_m{};
-  double motor_constant_N_m{};  // motor torque at full duty; torque = Km * duty^2
+  DutyLaw duty_law{DutyLaw::sqrt};
+  double motor_constant_N_m{};  // motor torque at full duty (Km)
   double duty_max{};            // highest duty the host commands, in [0, 1]
   int direction_sign{1};        // +1: positive force drives the direction pin high
   int pwm_levels{};             // PWM steps at full duty (255 for Arduino analogWrite)

@@ -8,9 +8,9 @@ namespace hapscene {
 namespace {
 
 // Every field of a profile is listed below; a new field must be added there too.
-static_assert(sizeof(SensorModel) == 2 * sizeof(double) + 3 * sizeof(std::int32_t) + 4,
+static_assert(sizeof(SensorModel) == sizeof(double) /* kind, padded */ + 2 * sizeof(double) + 3 * sizeof(std::int32_t) + 4,
               "SensorModel changed: update reload_refusal's list");
-static_assert(sizeof(DriveModel) == 5 * sizeof(double) + 2 * sizeof(int),
+static_assert(sizeof(DriveModel) == 5 * sizeof(double) + sizeof(double) /* duty_law, padded */ + 2 * sizeof(int),
               "DriveModel changed: update reload_refusal's list");
 static_assert(sizeof(DeviceLimits) == 8 * sizeof(double), "DeviceLimits changed: update reload_refusal's list");
 static_assert(sizeof(PlantModel) == 7 * sizeof(double), "PlantModel changed: update reload_refusal's list");
@@ -30,6 +30,7 @@ struct Changes {
 
 // Every number of the profile (its description is prose and may change).
 void compare_profiles(const DeviceProfile& a, const DeviceProfile& b, Changes* c) {
+  c->compare("sensor.type (0 mr, 1 encoder)", static_cast<int>(a.sensor.kind), static_cast<int>(b.sensor.kind));
   c->compare("sensor.counts_to_deg_slope", a.sensor.counts_to_deg_slope, b.sensor.counts_to_deg_slope);
   c->compare("sensor.counts_to_deg_offset", a.sensor.counts_to_deg_offset, b.sensor.counts_to_deg_offset);
   c->compare("sensor.min_counts", a.sensor.min_counts, b.sensor.min_counts);
@@ -38,6 +39,7 @@ void compare_profiles(const DeviceProfile& a, const DeviceProfile& b, Changes* c
   c->compare("drive.handle_radius_m", a.drive.handle_radius_m, b.drive.handle_radius_m);
   c->compare("drive.pulley_radius_m", a.drive.pulley_radius_m, b.drive.pulley_radius_m);
   c->compare("drive.sector_radius_m", a.drive.sector_radius_m, b.drive.sector_radius_m);
+  c->compare("drive.duty_law (0 sqrt, 1 linear)", static_cast<int>(a.drive.duty_law), static_cast<int>(b.drive.duty_law));
   c->compare("drive.motor_constant_N_m", a.drive.motor_constant_N_m, b.drive.motor_constant_N_m);
   c->compare("drive.duty_max", a.drive.duty_max, b.drive.duty_max);
   c->compare("drive.direction_sign", a.drive.direction_sign, b.drive.direction_sign);
