@@ -1,5 +1,7 @@
 #include "engine/devices/device_model.hpp"
 
+#include <cstdint>
+
 namespace hapscene {
 
 DeviceModel compile_device_model(const DeviceProfile& profile) noexcept {
@@ -13,8 +15,10 @@ DeviceModel compile_device_model(const DeviceProfile& profile) noexcept {
 
 SensorState make_sensor_state(const DeviceModel& model) noexcept {
   SensorState sensor;
-  sensor.flip_counter.threshold_counts = model.flip_threshold_counts;
-  sensor.flip_counter.span_counts = model.span_counts;
+  // An encoder never wraps: no jump exceeds the largest threshold, and a flip (only an
+  // overflowing difference of garbage readings can make one) would shift by 0 counts.
+  sensor.flip_counter.threshold_counts = model.unwraps ? model.flip_threshold_counts : INT32_MAX;
+  sensor.flip_counter.span_counts = model.unwraps ? model.span_counts : 0;
   return sensor;
 }
 

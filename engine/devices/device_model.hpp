@@ -38,10 +38,12 @@ DeviceModel compile_device_model(const DeviceProfile& profile) noexcept;
 // A fresh sensor stage for a run (nothing unwrapped yet).
 SensorState make_sensor_state(const DeviceModel& model) noexcept;
 
-// Sensor stage: one raw reading to the handle position.
+// Sensor stage: one raw reading to the handle position. An encoder's counter goes through
+// the same flip counter, set up never to flip (make_sensor_state), so the tick has no
+// branch on the sensor kind.
 inline double sense_position_m(const DeviceModel& model, std::int32_t raw_counts, SensorState* sensor) noexcept {
   sensor->raw_counts = raw_counts;
-  sensor->unwrapped_counts = model.unwraps ? sensor->flip_counter.update(raw_counts) : raw_counts;
+  sensor->unwrapped_counts = sensor->flip_counter.update(raw_counts);
   return counts_to_position_m(model.kinematics, sensor->unwrapped_counts);
 }
 

@@ -35,14 +35,19 @@ struct EffectTypeList {
     template <typename T>
     const std::vector<T>& group() const noexcept { return std::get<std::vector<T>>(groups); }
 
-    // The sum of every built-in effect's force for one input.
-    double force_N(const EffectInput& input) const noexcept {
+    // The sum of every built-in effect's force for one input, group by group in the
+    // order of the list. Inlined into the tick, loops and all (as a call it cost the
+    // spring scene about 12 instructions a tick).
+    [[gnu::always_inline]] double force_N(const EffectInput& input) const noexcept {
       double force_N = 0.0;
-      const auto add_group = [&](const auto& group) {
-        for (const auto& e : group) force_N += e.force_N(input);
-      };
-      std::apply([&](const auto&... group) { (add_group(group), ...); }, groups);
+      (add_group_N<Types>(input, &force_N), ...);
       return force_N;
+    }
+
+   private:
+    template <typename T>
+    [[gnu::always_inline]] void add_group_N(const EffectInput& input, double* force_N) const noexcept {
+      for (const T& e : std::get<std::vector<T>>(groups)) *force_N += e.force_N(input);
     }
   };
 };
