@@ -69,7 +69,6 @@ bool send_reply(SimavrBoard& board) {
   Reply reply;
   reply.cycle = board.cycle();
   reply.motor_duty = board.motor_duty();
-  reply.halted = board.halted() ? 1 : 0;
   reply.direction_high = board.direction_high() ? 1 : 0;
   reply.byte_count = static_cast<std::uint16_t>(board.take_bytes(bytes, sizeof bytes));
   reply.to_board_pending = static_cast<std::uint16_t>(board.to_board_pending());
