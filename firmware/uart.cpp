@@ -2,7 +2,6 @@
 
 #include <avr/interrupt.h>
 #include <avr/io.h>
-#include <util/atomic.h>
 
 #include "firmware/board.h"
 
@@ -14,7 +13,6 @@ static volatile uint8_t g_rx[RX_SIZE];
 static volatile uint8_t g_rx_head, g_rx_tail;  /* head: written by the ISR */
 static volatile uint8_t g_tx[TX_SIZE];
 static volatile uint8_t g_tx_head, g_tx_tail;  /* tail: advanced by the ISR */
-static volatile uint16_t g_rx_overruns;
 
 void uart_init(void) {
   /* Double speed: UBRR = F_CPU / (8 * baud) - 1, exact for 1 Mbaud at 16 MHz. */
@@ -30,10 +28,7 @@ void uart_init(void) {
 ISR(USART_RX_vect) {
   const uint8_t byte = UDR0;
   const uint8_t next = (uint8_t)((g_rx_head + 1u) & (RX_SIZE - 1u));
-  if (next == g_rx_tail) {
-    ++g_rx_overruns;  /* ring full: the byte is lost, the decoder resyncs */
-    return;
-  }
+  if (next == g_rx_tail) return;  /* ring full: the byte is lost, the decoder resyncs */
   g_rx[g_rx_head] = byte;
   g_rx_head = next;
 }
@@ -65,10 +60,4 @@ uint8_t uart_write(const uint8_t* data, uint8_t length) {
   g_tx_head = head;
   UCSR0B |= _BV(UDRIE0);  /* the ISR sends from here on */
   return 1;
-}
-
-uint16_t uart_rx_overruns(void) {
-  uint16_t overruns;
-  ATOMIC_BLOCK(ATOMIC_RESTORESTATE) { overruns = g_rx_overruns; }
-  return overruns;
 }

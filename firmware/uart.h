@@ -13,7 +13,4 @@ uint8_t uart_read(uint8_t* byte);
 /* Queues `length` bytes whole, or none when the ring lacks room (returns 0). */
 uint8_t uart_write(const uint8_t* data, uint8_t length);
 
-/* Bytes lost because the receive ring was full. */
-uint16_t uart_rx_overruns(void);
-
 #endif

@@ -40,11 +40,10 @@ class SoakWatch final : public TickObserver {
     const double mean_x = sum_x_ / static_cast<double>(in_window_);
     const double mean_e = sum_e_ / static_cast<double>(in_window_);
     if (window_index_++ > 0) {
-      if (result.windows == 0) first_x_ = mean_x, first_e_ = mean_e, low_x_ = high_x_ = mean_x, low_e_ = high_e_ = mean_e;
+      if (result.windows == 0) first_x_ = mean_x, low_x_ = high_x_ = mean_x, low_e_ = high_e_ = mean_e;
       low_x_ = std::min(low_x_, mean_x), high_x_ = std::max(high_x_, mean_x);
       low_e_ = std::min(low_e_, mean_e), high_e_ = std::max(high_e_, mean_e);
-      all_x_ += mean_x, all_e_ += mean_e;
-      last_x_ = mean_x, last_e_ = mean_e;
+      last_x_ = mean_x;
       ++result.windows;
     }
     sum_x_ = sum_e_ = 0.0;
@@ -53,13 +52,9 @@ class SoakWatch final : public TickObserver {
 
   void finish() {
     if (result.windows == 0) return;
-    const auto n = static_cast<double>(result.windows);
     result.position_spread_m = high_x_ - low_x_;
     result.energy_spread_J = high_e_ - low_e_;
-    result.mean_position_m = all_x_ / n;
-    result.mean_energy_J = all_e_ / n;
     result.first_last_position_m = last_x_ - first_x_;
-    result.first_last_energy_J = last_e_ - first_e_;
   }
 
   SoakResult result;
@@ -80,9 +75,8 @@ class SoakWatch final : public TickObserver {
   std::uint64_t in_window_{};
   std::uint64_t window_index_{};
   double sum_x_{}, sum_e_{};
-  double first_x_{}, first_e_{}, last_x_{}, last_e_{};
+  double first_x_{}, last_x_{};
   double low_x_{}, high_x_{}, low_e_{}, high_e_{};
-  double all_x_{}, all_e_{};
 };
 
 }  // namespace

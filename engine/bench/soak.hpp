@@ -17,11 +17,8 @@ struct SoakResult {
   std::uint64_t nonfinite_ticks{};      // position, velocity or command not finite
   std::uint64_t windows{};              // sweep periods watched (the first is skipped)
   double position_spread_m{};           // largest - smallest window mean position
-  double mean_position_m{};             // over every watched window
   double energy_spread_J{};             // largest - smallest window mean energy
-  double mean_energy_J{};
   double first_last_position_m{};       // last window mean - first window mean
-  double first_last_energy_J{};
   long rss_start_kB{};                  // process resident memory at the start and the end
   long rss_end_kB{};
   std::size_t lua_bytes_start{};        // Lua heap of the scene's scripts (0 without)

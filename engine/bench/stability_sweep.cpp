@@ -109,14 +109,12 @@ std::vector<StiffnessLimits> sweep_wall_stiffness(const std::vector<double>& rat
   frictionless.plant.coulomb_N = 0.0;
   const HarnessOptions options;
   const double b = profile.plant.viscous_N_s_per_m;
-  const double count_m = std::abs(counts_to_position_m(profile, 1.0) - counts_to_position_m(profile, 0.0));
   std::vector<StiffnessLimits> limits;
   for (const double rate_hz : rates_hz) {
     StiffnessLimits l;
     l.rate_hz = rate_hz;
     l.bound_2b_over_T = 2.0 * b * rate_hz;
     l.bound_with_hand = 2.0 * (b + options.hand_damping_N_s_per_m) * rate_hz;
-    l.bound_coulomb = 2.0 * profile.plant.coulomb_N / count_m;
     l.with_coulomb = wall_limits(profile, rate_hz);
     l.without_coulomb = wall_limits(frictionless, rate_hz);
     limits.push_back(l);

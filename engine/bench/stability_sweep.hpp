@@ -36,7 +36,6 @@ struct StiffnessLimits {
   WallLimits without_coulomb;        // f_c = 0
   double bound_2b_over_T{};          // Colgate and Schenkel: 2 b / T
   double bound_with_hand{};          // the same with the hand's damping added to b
-  double bound_coulomb{};            // Abbott and Okamura: 2 f_c / D (the profile's f_c)
 };
 
 struct DampingLimit {

@@ -72,8 +72,6 @@ class TickTimer {
     cost->p999_ns = p999[kTailRepeats / 2];
   }
 
-  double ns_per_timer_tick() const { return ns_per_tick_; }
-
  private:
   static std::uint64_t now_ticks() noexcept {
 #if defined(__x86_64__) || defined(__i386__)

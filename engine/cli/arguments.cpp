@@ -5,6 +5,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/base/object_reader.hpp"
+#include "engine/base/whole_number.hpp"
 
 namespace hapscene {
 namespace {
@@ -106,13 +107,9 @@ double parse_option_quantity(const std::string& text, const QuantityOption& opti
 std::uint64_t parse_whole_number(const std::string& text, const WholeOption& option, const std::string& what) {
   const std::string range = "[" + std::to_string(option.min) + ", " + std::to_string(option.max) + "]";
   std::uint64_t value = 0;
-  const char* const end = text.data() + text.size();
-  const auto [stop, ec] = std::from_chars(text.data(), end, value);
-  const bool digits_only = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
-  if (ec == std::errc::result_out_of_range && digits_only) {
-    throw InputError(what + ": must be in " + range + ", got " + text);
-  }
-  if (ec != std::errc() || stop != end || !digits_only) {
+  const WholeNumberRead read = read_whole_number(text, &value);
+  if (read == WholeNumberRead::too_large) throw InputError(what + ": must be in " + range + ", got " + text);
+  if (read != WholeNumberRead::ok) {
     throw InputError(what + ": expected " + std::string(option.what) + " in " + range + ", got \"" + text + "\"");
   }
   if (value < option.min || value > option.max) {

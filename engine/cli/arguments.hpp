@@ -60,9 +60,9 @@ class Arguments {
 // ("hapscene probe: --x STEP").
 double parse_option_quantity(const std::string& text, const QuantityOption& option, const std::string& what);
 
-// Reads `text` as a whole number in [option.min, option.max]: every character must be a
-// digit ("10x", "-1", "+3", "1e3" and "" are refused), and values past 2^64 - 1 say so.
-// The one parser of integers on the command line.
+// Reads `text` as a whole number in [option.min, option.max] with read_whole_number
+// (engine/base/whole_number.hpp: "10x", "-1", "+3", "1e3" and "" are refused), and values
+// past 2^64 - 1 say so. The one parser of integers on the command line.
 std::uint64_t parse_whole_number(const std::string& text, const WholeOption& option, const std::string& what);
 
 // The accepted range as messages show it: "[0, 100] counts", "(0 s, 86400 s]".

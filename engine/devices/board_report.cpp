@@ -39,6 +39,12 @@ std::string board_report(const BoardLink& link, std::int64_t start_ns) {
                        static_cast<double>(link.config().max_position_age_ns) * 1e-6,
                        static_cast<unsigned long long>(c.implausible_polls),
                        static_cast<unsigned long long>(c.implausible_states));
+  out += printf_string("  link health      %llu commands unanswered, %llu frames not sent whole; states said "
+                       "command timeout %llu, duty limited %llu\n",
+                       static_cast<unsigned long long>(c.unanswered),
+                       static_cast<unsigned long long>(c.frames_dropped_tx),
+                       static_cast<unsigned long long>(c.timeouts_reported),
+                       static_cast<unsigned long long>(c.duty_limited));
   const LatencyHistogram& rtt = link.round_trip_ns();
   out += printf_string("  round trip       p50 %.1f us  p99 %.1f us  max %.1f us (%llu replies)\n",
                 us(rtt.percentile_ns(0.50)), us(rtt.percentile_ns(0.99)), us(rtt.max_ns()),

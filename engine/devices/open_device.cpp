@@ -9,8 +9,6 @@
 
 namespace hapscene {
 
-bool hil_available() noexcept { return HAPSCENE_HAVE_HIL != 0; }
-
 std::string default_firmware_elf() {
 #ifdef HAPSCENE_FIRMWARE_ELF
   return HAPSCENE_FIRMWARE_ELF;

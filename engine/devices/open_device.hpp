@@ -27,8 +27,7 @@ std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile
                                     const SimulationConfig& simulation,
                                     const LinkOptions& link = {});
 
-// Whether this build can run `--device hil`, and the firmware it would load.
-bool hil_available() noexcept;
+// The firmware `--device hil` loads when no ELF is named (empty when this build has none).
 std::string default_firmware_elf();
 
 }  // namespace hapscene

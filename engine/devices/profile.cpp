@@ -122,7 +122,7 @@ DeviceProfile parse_device_profile(std::string_view json_text, const std::string
   ObjectReader reader(root, "", display_name);
   DeviceProfile profile;
   profile.name = reader.string("name");
-  profile.description = reader.string_or("description", "");
+  reader.string_or("description", "");  // for people: checked to be text, not kept
   profile.sensor = parse_part(reader, "sensor", parse_sensor);
   profile.drive = parse_part(reader, "drive", parse_drive);
   profile.limits = parse_part(reader, "limits", parse_limits);

@@ -80,7 +80,6 @@ struct PlantModel {
 
 struct DeviceProfile {
   std::string name;
-  std::string description;
   SensorModel sensor;
   DriveModel drive;
   DeviceLimits limits;

@@ -23,8 +23,8 @@ const char* verdict_text(const CheckResult& check) {
   return check.pass ? "pass" : "FAIL";
 }
 
-std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scenario,
-                                        const ForceField& field, const ScenarioMetrics& m) {
+std::vector<CheckResult> judge_scenario(const Scene& scene, const ForceField& field,
+                                        const ScenarioMetrics& m) {
   const ValidateThresholds& t = scene.validate;
   std::vector<CheckResult> checks;
 
@@ -106,7 +106,6 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scen
   checks.push_back(at_most("tick_compute", m.compute_p99_s, max_compute_s, "s",
                            printf_string("p50 %.2f us, p99 %.2f us, max %.2f us", m.compute_p50_s * 1e6,
                                   m.compute_p99_s * 1e6, m.compute_max_s * 1e6)));
-  (void)scenario;
   return checks;
 }
 

@@ -30,7 +30,7 @@ inline constexpr const char* kCheckNames[] = {
 // "pass", "FAIL" or "not judged".
 const char* verdict_text(const CheckResult& check);
 
-std::vector<CheckResult> judge_scenario(const Scene& scene, const Scenario& scenario,
-                                        const ForceField& field, const ScenarioMetrics& metrics);
+std::vector<CheckResult> judge_scenario(const Scene& scene, const ForceField& field,
+                                        const ScenarioMetrics& metrics);
 
 }  // namespace hapscene

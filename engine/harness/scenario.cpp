@@ -35,7 +35,6 @@ class PathBuilder {
   void hold(double duration_s) { points_.push_back({now_s() + duration_s, points_.back().x_m, true}); }
   void let_go() { points_.push_back({now_s(), points_.back().x_m, false}); }
   double now_s() const { return points_.back().t_s; }
-  double at_m() const { return points_.back().x_m; }
   std::vector<HandWaypoint> take() { return std::move(points_); }
 
  private:

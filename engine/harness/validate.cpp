@@ -76,7 +76,7 @@ ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const S
   if (pace.too_slow()) {
     result.checks = {pace.check(scene)};
   } else {
-    result.checks = judge_scenario(scene, scenario, field, result.metrics);
+    result.checks = judge_scenario(scene, field, result.metrics);
   }
   result.pass = std::all_of(result.checks.begin(), result.checks.end(),
                             [](const CheckResult& c) { return c.pass; });

@@ -137,7 +137,7 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
   // Printed by every command and in reports: printable (engine/base/format.hpp), so a
   // name holding "\n" or "\r" cannot forge an output line.
   scene.name = printable(reader.string_or("name", std::filesystem::path(file).stem().string()));
-  scene.description = reader.string_or("description", "");
+  reader.string_or("description", "");  // for people: checked to be text, not kept
 
   // Tick rate.
   scene.rate_hz = reader.quantity_or("rate_hz", Quantity::frequency_Hz, 1000.0, Bound::positive);
@@ -210,12 +210,6 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
 }
 
 }  // namespace
-
-std::vector<std::string> effect_type_names() {
-  std::vector<std::string> names;
-  for (const EffectType& type : effect_types()) names.emplace_back(type.name);
-  return names;
-}
 
 Scene load_environment_text(std::string_view json_text, const std::string& display_name,
                             const std::string& base_dir) {

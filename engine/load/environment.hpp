@@ -18,7 +18,4 @@ Scene load_environment_file(const std::string& path);
 Scene load_environment_text(std::string_view json_text, const std::string& display_name,
                             const std::string& base_dir = ".");
 
-// The effect types an environment may use, for messages and documentation.
-std::vector<std::string> effect_type_names();
-
 }  // namespace hapscene

@@ -121,7 +121,6 @@ struct ScriptProgram {
   ScriptLimits limits;
   bool needs_velocity{true};  // false: the engine may skip the velocity estimator
   bool needs_time{true};
-  bool has_reset{};
   std::vector<ScriptParam> params;  // sorted by name
 };
 

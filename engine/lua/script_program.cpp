@@ -118,7 +118,6 @@ ScriptProgram compile_script(std::string display_name, std::string source,
   program.params = vm.params;
   program.needs_velocity = vm.needs_velocity;
   program.needs_time = vm.needs_time;
-  program.has_reset = !lua_isnil(vm.L, detail::kSlotReset);
 
   // Run it once, as a run would start, so that errors inside reset() and force() on the
   // common path (typos, wrong needs, a missing return) fail the load, not the run.

@@ -16,8 +16,6 @@ class RealtimeGuard {
   RealtimeGuard(const RealtimeGuard&) = delete;
   RealtimeGuard& operator=(const RealtimeGuard&) = delete;
 
-  bool fifo() const noexcept { return fifo_; }
-  bool memory_locked() const noexcept { return locked_; }
   // One line for the summary: what was obtained, or why not.
   const std::string& note() const noexcept { return note_; }
 

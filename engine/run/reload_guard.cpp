@@ -28,7 +28,7 @@ struct Changes {
   }
 };
 
-// Every number of the profile (its description is prose and may change).
+// Every number of the profile.
 void compare_profiles(const DeviceProfile& a, const DeviceProfile& b, Changes* c) {
   c->compare("sensor.type (0 mr, 1 encoder)", static_cast<int>(a.sensor.kind), static_cast<int>(b.sensor.kind));
   c->compare("sensor.counts_to_deg_slope", a.sensor.counts_to_deg_slope, b.sensor.counts_to_deg_slope);

@@ -175,7 +175,7 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
     if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
       const ScriptInstance& instance = *state.scripts[script_index++];
       summary.scripts.push_back(ScriptReport{script->program->display_name, instance.disabled(),
-                                             instance.fault(), std::string(instance.fault_message()),
+                                             std::string(instance.fault_message()),
                                              instance.fault_time_s(), instance.skipped_calls()});
       // Its fault, counted by kind: a limit overrun, or an error / bad return value.
       switch (instance.fault()) {

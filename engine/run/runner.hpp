@@ -61,7 +61,6 @@ enum class OverrunFault : std::uint8_t {
 struct ScriptReport {
   std::string name;            // "scripts/bumps.lua"
   bool disabled{};
-  ScriptFault fault_kind{ScriptFault::none};
   std::string fault;           // "scripts/bumps.lua:12: ..." when disabled
   double fault_time_s{};       // run time of the faulting call
   std::uint64_t skipped_calls{};  // ticks answered with 0 N after the fault

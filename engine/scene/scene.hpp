@@ -25,7 +25,6 @@ struct Scene {
 
   double rate_hz{};                 // tick rate
   std::string name;
-  std::string description;
   std::string source_path;          // the file it was loaded from, for messages
 
   DeviceProfile device;

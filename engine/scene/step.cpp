@@ -110,9 +110,8 @@ template <bool kFading, bool kScripts>
 
 }  // namespace
 
-double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts,
-                     std::uint64_t* script_calls) noexcept {
-  return add_effects_N<true>(scene, input, scripts, script_calls);
+double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts) noexcept {
+  return add_effects_N<true>(scene, input, scripts, nullptr);
 }
 
 void collect_script_garbage(TickState* state) noexcept {

@@ -23,10 +23,8 @@ void step(const Scene& scene, std::int32_t raw_counts, TickState* state,
           const Crossfade* fade = nullptr) noexcept;
 
 // The effects stage alone, as the tick runs it: the sum of the compiled effects' forces
-// (the bank's, then each script's) for one input, with the scene's script instances;
-// adds the number of script calls made to *script_calls.
-double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts,
-                     std::uint64_t* script_calls = nullptr) noexcept;
+// (the bank's, then each script's) for one input, with the scene's script instances.
+double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts) noexcept;
 
 // Housekeeping for the tick's slack, after the command is written: a little garbage
 // collection for each script (their collectors are stopped while they compute force).

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "engine/base/whole_number.hpp"
 #include "tests/cli/cli_support.hpp"
 #include "tests/scratch_folder.hpp"
 
@@ -16,6 +17,8 @@ namespace {
 
 using hapscene::test::CliOutcome;
 using hapscene::test::run_cli;
+using hapscene::read_whole_number;
+using hapscene::WholeNumberRead;
 
 // The message of a refused command line (and that it was refused with exit code 2).
 std::string refused(const std::string& args) {
@@ -71,6 +74,25 @@ TEST_CASE("cli values: whole numbers are read whole, by one parser") {
         "\"9600.5\"\n");
   // A seed as large as 64 bits holds is fine.
   CHECK(run_cli("run environments/wall.json --sim-time --duration 10ms --seed 18446744073709551615").exit_code == 0);
+}
+
+// The engine's one reader of integers from text (the command line and the board process's
+// test hook both use it): the whole text or nothing.
+TEST_CASE("cli values: read_whole_number takes digits only, the whole text") {
+  std::uint64_t value = 42;
+  for (const char* bad : {"10x", "7.5", "1e3", "-1", "+3", " 7", "7 ", "", "0x10", "x"}) {
+    INFO(bad);
+    CHECK(read_whole_number(bad, &value) == WholeNumberRead::not_whole);
+  }
+  CHECK(value == 42);  // untouched unless ok
+  CHECK(read_whole_number("18446744073709551616", &value) == WholeNumberRead::too_large);
+  CHECK(read_whole_number("18446744073709551615", &value) == WholeNumberRead::ok);
+  CHECK(value == 18446744073709551615ull);
+  CHECK(read_whole_number("007", &value) == WholeNumberRead::ok);
+  CHECK(value == 7);
+  CHECK(refused("run environments/wall.json --seed 7.5").find("--seed: expected a whole number") !=
+        std::string::npos);
+  CHECK(refused("run environments/wall.json --seed 1e3").find("got \"1e3\"") != std::string::npos);
 }
 
 TEST_CASE("cli values: probe ranges refuse non-finite, tiny-step and absurd ranges") {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/devices/board_link.hpp"
+#include "engine/base/format.hpp"
 #include "engine/devices/board_report.hpp"
 #include "tests/devices/fake_board.hpp"
 
@@ -141,4 +142,38 @@ TEST_CASE("board link: a vanished port is reopened now and then, without blockin
   CHECK(report.find("vanished") != std::string::npos);
   CHECK(report.find("port reopened") != std::string::npos);
   CHECK(report.find("round trip") != std::string::npos);
+}
+
+// The link's health counters are printed, so a fault they count is never hidden.
+TEST_CASE("board link: the report prints unanswered commands, partial writes and the board's status flags") {
+  LoopbackLink wire;
+  BoardLink link(wire, BoardLinkConfig{});
+  std::int64_t now_ns = 0;
+  for (int i = 0; i < 5; ++i) tick(&link, &now_ns);
+  CHECK(board_report(link, 0).find("link health      0 commands unanswered, 0 frames not sent whole; "
+                                   "states said command timeout 0, duty limited 0") != std::string::npos);
+  // The board says its timeout fired and it limited the duty, in every STATE.
+  wire.board.extra_status = HS_STATUS_TIMED_OUT | HS_STATUS_DUTY_LIMITED;
+  for (int i = 0; i < 3; ++i) tick(&link, &now_ns);
+  CHECK(link.counters().timeouts_reported >= 2);
+  CHECK(link.counters().duty_limited == link.counters().timeouts_reported);
+  wire.board.extra_status = 0;
+  // The board stays alive but answers no COMMAND: those go unanswered (counted when
+  // their sequence number comes round again).
+  wire.board.states_muted = true;
+  for (int i = 0; i < 300; ++i) tick(&link, &now_ns);
+  CHECK(link.counters().unanswered > 0);
+  wire.board.states_muted = false;
+  // The port takes frames short (all but the last byte).
+  wire.short_writes = true;
+  for (int i = 0; i < 3; ++i) tick(&link, &now_ns);
+  CHECK(link.counters().frames_dropped_tx >= 3);
+  const std::string report = board_report(link, 0);
+  CHECK(report.find(printf_string("%llu commands unanswered, %llu frames not sent whole; states said command "
+                                  "timeout %llu, duty limited %llu",
+                                  static_cast<unsigned long long>(link.counters().unanswered),
+                                  static_cast<unsigned long long>(link.counters().frames_dropped_tx),
+                                  static_cast<unsigned long long>(link.counters().timeouts_reported),
+                                  static_cast<unsigned long long>(link.counters().duty_limited))) !=
+        std::string::npos);
 }

@@ -32,6 +32,7 @@ class FakeBoard {
   bool states_muted{false};   // answer COMMANDs with STATS: alive, but no position
   std::uint8_t protocol_version{HS_PROTOCOL_VERSION};
   int raw_counts_override{-1};  // >= 0: the raw count sent in STATEs
+  std::uint8_t extra_status{0};  // flags added to every STATE's status
   int hellos{0};
   int commands{0};
   hs_command last_command{};
@@ -82,7 +83,7 @@ class FakeBoard {
       }
       const auto raw = static_cast<std::uint16_t>(raw_counts_override >= 0 ? raw_counts_override
                                                                            : (unwrapped_counts & 1023));
-      hs_state state{frame.seq, HS_STATUS_ARMED, raw,
+      hs_state state{frame.seq, static_cast<std::uint8_t>(HS_STATUS_ARMED | extra_status), raw,
                      unwrapped_counts, 0, boot_id, 0};
       std::uint8_t payload[HS_STATE_SIZE];
       hs_put_state(&state, payload);
@@ -111,6 +112,7 @@ class LoopbackLink final : public ByteLink {
   }
   long write_some(const std::uint8_t* data, std::size_t size) noexcept override {
     if (gone) return -1;
+    if (short_writes && size > 1) --size;  // the port takes all but the last byte
     board.receive(data, size, &to_host);
     return static_cast<long>(size);
   }
@@ -125,6 +127,7 @@ class LoopbackLink final : public ByteLink {
   std::vector<std::uint8_t> to_host;
   bool gone{false};
   bool can_reopen{false};
+  bool short_writes{false};
   int reopen_attempts{0};
 };
 

@@ -96,6 +96,19 @@ TEST_CASE("hil board process: a board that aborts mid-run is exit 1 with the rea
   CHECK(outcome.out.find("zero force commanded, run stopped") != std::string::npos);
 }
 
+TEST_CASE("hil board process: the abort hook is read whole, never as another cycle" *
+          doctest::test_suite("threaded")) {
+  // "8000000x" once read as 8000000 (strtoull); now the board refuses it before the run.
+  setenv("HAPSCENE_BOARD_ABORT_AT_CYCLE", "8000000x", 1);
+  const test::CliOutcome outcome = test::run_cli("run environments/spring.json --device hil --sim-time --duration 2s");
+  unsetenv("HAPSCENE_BOARD_ABORT_AT_CYCLE");
+  INFO(outcome.out << outcome.err);
+  CHECK(outcome.exit_code == 2);
+  CHECK(outcome.err.find("HAPSCENE_BOARD_ABORT_AT_CYCLE: expected a whole number of cycles, got \"8000000x\"") !=
+        std::string::npos);
+  CHECK(outcome.out.find("was killed by signal 6") == std::string::npos);
+}
+
 TEST_CASE("hil board process: the board process ends with the device") {
   pid_t board = -1;
   {

@@ -2,8 +2,8 @@
 // The channel between hapscene and its simulated board process (hapscene-board, see
 // simulated_board.hpp): fixed-size messages over a Unix socket, in lock-step. Each request
 // carries the sensor reading and the host's bytes for the UART, then asks the board to run
-// to a cycle (or to reset); each reply carries the pins, the cycle, whether the core halted
-// and the bytes the firmware sent. Both ends are the same build on the same machine, so the
+// to a cycle (or to reset); each reply carries the pins, the cycle and the bytes the
+// firmware sent. Both ends are the same build on the same machine, so the
 // structs go over as they are.
 #include <cstddef>
 #include <cstdint>
@@ -32,9 +32,8 @@ struct Reply {
   double motor_duty{};
   std::uint16_t byte_count{};        // board bytes following the reply
   std::uint16_t to_board_pending{};  // host bytes still queued for the UART
-  std::uint8_t halted{};
   std::uint8_t direction_high{};
-  std::uint8_t unused[2]{};
+  std::uint8_t unused[3]{};
 };
 
 }  // namespace hapscene::board_protocol

@@ -142,7 +142,6 @@ SimulatedBoard::SimulatedBoard(const std::string& firmware_elf) : firmware_elf_(
     cycle_ = first.cycle;
     motor_duty_ = first.motor_duty;
     direction_high_ = first.direction_high != 0;
-    halted_ = first.halted != 0;
     return;
   }
   lose(timed_out ? Loss::timed_out : Loss::channel);
@@ -258,7 +257,6 @@ bool SimulatedBoard::exchange(Op op, std::uint64_t cycle) noexcept {
   cycle_ = reply.cycle;
   motor_duty_ = reply.motor_duty;
   direction_high_ = reply.direction_high != 0;
-  halted_ = reply.halted != 0;
   to_board_pending_ = reply.to_board_pending;
   return true;
 }

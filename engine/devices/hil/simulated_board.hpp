@@ -41,9 +41,6 @@ class SimulatedBoard {
   // Runs the CPU (timers, interrupts, UART) until `cycle`.
   void run_until(std::uint64_t cycle) noexcept;
   std::uint64_t cycle() const noexcept { return cycle_; }
-  // Whether the core stopped for good (crashed or ended, or the process is lost); a reset
-  // revives a stopped core, not a lost process.
-  bool halted() const noexcept { return halted_ || lost_; }
 
   // The MR sensor output as the ADC will convert it (clamped to 0..1023 counts).
   void set_sensor_counts(std::int32_t counts) noexcept { sensor_counts_ = counts; }
@@ -84,7 +81,6 @@ class SimulatedBoard {
   std::uint64_t cycle_{};
   double motor_duty_{};
   bool direction_high_{};
-  bool halted_{};
   std::size_t to_board_pending_{};  // host bytes queued in the process
   std::int32_t sensor_counts_{board_protocol::kNoSensor};
 

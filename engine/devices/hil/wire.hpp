@@ -13,21 +13,17 @@ struct WireFaults {
   std::uint32_t drop_next{};      // drop this many of the next bytes
   std::uint32_t corrupt_in{};     // XOR the byte after this many more with corrupt_mask
   std::uint8_t corrupt_mask{};    // 0: nothing to corrupt
-  std::uint64_t dropped{};        // bytes dropped so far
-  std::uint64_t corrupted{};      // bytes corrupted so far
 
   // Applies the faults to one byte; false when it is dropped.
   bool pass(std::uint8_t* byte) noexcept {
     if (drop_next > 0) {
       --drop_next;
-      ++dropped;
       return false;
     }
     if (corrupt_mask != 0) {
       if (corrupt_in == 0) {
         *byte ^= corrupt_mask;
         corrupt_mask = 0;
-        ++corrupted;
       } else {
         --corrupt_in;
       }

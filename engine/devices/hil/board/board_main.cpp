@@ -17,6 +17,7 @@
 #include <exception>
 #include <string>
 
+#include "engine/base/whole_number.hpp"
 #include "engine/devices/hil/board/simavr_board.hpp"
 #include "engine/devices/hil/board_protocol.hpp"
 
@@ -69,7 +70,6 @@ bool send_reply(SimavrBoard& board) {
   Reply reply;
   reply.cycle = board.cycle();
   reply.motor_duty = board.motor_duty();
-  reply.halted = board.halted() ? 1 : 0;
   reply.direction_high = board.direction_high() ? 1 : 0;
   reply.byte_count = static_cast<std::uint16_t>(board.take_bytes(bytes, sizeof bytes));
   reply.to_board_pending = static_cast<std::uint16_t>(board.to_board_pending());
@@ -97,7 +97,12 @@ int main(int argc, char** argv) {
     SimavrBoard board(firmware_elf);
     alarm(0);
     if (const char* abort_at = std::getenv("HAPSCENE_BOARD_ABORT_AT_CYCLE")) {
-      board.abort_at_cycle = std::strtoull(abort_at, nullptr, 10);
+      // Read whole: "8000000x" or "" must not become an abort at some other cycle.
+      if (read_whole_number(abort_at, &board.abort_at_cycle) != WholeNumberRead::ok) {
+        std::fprintf(stderr, "HAPSCENE_BOARD_ABORT_AT_CYCLE: expected a whole number of cycles, got \"%s\"\n",
+                     abort_at);
+        return 2;
+      }
     }
     if (!send_reply(board)) return 5;
     // Lock-step: sensor and host bytes in, run or reset, pins and board bytes out.

@@ -173,10 +173,6 @@ std::size_t SimavrBoard::to_board_pending() const noexcept { return impl_->to_bo
 
 std::uint64_t SimavrBoard::cycle() const noexcept { return impl_->avr->cycle; }
 
-bool SimavrBoard::halted() const noexcept {
-  return impl_->avr->state == cpu_Done || impl_->avr->state == cpu_Crashed;
-}
-
 // counts = mV * 1023 / Vref (simavr truncates), so the smallest mV that reaches `counts`.
 void SimavrBoard::set_sensor_counts(std::int32_t counts) noexcept {
   const std::int64_t clamped = counts < 0 ? 0 : (counts > 1023 ? 1023 : counts);

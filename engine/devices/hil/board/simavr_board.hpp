@@ -32,7 +32,6 @@ class SimavrBoard {
 
   void run_until(std::uint64_t cycle) noexcept;
   std::uint64_t cycle() const noexcept;
-  bool halted() const noexcept;
   void set_sensor_counts(std::int32_t counts) noexcept;
   double motor_duty() const noexcept;
   bool direction_high() const noexcept;
