@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "engine/devices/board_link.hpp"
 #include "engine/base/format.hpp"
+#include "engine/devices/board_link.hpp"
 #include "engine/devices/board_report.hpp"
 #include "tests/devices/fake_board.hpp"
 
