@@ -8,50 +8,18 @@
 
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/run/runner.hpp"
+#include "tests/run/slow_device.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;
 using hapscene::test::scene_from;
-
-namespace {
-
-// A simulated Hapkit whose advance() burns real time on chosen ticks, so that the
-// real-time loop overruns its deadline there.
-class PeriodicallySlowDevice final : public Device {
- public:
-  PeriodicallySlowDevice(const Scene& scene, std::function<bool(std::uint64_t)> slow_tick,
-                         std::chrono::microseconds slow_for)
-      : inner_(scene.device, SimulationConfig{}), slow_tick_(std::move(slow_tick)), slow_for_(slow_for) {}
-  std::int32_t read_counts() noexcept override { return inner_.read_counts(); }
-  void write(const MotorCommand& command) noexcept override {
-    last = command;
-    inner_.write(command);
-  }
-  void advance(double dt_s) noexcept override {
-    if (slow_tick_(ticks_++)) {
-      const auto until = std::chrono::steady_clock::now() + slow_for_;
-      while (std::chrono::steady_clock::now() < until) {
-      }
-    }
-    inner_.advance(dt_s);
-  }
-  MotorCommand last{};
-
- private:
-  SimulatedHapkit inner_;
-  std::function<bool(std::uint64_t)> slow_tick_;
-  std::chrono::microseconds slow_for_;
-  std::uint64_t ticks_{};
-};
-
-}  // namespace
 
 TEST_CASE("run: every third tick overrunning by two periods is a fault of frequent overruns" *
           doctest::test_suite("threaded")) {
   // Each slow tick misses 2 deadlines, then two ticks keep time: never 10 in a row, yet the
   // device gets 3 commands in 5 periods. Default numbers: > 100 misses in 1000 deadlines.
   const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 500}]})");
-  PeriodicallySlowDevice device(scene, [](std::uint64_t tick) { return tick % 3 == 2; },
+  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick % 3 == 2; },
                                 std::chrono::microseconds(2600));
   const RunOptions options{.duration_s = 2.0, .pacing = Pacing::real_time};
   const RunSummary summary = run_scene(scene, device, options, nullptr);
@@ -69,7 +37,7 @@ TEST_CASE("run: misses spread thinner than the window's limit never fault, howev
   // One miss every 15 ticks: about 13 in any 200 deadlines (limit 20), 40 in the run (more
   // than 20): the window slides, old misses leave it.
   const Scene scene = scene_from(R"({"effects": []})");
-  PeriodicallySlowDevice device(scene, [](std::uint64_t tick) { return tick % 15 == 7; },
+  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick % 15 == 7; },
                                 std::chrono::microseconds(1500));
   const RunOptions options{.duration_s = 0.6,
                            .pacing = Pacing::real_time,
@@ -85,7 +53,7 @@ TEST_CASE("run: misses spread thinner than the window's limit never fault, howev
 
 TEST_CASE("run: a streak still faults as a streak, not as frequent overruns" * doctest::test_suite("threaded")) {
   const Scene scene = scene_from(R"({"effects": []})");
-  PeriodicallySlowDevice device(scene, [](std::uint64_t tick) { return tick == 20; },
+  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick == 20; },
                                 std::chrono::milliseconds(30));
   const RunOptions options{.duration_s = 0.2, .pacing = Pacing::real_time};
   const RunSummary summary = run_scene(scene, device, options, nullptr);
@@ -94,7 +62,7 @@ TEST_CASE("run: a streak still faults as a streak, not as frequent overruns" * d
 
 TEST_CASE("run: simulated time never counts overruns") {
   const Scene scene = scene_from(R"({"effects": []})");
-  PeriodicallySlowDevice device(scene, [](std::uint64_t tick) { return tick % 3 == 2; },
+  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick % 3 == 2; },
                                 std::chrono::microseconds(2600));
   const RunOptions options{.duration_s = 0.3, .pacing = Pacing::simulated_time};
   const RunSummary summary = run_scene(scene, device, options, nullptr);

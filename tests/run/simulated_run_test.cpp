@@ -9,6 +9,7 @@
 
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/run/runner.hpp"
+#include "tests/run/slow_device.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;
@@ -191,42 +192,9 @@ TEST_CASE("latency histogram: percentiles within 3 %, exact max") {
   CHECK(histogram.percentile_ns(1.0) == 10000);
 }
 
-namespace {
-
-// A simulated Hapkit whose advance() burns real time on chosen ticks, to make the
-// real-time loop overrun on purpose.
-class SlowDevice final : public Device {
- public:
-  SlowDevice(const Scene& scene, std::function<bool(std::uint64_t)> slow_tick,
-             std::chrono::microseconds slow_for = std::chrono::microseconds(1600))
-      : inner_(scene.device, SimulationConfig{}), slow_tick_(std::move(slow_tick)), slow_for_(slow_for) {}
-  std::int32_t read_counts() noexcept override { return inner_.read_counts(); }
-  void write(const MotorCommand& command) noexcept override {
-    last = command;
-    inner_.write(command);
-  }
-  void advance(double dt_s) noexcept override {
-    if (slow_tick_(ticks_++)) {
-      const auto until = std::chrono::steady_clock::now() + slow_for_;
-      while (std::chrono::steady_clock::now() < until) {
-      }
-    }
-    inner_.advance(dt_s);
-  }
-  MotorCommand last{};
-
- private:
-  SimulatedHapkit inner_;
-  std::function<bool(std::uint64_t)> slow_tick_;
-  std::chrono::microseconds slow_for_;
-  std::uint64_t ticks_{};
-};
-
-}  // namespace
-
 TEST_CASE("run: sustained overruns warn, then fault to zero force and stop" * doctest::test_suite("threaded")) {
   const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 500}]})");
-  SlowDevice device(scene, [](std::uint64_t tick) { return tick >= 20; });  // slow from tick 20 on
+  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick >= 20; });  // slow from tick 20 on
   RunOptions options{.duration_s = 0.2, .pacing = Pacing::real_time};
   const RunSummary summary = run_scene(scene, device, options, nullptr);
   CHECK(summary.overrun_fault);
@@ -240,7 +208,7 @@ TEST_CASE("run: sustained overruns warn, then fault to zero force and stop" * do
 
 TEST_CASE("run: a short burst of overruns warns without a fault" * doctest::test_suite("threaded")) {
   const Scene scene = scene_from(R"({"effects": []})");
-  SlowDevice device(scene, [](std::uint64_t tick) { return tick >= 10 && tick < 14; });
+  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick >= 10 && tick < 14; });
   RunOptions options{.duration_s = 0.06, .pacing = Pacing::real_time};
   const RunSummary summary = run_scene(scene, device, options, nullptr);
   CHECK_FALSE(summary.overrun_fault);
@@ -253,7 +221,7 @@ TEST_CASE("run: one stall of many periods is that many misses in a row: a fault,
   // A tick that takes 30 periods (a script slow but within its budget, a blocked device)
   // leaves the motor without a command for 30 deadlines: a sustained overrun.
   const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 500}]})");
-  SlowDevice device(scene, [](std::uint64_t tick) { return tick == 20; }, std::chrono::milliseconds(30));
+  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick == 20; }, std::chrono::milliseconds(30));
   RunOptions options{.duration_s = 0.2, .pacing = Pacing::real_time};
   const RunSummary summary = run_scene(scene, device, options, nullptr);
   CHECK(summary.overrun_fault);
@@ -265,7 +233,7 @@ TEST_CASE("run: one stall of many periods is that many misses in a row: a fault,
 
 TEST_CASE("run: single overruns neither warn nor fault" * doctest::test_suite("threaded")) {
   const Scene scene = scene_from(R"({"effects": []})");
-  SlowDevice device(scene, [](std::uint64_t tick) { return tick % 10 == 5; });
+  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick % 10 == 5; });
   RunOptions options{.duration_s = 0.05, .pacing = Pacing::real_time};
   const RunSummary summary = run_scene(scene, device, options, nullptr);
   CHECK(summary.deadline_misses >= 4);

@@ -1,0 +1,41 @@
+#pragma once
+// A simulated Hapkit whose advance() burns real time on chosen ticks, so that the
+// real-time loop overruns its deadline there (the overrun tests of tests/run).
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <utility>
+
+#include "engine/devices/simulated_hapkit.hpp"
+#include "engine/scene/scene.hpp"
+
+namespace hapscene::test {
+
+class SlowDevice final : public Device {
+ public:
+  SlowDevice(const Scene& scene, std::function<bool(std::uint64_t)> slow_tick,
+             std::chrono::microseconds slow_for = std::chrono::microseconds(1600))
+      : inner_(scene.device, SimulationConfig{}), slow_tick_(std::move(slow_tick)), slow_for_(slow_for) {}
+  std::int32_t read_counts() noexcept override { return inner_.read_counts(); }
+  void write(const MotorCommand& command) noexcept override {
+    last = command;
+    inner_.write(command);
+  }
+  void advance(double dt_s) noexcept override {
+    if (slow_tick_(ticks_++)) {
+      const auto until = std::chrono::steady_clock::now() + slow_for_;
+      while (std::chrono::steady_clock::now() < until) {
+      }
+    }
+    inner_.advance(dt_s);
+  }
+  MotorCommand last{};
+
+ private:
+  SimulatedHapkit inner_;
+  std::function<bool(std::uint64_t)> slow_tick_;
+  std::chrono::microseconds slow_for_;
+  std::uint64_t ticks_{};
+};
+
+}  // namespace hapscene::test
