@@ -1,0 +1,89 @@
+#pragma once
+// The handle state's vector type: one value per axis of a device's task (or joint) space,
+// fixed in size when the scene is compiled. Axes<1> is a plain double, so the 1-DOF tick
+// keeps its values in registers and compiles to the same instructions it always did;
+// Axes<2> and Axes<3> are small arrays with the arithmetic effects and safety need.
+// Generic code uses dot(), norm() and component() so it reads the same for every N.
+#include <cmath>
+#include <cstddef>
+
+namespace hapscene {
+
+// A vector of N doubles (N >= 2; Axes<1> is a double).
+template <int N>
+struct AxisVector {
+  static_assert(N >= 2, "one axis is a plain double: Axes<1>");
+  double value[N]{};
+
+  constexpr double& operator[](int i) noexcept { return value[i]; }
+  constexpr double operator[](int i) const noexcept { return value[i]; }
+  // Named components for the planar case (task space x, y or joints 1, 2).
+  constexpr double x() const noexcept { return value[0]; }
+  constexpr double y() const noexcept { return value[1]; }
+
+  constexpr AxisVector& operator+=(const AxisVector& other) noexcept {
+    for (int i = 0; i < N; ++i) value[i] += other.value[i];
+    return *this;
+  }
+  constexpr AxisVector& operator-=(const AxisVector& other) noexcept {
+    for (int i = 0; i < N; ++i) value[i] -= other.value[i];
+    return *this;
+  }
+  constexpr AxisVector& operator*=(double scale) noexcept {
+    for (int i = 0; i < N; ++i) value[i] *= scale;
+    return *this;
+  }
+  friend constexpr AxisVector operator+(AxisVector a, const AxisVector& b) noexcept { return a += b; }
+  friend constexpr AxisVector operator-(AxisVector a, const AxisVector& b) noexcept { return a -= b; }
+  friend constexpr AxisVector operator-(AxisVector a) noexcept { return a *= -1.0; }
+  friend constexpr AxisVector operator*(AxisVector a, double scale) noexcept { return a *= scale; }
+  friend constexpr AxisVector operator*(double scale, AxisVector a) noexcept { return a *= scale; }
+  friend constexpr AxisVector operator/(AxisVector a, double divisor) noexcept {
+    for (int i = 0; i < N; ++i) a.value[i] /= divisor;
+    return a;
+  }
+  friend constexpr bool operator==(const AxisVector&, const AxisVector&) = default;
+};
+
+namespace detail {
+template <int N> struct AxesOf { using type = AxisVector<N>; };
+template <> struct AxesOf<1> { using type = double; };
+}  // namespace detail
+
+// One value per axis: double for N = 1, AxisVector<N> otherwise.
+template <int N>
+using Axes = typename detail::AxesOf<N>::type;
+
+using Vec2 = AxisVector<2>;
+
+// Component i of an axis value (for N = 1, the value itself).
+constexpr double component(double value, int) noexcept { return value; }
+template <int N>
+constexpr double component(const AxisVector<N>& value, int i) noexcept { return value[i]; }
+
+constexpr double dot(double a, double b) noexcept { return a * b; }
+template <int N>
+constexpr double dot(const AxisVector<N>& a, const AxisVector<N>& b) noexcept {
+  double sum = 0.0;
+  for (int i = 0; i < N; ++i) sum += a.value[i] * b.value[i];
+  return sum;
+}
+
+inline double norm(double value) noexcept { return std::fabs(value); }
+template <int N>
+inline double norm(const AxisVector<N>& value) noexcept { return std::sqrt(dot(value, value)); }
+
+// True when every component is finite.
+inline bool all_finite(double value) noexcept { return std::isfinite(value); }
+template <int N>
+inline bool all_finite(const AxisVector<N>& value) noexcept {
+  for (int i = 0; i < N; ++i) {
+    if (!std::isfinite(value.value[i])) return false;
+  }
+  return true;
+}
+
+// The z component of the cross product of two planar vectors (which side b lies of a).
+constexpr double cross(const Vec2& a, const Vec2& b) noexcept { return a[0] * b[1] - a[1] * b[0]; }
+
+}  // namespace hapscene
