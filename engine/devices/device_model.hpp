@@ -48,7 +48,11 @@ inline double sense_position_m(const DeviceModel& model, std::int32_t raw_counts
 }
 
 // Command stage: the force on the handle to the motor driver's command.
-inline MotorCommand motor_command(const DeviceModel& model, double force_N) noexcept {
+// (The sensor state is where a multi-axis model keeps the pose its command needs: the
+// Jacobian; a 1-DOF model does not read it.)
+inline MotorCommand motor_command(const DeviceModel& model, const SensorState& sensor,
+                                  double force_N) noexcept {
+  (void)sensor;
   return force_to_motor(model.kinematics, force_N);
 }
 

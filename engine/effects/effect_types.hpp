@@ -17,8 +17,12 @@
 
 namespace hapscene {
 
-template <typename... Types>
+// The effect types of scenes with N axes (each type's force_N takes an EffectInputOf<N>
+// and returns Axes<N>).
+template <int N, typename... Types>
 struct EffectTypeList {
+  using Input = EffectInputOf<N>;
+
   // One effect of any of the types, plus scripts (which run in the Lua layer, not here).
   using Variant = std::variant<Types..., ScriptEffect>;
 
@@ -38,22 +42,22 @@ struct EffectTypeList {
     // The sum of every built-in effect's force for one input, group by group in the
     // order of the list. Inlined into the tick, loops and all (as a call it cost the
     // spring scene about 12 instructions a tick).
-    [[gnu::always_inline]] double force_N(const EffectInput& input) const noexcept {
-      double force_N = 0.0;
+    [[gnu::always_inline]] Axes<N> force_N(const Input& input) const noexcept {
+      Axes<N> force_N{};
       (add_group_N<Types>(input, &force_N), ...);
       return force_N;
     }
 
    private:
     template <typename T>
-    [[gnu::always_inline]] void add_group_N(const EffectInput& input, double* force_N) const noexcept {
+    [[gnu::always_inline]] void add_group_N(const Input& input, Axes<N>* force_N) const noexcept {
       for (const T& e : std::get<std::vector<T>>(groups)) *force_N += e.force_N(input);
     }
   };
 };
 
-// The built-in effects, in the order the tick adds them up.
-using BuiltInEffects = EffectTypeList<Spring, Wall, Damper, Texture>;
+// The built-in effects of 1-DOF scenes, in the order the tick adds them up.
+using BuiltInEffects = EffectTypeList<1, Spring, Wall, Damper, Texture>;
 
 // One effect as written in an environment file; the forces of all effects add up.
 using Effect = BuiltInEffects::Variant;

@@ -15,13 +15,19 @@
 #include <cmath>
 #include <cstdint>
 
+#include "engine/base/axes.hpp"
+
 namespace hapscene {
 
-struct SafetyConfig {
+// The limits for a scene with N axes. With more than one axis the force limit and the
+// slew limit act on the force vector's magnitude (keeping its direction) and the workspace
+// is a box in task space.
+template <int N>
+struct SafetyConfigOf {
   double max_force_N{};
   double slew_limit_N_per_s{};
-  double workspace_min_m{};
-  double workspace_max_m{};
+  Axes<N> workspace_min_m{};
+  Axes<N> workspace_max_m{};
   double soft_start_s{};
   double soft_start_threshold_N{};
   // Derived from the above and the tick period by finalise_safety().
@@ -29,8 +35,14 @@ struct SafetyConfig {
   double ramp_step_per_tick{}; // T / soft_start_s (1 when soft_start_s is 0)
 };
 
+using SafetyConfig = SafetyConfigOf<1>;
+
 // Fills the derived fields for a tick period.
-void finalise_safety(double period_s, SafetyConfig* config) noexcept;
+template <int N>
+void finalise_safety(double period_s, SafetyConfigOf<N>* config) noexcept {
+  config->max_step_N = config->slew_limit_N_per_s * period_s;
+  config->ramp_step_per_tick = config->soft_start_s > 0.0 ? period_s / config->soft_start_s : 1.0;
+}
 
 // How often each rule acted, in ticks.
 struct SafetyCounters {
@@ -49,37 +61,61 @@ enum class PositionHold : std::uint8_t {
   cut,       // never measured, or implausible: no force at all
 };
 
-struct SafetyState {
+template <int N>
+struct SafetyStateOf {
   bool started{};                // false until the first tick (or after restart_soft_start)
   double ramp_gain{0.0};         // soft-start gain in [0, 1]; 0 until started
-  double previous_output_N{};    // for the slew limit
+  Axes<N> previous_output_N{};   // for the slew limit
   PositionHold position_hold{PositionHold::none};  // set by the loop each tick
   SafetyCounters counters;
 };
 
+using SafetyState = SafetyStateOf<1>;
+
+// The workspace test: inside the interval, or the box (every axis within its limits).
+inline bool within_workspace(double x_m, double min_m, double max_m) noexcept {
+  return x_m >= min_m && x_m <= max_m;
+}
+template <int N>
+inline bool within_workspace(const AxisVector<N>& x_m, const AxisVector<N>& min_m,
+                             const AxisVector<N>& max_m) noexcept {
+  for (int i = 0; i < N; ++i) {
+    if (!(x_m[i] >= min_m[i] && x_m[i] <= max_m[i])) return false;
+  }
+  return true;
+}
+
+// `value` with its magnitude limited to `limit` (> 0), keeping its sign or direction.
+inline double limit_magnitude(double value, double limit) noexcept { return std::copysign(limit, value); }
+template <int N>
+inline AxisVector<N> limit_magnitude(const AxisVector<N>& value, double limit) noexcept {
+  return value * (limit / norm(value));
+}
+
 // Rules 1, 2 and 4: what a static probe shows as the output for a requested force.
 // (Inline: it runs every tick.)
-inline double apply_static_safety(const SafetyConfig& config, double x_m, double force_N,
-                                  SafetyCounters* counters) noexcept {
-  // The common case in three comparisons: a force within the limit (so finite: NaN and
-  // infinities fail it) inside the workspace passes unchanged.
-  if (std::abs(force_N) <= config.max_force_N && x_m >= config.workspace_min_m &&
-      x_m <= config.workspace_max_m) [[likely]] {
+template <int N>
+inline Axes<N> apply_static_safety(const SafetyConfigOf<N>& config, const Axes<N>& x_m,
+                                   const Axes<N>& force_N, SafetyCounters* counters) noexcept {
+  // The common case in three comparisons (per axis): a force within the limit (so finite:
+  // NaN and infinities fail it) inside the workspace passes unchanged.
+  const bool inside = within_workspace(x_m, config.workspace_min_m, config.workspace_max_m);
+  if (norm(force_N) <= config.max_force_N && inside) [[likely]] {
     return force_N;
   }
   // 1. Non-finite force: a fault, rendered as nothing.
-  if (!std::isfinite(force_N)) {
+  if (!all_finite(force_N)) {
     ++counters->nonfinite_faults;
-    return 0.0;
+    return Axes<N>{};
   }
   // 2. Outside the workspace: render nothing.
-  if (!(x_m >= config.workspace_min_m && x_m <= config.workspace_max_m)) {
+  if (!inside) {
     ++counters->outside_workspace_ticks;
-    return 0.0;
+    return Axes<N>{};
   }
   // 4. Clamp to the force limit.
   ++counters->clamped_ticks;
-  return std::copysign(config.max_force_N, force_N);
+  return limit_magnitude(force_N, config.max_force_N);
 }
 
 // Rule 3 and an untrusted position, for a tick on which either acts (safety.cpp): returns
@@ -88,12 +124,15 @@ inline double apply_static_safety(const SafetyConfig& config, double x_m, double
 // ramps it back in from the gain reached (or decides afresh after a cut).
 // Soft start: decided on the first tick from the force the scene asks for there, then
 // ramping (the gain is 0 until then).
-[[gnu::noinline]] double apply_ramp(const SafetyConfig& config, double output_N, SafetyState* state) noexcept;
+template <int N>
+[[gnu::noinline]] Axes<N> apply_ramp(const SafetyConfigOf<N>& config, Axes<N> output_N,
+                                     SafetyStateOf<N>* state) noexcept;
 
 // All five rules, for one tick of a run. (Inline: it runs every tick.)
-inline double apply_safety(const SafetyConfig& config, double x_m, double force_N,
-                           SafetyState* state) noexcept {
-  double output_N = apply_static_safety(config, x_m, force_N, &state->counters);
+template <int N>
+inline Axes<N> apply_safety(const SafetyConfigOf<N>& config, const Axes<N>& x_m,
+                            const Axes<N>& force_N, SafetyStateOf<N>* state) noexcept {
+  Axes<N> output_N = apply_static_safety(config, x_m, force_N, &state->counters);
 
   // 3. (and an untrusted position) out of line: the common case is one comparison each.
   if (state->position_hold != PositionHold::none || state->ramp_gain < 1.0) [[unlikely]] {
@@ -101,9 +140,9 @@ inline double apply_safety(const SafetyConfig& config, double x_m, double force_
   }
 
   // 5. Slew limit against the previous output.
-  const double step_N = output_N - state->previous_output_N;
-  if (std::abs(step_N) > config.max_step_N) {
-    output_N = state->previous_output_N + std::copysign(config.max_step_N, step_N);
+  const Axes<N> step_N = output_N - state->previous_output_N;
+  if (norm(step_N) > config.max_step_N) {
+    output_N = state->previous_output_N + limit_magnitude(step_N, config.max_step_N);
     ++state->counters.slew_limited_ticks;
   }
   state->previous_output_N = output_N;
@@ -111,6 +150,10 @@ inline double apply_safety(const SafetyConfig& config, double x_m, double force_
 }
 
 // Makes the next tick decide again whether to ramp force in (after a scene swap).
-void restart_soft_start(SafetyState* state) noexcept;
+template <int N>
+void restart_soft_start(SafetyStateOf<N>* state) noexcept {
+  state->started = false;
+  state->ramp_gain = 0.0;
+}
 
 }  // namespace hapscene

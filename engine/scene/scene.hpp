@@ -1,6 +1,7 @@
 #pragma once
 // A compiled scene: the immutable result of loading an environment file. Every run reads
 // it through a const reference; everything a run changes lives in TickState.
+#include <cstdint>
 #include <string>
 #include <variant>
 #include <vector>
@@ -14,23 +15,43 @@
 
 namespace hapscene {
 
-struct Scene {
+// What a scene with N axes is made of: its device's profile and compiled model, what the
+// device reads and takes each tick, and its effect types. One specialisation per N
+// (docs/n-axis.md); everything else of a scene, its tick and its run is written once.
+template <int N>
+struct SceneParts;
+
+template <>
+struct SceneParts<1> {
+  using Profile = DeviceProfile;
+  using DeviceModel = hapscene::DeviceModel;
+  using SensorState = hapscene::SensorState;
+  using Reading = std::int32_t;       // the sensor's raw count
+  using Command = MotorCommand;       // the motor driver's duty and direction
+  using Effects = BuiltInEffects;
+};
+
+template <int N>
+struct SceneOf {
+  using Parts = SceneParts<N>;
+  static constexpr int kAxes = N;
+
   // What the tick reads, first and together: about four cache lines.
   double period_s{};                // 1 / rate_hz
   Needs needs;                      // union of the effects' needs: what step() computes
-  DeviceModel device_model;         // the device's sensor and drive, compiled for the tick
-  SafetyConfig safety;              // device limits lowered by the environment's
+  typename Parts::DeviceModel device_model;  // the device's sensor and drive, compiled for the tick
+  SafetyConfigOf<N> safety;         // device limits lowered by the environment's
   VelocityEstimatorConfig velocity;
-  EffectBank bank;                  // the built-in effects that can act, grouped for the tick
+  typename Parts::Effects::Bank bank;  // the built-in effects that can act, grouped for the tick
 
   double rate_hz{};                 // tick rate
   std::string name;
   std::string source_path;          // the file it was loaded from, for messages
 
-  DeviceProfile device;
+  typename Parts::Profile device;
   std::string device_file;          // the profile's file ("environments/devices/big.json"), or its shipped name
 
-  std::vector<Effect> effects;      // as written in the file
+  std::vector<typename Parts::Effects::Variant> effects;  // as written in the file
   std::size_t script_count{};       // ScriptEffects among them (instance_index 0..n-1)
 
   ValidateThresholds validate;      // the optional "validate" block (the harness only)
@@ -39,6 +60,9 @@ struct Scene {
   // them): "environments/x.json: /effects/1 (wall): ... never acts ...".
   std::vector<std::string> load_warnings;
 };
+
+// A 1-DOF scene (the Hapkit's).
+using Scene = SceneOf<1>;
 
 // Appends `effect` to the scene's list and, when it can act inside the workspace (safety
 // must be set first), to its bank (or its script count) and needs.

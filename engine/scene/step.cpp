@@ -29,11 +29,12 @@ void add_effect(Scene* scene, Effect effect) {
   scene->effects.push_back(std::move(effect));
 }
 
-ScriptList make_script_instances(const Scene& scene) {
+template <int N>
+ScriptList make_script_instances(const SceneOf<N>& scene) {
   // One sandboxed instance per script effect, in scene order (ScriptEffect::instance_index).
   ScriptList scripts;
   scripts.reserve(scene.script_count);
-  for (const Effect& effect : scene.effects) {
+  for (const auto& effect : scene.effects) {
     if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
       scripts.push_back(ScriptInstance::create(*script->program));
       scripts.back()->reset();
@@ -42,8 +43,9 @@ ScriptList make_script_instances(const Scene& scene) {
   return scripts;
 }
 
-TickState make_tick_state(const Scene& scene) {
-  TickState state;
+template <int N>
+TickStateOf<N> make_tick_state(const SceneOf<N>& scene) {
+  TickStateOf<N> state;
   state.sensor = make_sensor_state(scene.device_model);
   state.scripts = make_script_instances(scene);
   return state;
@@ -51,8 +53,8 @@ TickState make_tick_state(const Scene& scene) {
 
 namespace {
 
-// Each script's force (one call per script per tick).
-double add_scripts_N(double force_N, const EffectInput& input, ScriptList& scripts,
+// Each script's force (one call per script per tick): 1-DOF scripts.
+double add_scripts_N(double force_N, const EffectInputOf<1>& input, ScriptList& scripts,
                      std::uint64_t* script_calls) noexcept {
   const ScriptInput script_input{input.x_m, input.v_m_per_s, input.t_s, input.dt_s};
   for (const auto& script : scripts) force_N += script->force_N(script_input);
@@ -61,25 +63,29 @@ double add_scripts_N(double force_N, const EffectInput& input, ScriptList& scrip
 }
 
 // The effects stage: the built-in bank, then the scripts (when kScripts).
-template <bool kScripts>
-[[gnu::always_inline]] inline double add_effects_N(const Scene& scene, const EffectInput& input,
-                                                   ScriptList& scripts,
-                                                   std::uint64_t* script_calls) noexcept {
-  double force_N = scene.bank.force_N(input);
+template <bool kScripts, int N>
+[[gnu::always_inline]] inline Axes<N> add_effects_N(const SceneOf<N>& scene,
+                                                    const EffectInputOf<N>& input,
+                                                    ScriptList& scripts,
+                                                    std::uint64_t* script_calls) noexcept {
+  Axes<N> force_N = scene.bank.force_N(input);
   if constexpr (kScripts) force_N = add_scripts_N(force_N, input, scripts, script_calls);
   return force_N;
 }
 
-// One tick. Each case is its own instantiation: a tick of built-in effects alone (the
-// common one) makes no call at all, so it saves no registers and keeps its values in
-// them; scripts and cross-fades take the others.
-template <bool kFading, bool kScripts>
-[[gnu::noinline]] void step_tick(const Scene& scene, std::int32_t raw_counts, TickState* state,
-                                 const Crossfade* fade) noexcept {
+// One tick of a scene with N axes, written once for every N. Each case is its own
+// instantiation: a tick of built-in effects alone (the common one) makes no call at all,
+// so it saves no registers and keeps its values in them; scripts and cross-fades take the
+// others. The device model's two functions (sense_position_m, motor_command) are
+// overloaded per device family and inlined.
+template <int N, bool kFading, bool kScripts>
+[[gnu::noinline]] void step_tick(const SceneOf<N>& scene,
+                                 const typename SceneParts<N>::Reading& reading,
+                                 TickStateOf<N>* state, const CrossfadeOf<N>* fade) noexcept {
   // Sensor: the device model turns the reading into the handle position. (The tick count
   // converts as signed: one instruction, and runs never reach 2^63 ticks.)
   state->t_s = static_cast<double>(static_cast<std::int64_t>(state->tick)) * scene.period_s;
-  state->x_m = sense_position_m(scene.device_model, raw_counts, &state->sensor);
+  state->x_m = sense_position_m(scene.device_model, reading, &state->sensor);
 
   // Velocity: only when some effect reads it (of either scene during a cross-fade).
   Needs needs = scene.needs;
@@ -90,43 +96,53 @@ template <bool kFading, bool kScripts>
   }
 
   // Effects: the sum of every effect's force.
-  EffectInput input;
+  EffectInputOf<N> input;
   input.x_m = state->x_m;
   input.v_m_per_s = state->v_m_per_s;
   input.t_s = state->t_s;
   input.dt_s = scene.period_s;
-  double effects_N = add_effects_N<kScripts>(scene, input, state->scripts, &state->script_calls);
+  Axes<N> effects_N = add_effects_N<kScripts>(scene, input, state->scripts, &state->script_calls);
   if constexpr (kFading) {
-    const double from_N = add_effects_N<kScripts>(*fade->from, input, *fade->from_scripts, &state->script_calls);
+    const Axes<N> from_N =
+        add_effects_N<kScripts>(*fade->from, input, *fade->from_scripts, &state->script_calls);
     effects_N = (1.0 - fade->weight_to) * from_N + fade->weight_to * effects_N;
   }
   state->effects_force_N = effects_N;
 
   // Safety, then the motor command the board needs.
   state->output_N = apply_safety(scene.safety, state->x_m, effects_N, &state->safety);
-  state->command = motor_command(scene.device_model, state->output_N);
+  state->command = motor_command(scene.device_model, state->sensor, state->output_N);
   ++state->tick;
 }
 
 }  // namespace
 
-double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts) noexcept {
+template <int N>
+Axes<N> sum_effects_N(const SceneOf<N>& scene, const EffectInputOf<N>& input,
+                      ScriptList& scripts) noexcept {
   return add_effects_N<true>(scene, input, scripts, nullptr);
 }
 
-void collect_script_garbage(TickState* state) noexcept {
-  for (const auto& script : state->scripts) script->collect_garbage();
-}
-
-void step(const Scene& scene, std::int32_t raw_counts, TickState* state,
-          const Crossfade* fade) noexcept {
+template <int N>
+void step(const SceneOf<N>& scene, const typename SceneParts<N>::Reading& reading,
+          TickStateOf<N>* state, const CrossfadeOf<N>* fade) noexcept {
   if (fade != nullptr) [[unlikely]] {
-    step_tick<true, true>(scene, raw_counts, state, fade);
+    step_tick<N, true, true>(scene, reading, state, fade);
   } else if (state->scripts.empty()) [[likely]] {
-    step_tick<false, false>(scene, raw_counts, state, nullptr);
+    step_tick<N, false, false>(scene, reading, state, nullptr);
   } else {
-    step_tick<false, true>(scene, raw_counts, state, nullptr);
+    step_tick<N, false, true>(scene, reading, state, nullptr);
   }
 }
+
+// The axis counts scenes are compiled for.
+#define HAPSCENE_SCENE_FUNCTIONS(N)                                                           \
+  template ScriptList make_script_instances<N>(const SceneOf<N>&);                             \
+  template TickStateOf<N> make_tick_state<N>(const SceneOf<N>&);                               \
+  template Axes<N> sum_effects_N<N>(const SceneOf<N>&, const EffectInputOf<N>&, ScriptList&) noexcept; \
+  template void step<N>(const SceneOf<N>&, const SceneParts<N>::Reading&, TickStateOf<N>*,     \
+                        const CrossfadeOf<N>*) noexcept;
+HAPSCENE_SCENE_FUNCTIONS(1)
+#undef HAPSCENE_SCENE_FUNCTIONS
 
 }  // namespace hapscene

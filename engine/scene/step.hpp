@@ -11,23 +11,33 @@ namespace hapscene {
 
 // A cross-fade from a scene being replaced (hot reload): the effects stage gives
 // (1 - weight_to) * F_from + weight_to * F_to, so the handle never gets a jolt.
-struct Crossfade {
-  const Scene* from{};
+template <int N>
+struct CrossfadeOf {
+  const SceneOf<N>* from{};
   ScriptList* from_scripts{};
   double weight_to{};  // in [0, 1]
 };
 
-// A full tick from a raw sensor reading. Writes state->command (and every stage's field).
-// With `fade`, `scene` is the new scene and state->scripts its instances.
-void step(const Scene& scene, std::int32_t raw_counts, TickState* state,
-          const Crossfade* fade = nullptr) noexcept;
+using Crossfade = CrossfadeOf<1>;
+
+// A full tick from the device's raw reading. Writes state->command (and every stage's
+// field). With `fade`, `scene` is the new scene and state->scripts its instances.
+// Compiled once per axis count (step.cpp).
+template <int N>
+void step(const SceneOf<N>& scene, const typename SceneParts<N>::Reading& reading,
+          TickStateOf<N>* state, const CrossfadeOf<N>* fade = nullptr) noexcept;
 
 // The effects stage alone, as the tick runs it: the sum of the compiled effects' forces
 // (the bank's, then each script's) for one input, with the scene's script instances.
-double sum_effects_N(const Scene& scene, const EffectInput& input, ScriptList& scripts) noexcept;
+template <int N>
+Axes<N> sum_effects_N(const SceneOf<N>& scene, const EffectInputOf<N>& input,
+                      ScriptList& scripts) noexcept;
 
 // Housekeeping for the tick's slack, after the command is written: a little garbage
 // collection for each script (their collectors are stopped while they compute force).
-void collect_script_garbage(TickState* state) noexcept;
+template <int N>
+void collect_script_garbage(TickStateOf<N>* state) noexcept {
+  for (const auto& script : state->scripts) script->collect_garbage();
+}
 
 }  // namespace hapscene

@@ -4,6 +4,8 @@
 // effects never read velocity runs none.
 #include <string_view>
 
+#include "engine/base/axes.hpp"
+
 namespace hapscene {
 
 enum class VelocityEstimatorKind {
@@ -23,14 +25,17 @@ struct VelocityEstimatorConfig {
 // The low-pass smoothing factor for a cutoff and a tick period.
 double lowpass_alpha_for(double cutoff_Hz, double period_s) noexcept;
 
-// Per-run estimator state.
-struct VelocityState {
+// Per-run estimator state, for N axes (each axis filtered alike).
+template <int N>
+struct VelocityStateOf {
   bool started{};
-  double previous_x_m{};
-  double previous_difference_m_per_s{};  // (x1 - x2) / T (hapkit2019)
-  double v1_m_per_s{};  // previous estimate
-  double v2_m_per_s{};  // estimate before that (hapkit2013)
+  Axes<N> previous_x_m{};
+  Axes<N> previous_difference_m_per_s{};  // (x1 - x2) / T (hapkit2019)
+  Axes<N> v1_m_per_s{};  // previous estimate
+  Axes<N> v2_m_per_s{};  // estimate before that (hapkit2013)
 };
+
+using VelocityState = VelocityStateOf<1>;
 
 // The names accepted in environment files, in VelocityEstimatorKind order.
 inline constexpr std::string_view kVelocityEstimatorNames[] = {"hapkit2019", "hapkit2013",
@@ -38,17 +43,18 @@ inline constexpr std::string_view kVelocityEstimatorNames[] = {"hapkit2019", "ha
 
 // One estimator step: new velocity from the new position. The first call returns 0.
 // (Inline: it runs every tick of a scene that reads velocity.)
-inline double estimate_velocity(const VelocityEstimatorConfig& config, double period_s,
-                                double x_m, VelocityState* state) noexcept {
+template <int N>
+inline Axes<N> estimate_velocity(const VelocityEstimatorConfig& config, double period_s,
+                                 const Axes<N>& x_m, VelocityStateOf<N>* state) noexcept {
   if (!state->started) {
     state->started = true;
     state->previous_x_m = x_m;
-    return 0.0;
+    return Axes<N>{};
   }
-  const double difference_m_per_s = (x_m - state->previous_x_m) / period_s;
+  const Axes<N> difference_m_per_s = (x_m - state->previous_x_m) / period_s;
   state->previous_x_m = x_m;
 
-  double v_m_per_s = difference_m_per_s;
+  Axes<N> v_m_per_s = difference_m_per_s;
   switch (config.kind) {
     case VelocityEstimatorKind::hapkit2019:
       v_m_per_s = 0.9 * difference_m_per_s + 0.1 * state->previous_difference_m_per_s;
