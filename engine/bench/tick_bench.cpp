@@ -14,8 +14,8 @@ namespace {
 class RecordingDevice final : public Device {
  public:
   RecordingDevice(Device& inner, std::vector<std::int32_t>* counts) : inner_(inner), counts_(counts) {}
-  std::int32_t read_counts() noexcept override {
-    const std::int32_t counts = inner_.read_counts();
+  std::int32_t read() noexcept override {
+    const std::int32_t counts = inner_.read();
     counts_->push_back(counts);
     return counts;
   }
@@ -104,7 +104,7 @@ std::vector<std::int32_t> record_sensor_counts(const Scene& scene, double durati
   TickState state = make_tick_state(scene);
   const auto ticks = static_cast<std::uint64_t>(duration_s * scene.rate_hz);
   for (std::uint64_t i = 0; i < ticks; ++i) {
-    step(scene, device.read_counts(), &state);
+    step(scene, device.read(), &state);
     device.write(state.command);
     device.advance(scene.period_s);
   }

@@ -1,9 +1,12 @@
 #pragma once
-// What the haptic loop needs of a device: a raw sensor reading and a motor command.
-// Simulated devices also advance their physics by one tick period.
+// What the haptic loop needs of a device with N joints: the raw sensor readings of its
+// joints and a motor command per joint (DeviceIo<N> names the types; the scene's device
+// model turns readings into the handle position and a force into commands). Simulated
+// devices also advance their physics by one tick period.
 #include <cstdint>
 #include <string>
 
+#include "engine/base/axes.hpp"
 #include "engine/devices/kinematics.hpp"
 
 namespace hapscene {
@@ -20,30 +23,42 @@ enum class PositionStatus : std::uint8_t {
 // What a simulator knows and a real device cannot: the plant's true state, read by
 // observers (the harness recorder, `run --plot`, the soak) beside what the host measured.
 // Simulated devices implement it; for a real device Device::truth() is null.
-class SimulationTruth {
+// Handle values are Axes<N> in the device's task frame.
+template <int N>
+class SimulationTruthOf {
  public:
-  virtual ~SimulationTruth() = default;
-  virtual double x_m() const noexcept = 0;           // handle position
-  virtual double v_m_per_s() const noexcept = 0;     // handle velocity
-  virtual double motor_force_N() const noexcept = 0;      // what the motor applies now
-  virtual double hand_force_N() const noexcept = 0;       // the hand's force on the handle
+  virtual ~SimulationTruthOf() = default;
+  virtual Axes<N> x_m() const noexcept = 0;           // handle position
+  virtual Axes<N> v_m_per_s() const noexcept = 0;     // handle velocity
+  virtual Axes<N> motor_force_N() const noexcept = 0; // what the motors apply now, at the handle
+  virtual Axes<N> hand_force_N() const noexcept = 0;  // the hand's force on the handle
 };
 
-class Device {
+using SimulationTruth = SimulationTruthOf<1>;
+
+// What a device with N joints reads and takes each tick.
+template <int N>
+struct DeviceIo;
+
+// One joint (the Hapkit): the sensor's counts (an MR sensor's raw, wrapping counts, or
+// counts already unwrapped by the board, or an encoder's; the device model tells them
+// apart) and one duty and direction.
+template <>
+struct DeviceIo<1> {
+  using Reading = std::int32_t;
+  using Command = MotorCommand;
+};
+
+// What every device answers, whatever its number of joints.
+class DeviceStatus {
  public:
-  virtual ~Device() = default;
-  // The sensor reading in counts of the MR sensor: raw (wrapping) or already unwrapped by
-  // the board; the loop's flip counter leaves a continuous reading as it is.
-  virtual std::int32_t read_counts() noexcept = 0;
-  // The motor command, held until the next write (sample-and-hold).
-  virtual void write(const MotorCommand& command) noexcept = 0;
+  virtual ~DeviceStatus() = default;
   // Lets `dt_s` of device time pass. Real devices move on their own and ignore it.
   virtual void advance(double dt_s) noexcept { (void)dt_s; }
   // True once after the device's link came back (or first came up): the loop ramps
   // force in again, as at the start of a run.
   virtual bool take_restart() noexcept { return false; }
-  // The trust in the reading of the latest read_counts() (always fresh for simulated
-  // devices).
+  // The trust in the latest read() (always fresh for simulated devices).
   virtual PositionStatus position_status() const noexcept { return PositionStatus::fresh; }
   // True when the device saw a fault that should fail the run (exit 1); its report()
   // says what.
@@ -54,8 +69,23 @@ class Device {
   // Lines for the run summary (link health, latency, board timing); called outside the
   // loop. Empty for devices with nothing to add.
   virtual std::string report() const { return {}; }
-  // The simulator's true state, or null for a real device.
-  virtual const SimulationTruth* truth() const noexcept { return nullptr; }
 };
+
+template <int N>
+class DeviceOf : public DeviceStatus {
+ public:
+  using Reading = typename DeviceIo<N>::Reading;
+  using Command = typename DeviceIo<N>::Command;
+
+  // The joints' raw readings, for the tick about to run.
+  virtual Reading read() noexcept = 0;
+  // The motor commands, held until the next write (sample-and-hold).
+  virtual void write(const Command& command) noexcept = 0;
+  // The simulator's true state, or null for a real device.
+  virtual const SimulationTruthOf<N>* truth() const noexcept { return nullptr; }
+};
+
+// A 1-DOF device (the Hapkit, simulated, on a serial link or firmware-in-the-loop).
+using Device = DeviceOf<1>;
 
 }  // namespace hapscene

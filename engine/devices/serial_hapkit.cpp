@@ -34,7 +34,7 @@ SerialHapkit::~SerialHapkit() {
   if (link_.state() == LinkState::running) link_.send(MotorCommand{}, monotonic_now_ns());
 }
 
-std::int32_t SerialHapkit::read_counts() noexcept {
+std::int32_t SerialHapkit::read() noexcept {
   link_.poll(monotonic_now_ns());
   return link_.counts();
 }

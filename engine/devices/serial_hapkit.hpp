@@ -1,7 +1,7 @@
 #pragma once
 // A real Hapkit on a serial port (`--device serial:/dev/ttyACM0`), running the hapscene
 // firmware. Each tick: read what the board sent (non-blocking), hand the loop the latest
-// position, send the command. The board unwraps the sensor at 5 kHz, so read_counts()
+// position, send the command. The board unwraps the sensor at 5 kHz, so read()
 // gives continuous counts. A silent or vanished board gets zero force and reconnection
 // attempts without ever blocking the tick (see BoardLink).
 #include <cstdint>
@@ -30,7 +30,7 @@ class SerialHapkit final : public Device {
   // Commands zero force on the way out.
   ~SerialHapkit() override;
 
-  std::int32_t read_counts() noexcept override;
+  std::int32_t read() noexcept override;
   void write(const MotorCommand& command) noexcept override;
   bool take_restart() noexcept override { return link_.take_restart(); }
   PositionStatus position_status() const noexcept override { return link_.position_status(); }

@@ -10,7 +10,7 @@ namespace hapscene {
 SimulatedHapkit::SimulatedHapkit(const DeviceProfile& profile, const SimulationConfig& config)
     : plant_(profile, config) {}
 
-std::int32_t SimulatedHapkit::read_counts() noexcept { return plant_.sensor_counts(); }
+std::int32_t SimulatedHapkit::read() noexcept { return plant_.sensor_counts(); }
 
 // Motor: the duty is quantized to the PWM resolution and saturates at full duty; the
 // resulting force is held until the next write.

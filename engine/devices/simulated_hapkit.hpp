@@ -17,7 +17,7 @@ class SimulatedHapkit final : public Device, public SimulationTruth {
   // host's flip count starts at 0, as a real Hapkit centred at power-up).
   SimulatedHapkit(const DeviceProfile& profile, const SimulationConfig& config);
 
-  std::int32_t read_counts() noexcept override;
+  std::int32_t read() noexcept override;
   void write(const MotorCommand& command) noexcept override;
   void advance(double dt_s) noexcept override;
 

@@ -112,7 +112,7 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
     const std::int64_t begin_ns = monotonic_now_ns();
     last_begin_ns = begin_ns;
     const Crossfade* fade = hot_swap.before_tick(&state);
-    const std::int32_t raw_counts = device.read_counts();
+    const std::int32_t raw_counts = device.read();
     if (device.take_restart()) restart_soft_start(&state.safety);  // the link came back
     state.safety.position_hold = position_hold(device.position_status());
     step(hot_swap.scene(), raw_counts, &state, fade);

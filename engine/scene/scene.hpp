@@ -6,6 +6,7 @@
 #include <variant>
 #include <vector>
 
+#include "engine/devices/device.hpp"
 #include "engine/devices/device_model.hpp"
 #include "engine/devices/profile.hpp"
 #include "engine/effects/effect_types.hpp"
@@ -26,8 +27,8 @@ struct SceneParts<1> {
   using Profile = DeviceProfile;
   using DeviceModel = hapscene::DeviceModel;
   using SensorState = hapscene::SensorState;
-  using Reading = std::int32_t;       // the sensor's raw count
-  using Command = MotorCommand;       // the motor driver's duty and direction
+  using Reading = DeviceIo<1>::Reading;  // the sensor's raw count
+  using Command = DeviceIo<1>::Command;  // the motor driver's duty and direction
   using Effects = BuiltInEffects;
 };
 

@@ -39,7 +39,7 @@ bool has_event(const BoardLink& link, LinkEventKind kind) {
 class LoopbackDevice final : public Device {
  public:
   LoopbackDevice() : link(wire, BoardLinkConfig{}) {}
-  std::int32_t read_counts() noexcept override {
+  std::int32_t read() noexcept override {
     link.poll(now_ns);
     return link.counts();
   }

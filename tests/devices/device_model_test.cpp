@@ -108,7 +108,7 @@ TEST_CASE("device model: a simulated encoder Hapkit is tracked across what would
   double farthest_m = 0.0;
   double worst_error_m = 0.0;
   for (int tick = 0; tick < 3000; ++tick) {
-    step(encoder_scene, device.read_counts(), &state);
+    step(encoder_scene, device.read(), &state);
     worst_error_m = std::max(worst_error_m, std::abs(state.x_m - device.x_m()));
     farthest_m = std::max(farthest_m, std::abs(device.x_m()));
     device.write(state.command);

@@ -107,14 +107,14 @@ TEST_CASE("hil: the board turns the motor off within its timeout when the host s
   simulation.hand.stiffness_N_per_m = 2000.0;
   HilHapkit hil(scene.device, hil_config(simulation));
   for (int i = 0; i < 20; ++i) {
-    hil.read_counts();
+    hil.read();
     hil.write(MotorCommand{0.5, true});
     hil.advance(0.001);
   }
   CHECK(hil.motor_duty() == doctest::Approx(129.0 / 256.0));  // 128/255 to the nearest count
 
   // The host goes quiet: the motor must stop 20 ms after the last command, not earlier.
-  hil.read_counts();
+  hil.read();
   hil.write(MotorCommand{0.5, true});
   hil.wire().host_silent = true;
   double off_after_s = -1.0;
@@ -128,20 +128,20 @@ TEST_CASE("hil: the board turns the motor off within its timeout when the host s
 
   // The host sees the silence too, and the board counted the timeout.
   for (int i = 0; i < 60; ++i) {
-    hil.read_counts();
+    hil.read();
     hil.advance(0.001);
   }
   CHECK(hil.link().state() == LinkState::silent);
   hil.wire().host_silent = false;
   for (int i = 0; i < 30; ++i) {
-    hil.read_counts();
+    hil.read();
     hil.write(MotorCommand{0.0, false});
     hil.advance(0.001);
   }
   CHECK(hil.link().state() == LinkState::running);
   hil.mutable_link().request_stats();
   hil.advance(0.002);
-  hil.read_counts();
+  hil.read();
   CHECK(hil.link().board_stats().timeouts == 1);
 }
 
@@ -188,7 +188,7 @@ TEST_CASE("hil: corrupt bytes, dropped bytes, garbage and a board reset are surv
   // The board counted what reached it broken (after its reset, so only the garbage here).
   hil.mutable_link().request_stats();
   hil.advance(0.002);
-  hil.read_counts();
+  hil.read();
   CHECK(link.board_stats().frames_ok > 100);
 
   // The position stayed right and the wall pushes again after the reset's ramp-in:

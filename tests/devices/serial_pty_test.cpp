@@ -79,7 +79,7 @@ std::chrono::nanoseconds run_ticks(SerialHapkit* device, int ticks, double duty)
   std::chrono::nanoseconds longest{0};
   for (int i = 0; i < ticks; ++i) {
     const auto begin = std::chrono::steady_clock::now();
-    device->read_counts();
+    device->read();
     device->write(MotorCommand{duty, true});
     longest = std::max(longest, std::chrono::steady_clock::now() - begin);
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -102,7 +102,7 @@ TEST_CASE("serial: a board on a pseudo-terminal handshakes, renders, goes silent
   run_ticks(&device, 100, 0.25);
   CHECK(board.commands.load() > 0);
   CHECK(board.last_duty.load() == 64);
-  CHECK(device.read_counts() == 500);
+  CHECK(device.read() == 500);
   CHECK(device.link().round_trip_ns().count() > 0);
   CHECK(device.link().round_trip_ns().percentile_ns(0.5) < 20'000'000);
 

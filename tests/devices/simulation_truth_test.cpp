@@ -20,7 +20,7 @@ namespace {
 // A device with no simulator behind it: the Device defaults, a fixed reading.
 class FixedReading final : public Device {
  public:
-  std::int32_t read_counts() noexcept override { return 500; }
+  std::int32_t read() noexcept override { return 500; }
   void write(const MotorCommand&) noexcept override {}
 };
 

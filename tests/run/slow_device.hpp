@@ -16,7 +16,7 @@ class SlowDevice final : public Device {
   SlowDevice(const Scene& scene, std::function<bool(std::uint64_t)> slow_tick,
              std::chrono::microseconds slow_for = std::chrono::microseconds(1600))
       : inner_(scene.device, SimulationConfig{}), slow_tick_(std::move(slow_tick)), slow_for_(slow_for) {}
-  std::int32_t read_counts() noexcept override { return inner_.read_counts(); }
+  std::int32_t read() noexcept override { return inner_.read(); }
   void write(const MotorCommand& command) noexcept override {
     last = command;
     inner_.write(command);

@@ -45,7 +45,7 @@ TEST_CASE("step: ten thousand ticks of every lab effect allocate nothing") {
   TickState state = make_tick_state(scene);
   const long before = g_allocations.load();
   for (int i = 0; i < 10000; ++i) {
-    step(scene, device.read_counts(), &state);
+    step(scene, device.read(), &state);
     device.write(state.command);
     device.advance(scene.period_s);
   }

@@ -18,7 +18,7 @@ namespace {
 // A device whose sensor returns garbage: any int32, extremes included (seeded, portable).
 class GarbageDevice final : public Device {
  public:
-  std::int32_t read_counts() noexcept override {
+  std::int32_t read() noexcept override {
     state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;
     const auto bits = static_cast<std::uint32_t>(state_ >> 32);
     switch (bits % 8) {

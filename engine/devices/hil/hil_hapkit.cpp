@@ -36,7 +36,7 @@ std::int64_t HilHapkit::now_ns() const noexcept {
   return static_cast<std::int64_t>(board_.cycle() * 125 / 2);
 }
 
-std::int32_t HilHapkit::read_counts() noexcept {
+std::int32_t HilHapkit::read() noexcept {
   link_.poll(now_ns());
   return link_.counts();
 }

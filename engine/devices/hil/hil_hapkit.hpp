@@ -37,7 +37,7 @@ class HilHapkit final : public Device, public SimulationTruth {
   // time with the handle held still (std::runtime_error when the board never answers).
   HilHapkit(const DeviceProfile& profile, const HilConfig& config);
 
-  std::int32_t read_counts() noexcept override;
+  std::int32_t read() noexcept override;
   void write(const MotorCommand& command) noexcept override;
   void advance(double dt_s) noexcept override;
   bool take_restart() noexcept override { return link_.take_restart(); }
