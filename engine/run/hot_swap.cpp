@@ -4,36 +4,42 @@
 
 namespace hapscene {
 
-SceneExchange::~SceneExchange() {
+template <int N>
+SceneExchangeOf<N>::~SceneExchangeOf() {
   delete offered_.exchange(nullptr);
   delete retired_.exchange(nullptr);
 }
 
-bool SceneExchange::offer(std::unique_ptr<LoadedScene>& next) {
+template <int N>
+bool SceneExchangeOf<N>::offer(std::unique_ptr<LoadedScene>& next) {
   LoadedScene* expected = nullptr;
   if (!offered_.compare_exchange_strong(expected, next.get(), std::memory_order_acq_rel)) return false;
   next.release();
   return true;
 }
 
-std::unique_ptr<LoadedScene> SceneExchange::take_retired() {
+template <int N>
+std::unique_ptr<LoadedSceneOf<N>> SceneExchangeOf<N>::take_retired() {
   return std::unique_ptr<LoadedScene>(retired_.exchange(nullptr, std::memory_order_acq_rel));
 }
 
-LoadedScene* SceneExchange::take_offer() noexcept {
+template <int N>
+LoadedSceneOf<N>* SceneExchangeOf<N>::take_offer() noexcept {
   if (offered_.load(std::memory_order_relaxed) == nullptr) return nullptr;
   LoadedScene* next = offered_.exchange(nullptr, std::memory_order_acq_rel);
   if (next != nullptr) swaps_.fetch_add(1, std::memory_order_relaxed);
   return next;
 }
 
-bool SceneExchange::retire(LoadedScene* done) noexcept {
+template <int N>
+bool SceneExchangeOf<N>::retire(LoadedScene* done) noexcept {
   LoadedScene* expected = nullptr;
   return retired_.compare_exchange_strong(expected, done, std::memory_order_acq_rel);
 }
 
-HotSwap::HotSwap(const Scene& initial, SceneExchange* exchange, TickState* state,
-                 TickObserver* observer)
+template <int N>
+HotSwapOf<N>::HotSwapOf(const SceneOf<N>& initial, SceneExchangeOf<N>* exchange, TickStateOf<N>* state,
+                        TickObserverOf<N>* observer)
     : exchange_(exchange), observer_(observer), scene_(&initial) {
   publish(*state);
   if (exchange_ == nullptr) return;
@@ -42,13 +48,15 @@ HotSwap::HotSwap(const Scene& initial, SceneExchange* exchange, TickState* state
   initial_ = std::make_unique<LoadedScene>();
 }
 
-HotSwap::~HotSwap() {
+template <int N>
+HotSwapOf<N>::~HotSwapOf() {
   for (LoadedScene* carrier : {current_, fading_from_, to_retire_}) {
     if (carrier != initial_.get()) delete carrier;
   }
 }
 
-void HotSwap::publish(const TickState& state) noexcept {
+template <int N>
+void HotSwapOf<N>::publish(const TickStateOf<N>& state) noexcept {
   if (observer_ == nullptr) return;
   const LoadedScene* other = fading_from_ != nullptr ? fading_from_ : to_retire_;
   observer_->on_scripts(ScriptSpan(state.scripts),
@@ -57,7 +65,8 @@ void HotSwap::publish(const TickState& state) noexcept {
 
 // Invariant: the current scene's instances live in state->scripts; a carrier's `scripts`
 // holds the instances of the scene it carries only once that scene is let go of.
-const Crossfade* HotSwap::before_tick(TickState* state) noexcept {
+template <int N>
+const CrossfadeOf<N>* HotSwapOf<N>::before_tick(TickStateOf<N>* state) noexcept {
   if (exchange_ == nullptr) return nullptr;
 
   // Hand back the scene let go of, once the reload thread has collected the last one:
@@ -99,5 +108,9 @@ const Crossfade* HotSwap::before_tick(TickState* state) noexcept {
   fading_from_ = nullptr;
   return nullptr;
 }
+
+// The axis counts scenes are compiled for.
+template class SceneExchangeOf<1>;
+template class HotSwapOf<1>;
 
 }  // namespace hapscene

@@ -20,15 +20,20 @@
 namespace hapscene {
 
 // A compiled scene with its own script instances.
-struct LoadedScene {
-  Scene scene;
+template <int N>
+struct LoadedSceneOf {
+  SceneOf<N> scene;
   ScriptList scripts;
 };
 
+using LoadedScene = LoadedSceneOf<1>;
+
 // The two slots between the reload thread and the loop.
-class SceneExchange {
+template <int N>
+class SceneExchangeOf {
  public:
-  ~SceneExchange();
+  using LoadedScene = LoadedSceneOf<N>;
+  ~SceneExchangeOf();
 
   // Reload thread: offers a scene; false (and `next` untouched) while an earlier offer
   // has not been taken yet.
@@ -49,37 +54,43 @@ class SceneExchange {
   std::atomic<std::uint64_t> swaps_{0};
 };
 
+using SceneExchange = SceneExchangeOf<1>;
+
 // The loop's view: which scene to step this tick, and the cross-fade, if any.
-class HotSwap {
+template <int N>
+class HotSwapOf {
  public:
+  using LoadedScene = LoadedSceneOf<N>;
   // Outside the loop. With no exchange, scene() is always `initial`. `observer` (may be
   // null) is told the live script instances now and on every change.
-  HotSwap(const Scene& initial, SceneExchange* exchange, TickState* state,
-          TickObserver* observer = nullptr);
+  HotSwapOf(const SceneOf<N>& initial, SceneExchangeOf<N>* exchange, TickStateOf<N>* state,
+            TickObserverOf<N>* observer = nullptr);
   // Outside the loop: frees whatever the loop still holds.
-  ~HotSwap();
-  HotSwap(const HotSwap&) = delete;
-  HotSwap& operator=(const HotSwap&) = delete;
+  ~HotSwapOf();
+  HotSwapOf(const HotSwapOf&) = delete;
+  HotSwapOf& operator=(const HotSwapOf&) = delete;
 
   // Before each tick: takes an offered scene or advances the fade. Returns the fade for
   // step(), or nullptr.
-  const Crossfade* before_tick(TickState* state) noexcept;
-  const Scene& scene() const noexcept { return *scene_; }
+  const CrossfadeOf<N>* before_tick(TickStateOf<N>* state) noexcept;
+  const SceneOf<N>& scene() const noexcept { return *scene_; }
 
  private:
   // Tells the observer the instances alive: the running scene's, and the one let go of.
-  void publish(const TickState& state) noexcept;
+  void publish(const TickStateOf<N>& state) noexcept;
 
-  SceneExchange* exchange_;
-  TickObserver* observer_;
-  const Scene* scene_;
+  SceneExchangeOf<N>* exchange_;
+  TickObserverOf<N>* observer_;
+  const SceneOf<N>* scene_;
   std::unique_ptr<LoadedScene> initial_;  // the first scene's carrier until it is handed back
   LoadedScene* current_{nullptr};         // carrier of scene_ (null: the caller's initial)
   LoadedScene* fading_from_{nullptr};     // carrier of the scene being faded out
   LoadedScene* to_retire_{nullptr};       // faded out, waiting for a free retired slot
-  Crossfade fade_;
+  CrossfadeOf<N> fade_;
   double fade_step_{};                    // weight added per tick
   bool fading_{false};
 };
+
+using HotSwap = HotSwapOf<1>;
 
 }  // namespace hapscene

@@ -73,15 +73,26 @@ class MissWindow {
   std::array<std::uint64_t, kMaxOverrunWindow / 64> bits_{};
 };
 
+// Hot reload offers 1-DOF scenes (RunOptions::reload); scenes of other axis counts run
+// without it.
+SceneExchangeOf<1>* reload_exchange(const RunOptions& options, const SceneOf<1>&) noexcept {
+  return options.reload;
+}
+template <int N>
+SceneExchangeOf<N>* reload_exchange(const RunOptions&, const SceneOf<N>&) noexcept {
+  return nullptr;
+}
+
 }  // namespace
 
-RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOptions& options,
-                     TickObserver* observer) {
-  RunSummary summary;
-  TickState state = make_tick_state(initial_scene);
-  HotSwap hot_swap(initial_scene, options.reload, &state, observer);
+template <int N>
+RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<DeviceOf<N>>& device,
+                          const RunOptions& options, std::type_identity_t<TickObserverOf<N>>* observer) {
+  RunSummaryOf<N> summary;
+  TickStateOf<N> state = make_tick_state(initial_scene);
+  HotSwapOf<N> hot_swap(initial_scene, reload_exchange(options, initial_scene), &state, observer);
   // Rate and device stay for the whole run (a reload that changes them is refused).
-  const Scene& scene = initial_scene;
+  const SceneOf<N>& scene = initial_scene;
   const auto total_ticks = static_cast<std::uint64_t>(std::llround(options.duration_s * scene.rate_hz));
   const auto period_ns = static_cast<std::int64_t>(std::llround(scene.period_s * 1e9));
   const bool real_time = options.pacing == Pacing::real_time;
@@ -111,19 +122,19 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
     // Read the device, compute, write the device.
     const std::int64_t begin_ns = monotonic_now_ns();
     last_begin_ns = begin_ns;
-    const Crossfade* fade = hot_swap.before_tick(&state);
-    const std::int32_t raw_counts = device.read();
+    const CrossfadeOf<N>* fade = hot_swap.before_tick(&state);
+    const typename DeviceOf<N>::Reading reading = device.read();
     if (device.take_restart()) restart_soft_start(&state.safety);  // the link came back
     state.safety.position_hold = position_hold(device.position_status());
-    step(hot_swap.scene(), raw_counts, &state, fade);
+    step(hot_swap.scene(), reading, &state, fade);
     device.write(state.command);
     const std::int64_t end_ns = monotonic_now_ns();
     summary.compute_ns.record(static_cast<std::uint64_t>(end_ns - begin_ns));
     collect_script_garbage(&state);  // in the slack, after the command is out
 
     // Count, and let device time pass.
-    summary.max_abs_requested_N = std::fmax(summary.max_abs_requested_N, std::abs(state.effects_force_N));
-    summary.max_abs_output_N = std::fmax(summary.max_abs_output_N, std::abs(state.output_N));
+    summary.max_abs_requested_N = std::fmax(summary.max_abs_requested_N, norm(state.effects_force_N));
+    summary.max_abs_output_N = std::fmax(summary.max_abs_output_N, norm(state.output_N));
     if (observer != nullptr) observer->on_tick(state);
     device.advance(scene.period_s);
     if (device.lost()) {  // nothing left to drive: zero force below, and stop
@@ -164,14 +175,14 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
   }
 
   // The run is over (or faulted): the motor gets zero force.
-  device.write(MotorCommand{});
+  device.write(typename DeviceOf<N>::Command{});
 
   if (observer != nullptr) observer->on_finish(state);
 
   // Script faults, reported once here: each disabled script says where and when.
   summary.scene_name = hot_swap.scene().name;
   std::size_t script_index = 0;
-  for (const Effect& effect : hot_swap.scene().effects) {
+  for (const auto& effect : hot_swap.scene().effects) {
     if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
       const ScriptInstance& instance = *state.scripts[script_index++];
       summary.scripts.push_back(ScriptReport{script->program->display_name, instance.disabled(),
@@ -201,5 +212,9 @@ RunSummary run_scene(const Scene& initial_scene, Device& device, const RunOption
                                  : scene.rate_hz;
   return summary;
 }
+
+// The axis counts scenes are compiled for.
+template RunSummaryOf<1> run_scene<1>(const SceneOf<1>&, DeviceOf<1>&, const RunOptions&,
+                                      TickObserverOf<1>*);
 
 }  // namespace hapscene

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "engine/base/latency_histogram.hpp"
@@ -29,7 +30,7 @@ struct RunOptions {
   // Set from another thread (e.g. on Ctrl-C) to end the run at the next tick.
   const std::atomic<bool>* stop_requested{nullptr};
   // Hot reload: scenes offered here replace the running one at a tick boundary.
-  SceneExchange* reload{nullptr};
+  SceneExchange* reload{nullptr};  // (1-DOF scenes)
   // Real time: SCHED_FIFO and locked memory when permitted (see RealtimeGuard).
   bool realtime_scheduling{true};
   // Sustained overruns: this many deadline misses in a row (a single stall of k periods
@@ -66,13 +67,14 @@ struct ScriptReport {
   std::uint64_t skipped_calls{};  // ticks answered with 0 N after the fault
 };
 
-struct RunSummary {
+template <int N>
+struct RunSummaryOf {
   std::string scene_name;         // the scene running at the end (after any reloads)
   std::uint64_t ticks{};
   double device_time_s{};         // ticks * period
   double wall_time_s{};           // elapsed real time
   double achieved_rate_hz{};      // real time: tick intervals per second between the first and last tick; simulated: the scene rate
-  double max_abs_requested_N{};   // largest |force| the scene asked for
+  double max_abs_requested_N{};   // largest |force| (magnitude) the scene asked for
   double max_abs_output_N{};      // largest |force| commanded after safety
   SafetyCounters safety;
   std::uint64_t script_errors{};          // scripts disabled by an error or a bad return value
@@ -92,13 +94,16 @@ struct RunSummary {
   bool device_lost{};                   // the run ended because the device was lost (Device::lost)  // most misses within any overrun window seen
   // The safety limits at the start and at the end of the run (a hot reload may tighten
   // them, never loosen them): what the summary reports as in force.
-  SafetyConfig limits_at_start;
-  SafetyConfig limits_at_end;
+  SafetyConfigOf<N> limits_at_start;
+  SafetyConfigOf<N> limits_at_end;
 };
 
+using RunSummary = RunSummaryOf<1>;
+
 // Runs `scene` on `device` for options.duration_s of device time, then commands zero
-// force.
-RunSummary run_scene(const Scene& scene, Device& device, const RunOptions& options,
-                     TickObserver* observer);
+// force. (N comes from the scene; a device or observer of another N does not convert.)
+template <int N>
+RunSummaryOf<N> run_scene(const SceneOf<N>& scene, std::type_identity_t<DeviceOf<N>>& device,
+                          const RunOptions& options, std::type_identity_t<TickObserverOf<N>>* observer);
 
 }  // namespace hapscene

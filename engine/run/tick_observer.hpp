@@ -13,12 +13,13 @@ using ScriptSpan = std::span<const std::unique_ptr<ScriptInstance>>;
 // Sees every tick after the device write: on_tick must not allocate, lock or do I/O.
 // on_start and on_finish run on the loop's thread just before the first tick and after
 // the last one, outside the timed loop.
-class TickObserver {
+template <int N>
+class TickObserverOf {
  public:
-  virtual ~TickObserver() = default;
-  virtual void on_start(const TickState& state) { (void)state; }
-  virtual void on_tick(const TickState& state) noexcept = 0;
-  virtual void on_finish(const TickState& state) { (void)state; }
+  virtual ~TickObserverOf() = default;
+  virtual void on_start(const TickStateOf<N>& state) { (void)state; }
+  virtual void on_tick(const TickStateOf<N>& state) noexcept = 0;
+  virtual void on_finish(const TickStateOf<N>& state) { (void)state; }
   // The script instances alive (whose log another thread may drain): the running
   // scene's, and during and after a hot-reload fade the replaced scene's until it is
   // handed back to be destroyed. Called on the loop's thread before the first tick and
@@ -28,5 +29,7 @@ class TickObserver {
     (void)replaced;
   }
 };
+
+using TickObserver = TickObserverOf<1>;
 
 }  // namespace hapscene
