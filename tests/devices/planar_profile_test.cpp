@@ -231,3 +231,12 @@ TEST_CASE("planar profile: a polygon workspace") {
   CHECK_FALSE(workspace_contains(p.limits.workspace, Vec2{{0.035, 0.16}}));
   CHECK_FALSE(workspace_contains(p.limits.workspace, Vec2{{-0.016, 0.08}}));
 }
+
+TEST_CASE("planar profile: a 1-DOF environment naming a planar device is refused, saying why") {
+  CHECK(test::load_error(R"({"device": "haplink", "effects": []})") ==
+        "test.json: /device: environments/devices/haplink.json: /kind: a 2-DOF (planar) profile: a 1-DOF device "
+        "needs a 1-DOF profile such as \"hapkit3\"");
+  // 1-DOF names are still suggested for a misspelt 1-DOF name.
+  CHECK(test::load_error(R"({"device": "hapkit2", "effects": []})") ==
+        "test.json: /device: unknown device profile \"hapkit2\" (did you mean \"hapkit3\"?)");
+}
