@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/base/units.hpp"
 #include "engine/devices/planar/planar_profile.hpp"
 #include "engine/devices/profile.hpp"
 #include "tests/cli/cli_support.hpp"
@@ -239,4 +240,17 @@ TEST_CASE("planar profile: a 1-DOF environment naming a planar device is refused
   // 1-DOF names are still suggested for a misspelt 1-DOF name.
   CHECK(test::load_error(R"({"device": "hapkit2", "effects": []})") ==
         "test.json: /device: unknown device profile \"hapkit2\" (did you mean \"hapkit3\"?)");
+}
+
+TEST_CASE("planar profile: the joint-space units") {
+  CHECK(parse_quantity_as("168 deg", Quantity::angle_rad).value_si == doctest::Approx(168.0 * kDeg).epsilon(1e-15));
+  CHECK(parse_quantity_as("-1.4 rad", Quantity::angle_rad).value_si == -1.4);
+  CHECK(parse_quantity_as("0.123 N*m", Quantity::torque_N_m).value_si == doctest::Approx(0.123));
+  CHECK(parse_quantity_as("15 mN m", Quantity::torque_N_m).value_si == doctest::Approx(0.015));
+  CHECK(parse_quantity_as("2 g*cm^2", Quantity::inertia_kg_m2).value_si == doctest::Approx(2e-7));
+  CHECK(parse_quantity_as("1.7 mN*m*s/rad", Quantity::rotational_damping_N_m_s_per_rad).value_si == doctest::Approx(1.7e-3));
+  CHECK(parse_quantity_as("86 N*m/rad", Quantity::rotational_stiffness_N_m_per_rad).value_si == 86.0);
+  // Articles in messages: "an angle", and the older quantities unchanged ("a length").
+  CHECK(parse_quantity_as("3 mm", Quantity::angle_rad).error == "expected an angle (rad), got a length (\"3 mm\")");
+  CHECK(parse_quantity_as("3 deg", Quantity::length_m).error == "expected a length (m), got an angle (\"3 deg\")");
 }
