@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 
 #include "engine/base/axes.hpp"
 #include "engine/devices/kinematics.hpp"
@@ -75,7 +76,7 @@ inline LinkagePose sense_planar(const PlanarModel& model, const PlanarReading& r
   for (int i = 0; i < 2; ++i) {
     const PlanarJointModel& joint = model.joints[static_cast<std::size_t>(i)];
     if (joint.reads_angle) {
-      q[i] = reading.angle_deg[i] * (3.14159265358979323846 / 180.0) + joint.offset_rad;
+      q[i] = reading.angle_deg[i] * (std::numbers::pi / 180.0) + joint.offset_rad;
     } else {
       const std::size_t k = static_cast<std::size_t>(i);
       state->raw_counts[k] = reading.counts[k];
