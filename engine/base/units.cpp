@@ -46,6 +46,20 @@ constexpr std::array kUnits{
     UnitEntry{"g", Quantity::mass_kg, 1e-3},
     UnitEntry{"N/s", Quantity::force_rate_N_per_s, 1.0},
     UnitEntry{"N/ms", Quantity::force_rate_N_per_s, 1e3},
+    UnitEntry{"rad", Quantity::angle_rad, 1.0},
+    UnitEntry{"mrad", Quantity::angle_rad, 1e-3},
+    UnitEntry{"deg", Quantity::angle_rad, 0.017453292519943295},
+    UnitEntry{"N*m", Quantity::torque_N_m, 1.0},
+    UnitEntry{"Nm", Quantity::torque_N_m, 1.0},
+    UnitEntry{"mN*m", Quantity::torque_N_m, 1e-3},
+    UnitEntry{"mNm", Quantity::torque_N_m, 1e-3},
+    UnitEntry{"kg*m^2", Quantity::inertia_kg_m2, 1.0},
+    UnitEntry{"g*cm^2", Quantity::inertia_kg_m2, 1e-7},
+    UnitEntry{"kg*mm^2", Quantity::inertia_kg_m2, 1e-6},
+    UnitEntry{"N*m*s/rad", Quantity::rotational_damping_N_m_s_per_rad, 1.0},
+    UnitEntry{"mN*m*s/rad", Quantity::rotational_damping_N_m_s_per_rad, 1e-3},
+    UnitEntry{"N*m/rad", Quantity::rotational_stiffness_N_m_per_rad, 1.0},
+    UnitEntry{"mN*m/rad", Quantity::rotational_stiffness_N_m_per_rad, 1e-3},
 };
 
 // Removes spaces and writes "·" as "*", so "N s/m", "N·s/m" and "N*s/m" compare equal.
@@ -79,6 +93,12 @@ std::string_view trim(std::string_view text) {
   return text;
 }
 
+// "a length", "an angle".
+std::string with_article(std::string_view name) {
+  const bool vowel = !name.empty() && std::string_view("aeiou").find(name.front()) != std::string_view::npos;
+  return (vowel ? "an " : "a ") + std::string(name);
+}
+
 }  // namespace
 
 std::string_view si_unit(Quantity quantity) {
@@ -93,6 +113,11 @@ std::string_view si_unit(Quantity quantity) {
     case Quantity::frequency_Hz: return "Hz";
     case Quantity::mass_kg: return "kg";
     case Quantity::force_rate_N_per_s: return "N/s";
+    case Quantity::angle_rad: return "rad";
+    case Quantity::torque_N_m: return "N*m";
+    case Quantity::inertia_kg_m2: return "kg*m^2";
+    case Quantity::rotational_damping_N_m_s_per_rad: return "N*m*s/rad";
+    case Quantity::rotational_stiffness_N_m_per_rad: return "N*m/rad";
   }
   return "";
 }
@@ -109,6 +134,11 @@ std::string_view quantity_name(Quantity quantity) {
     case Quantity::frequency_Hz: return "frequency";
     case Quantity::mass_kg: return "mass";
     case Quantity::force_rate_N_per_s: return "force rate";
+    case Quantity::angle_rad: return "angle";
+    case Quantity::torque_N_m: return "torque";
+    case Quantity::inertia_kg_m2: return "moment of inertia";
+    case Quantity::rotational_damping_N_m_s_per_rad: return "rotational damping";
+    case Quantity::rotational_stiffness_N_m_per_rad: return "rotational stiffness";
   }
   return "";
 }
@@ -198,9 +228,9 @@ QuantityParse parse_quantity_as(std::string_view text, Quantity expected) {
   }
   if (result.quantity != expected) {
     QuantityParse wrong;
-    wrong.error = "expected a " + std::string(quantity_name(expected));
+    wrong.error = "expected " + with_article(quantity_name(expected));
     if (expected != Quantity::dimensionless) wrong.error += " (" + std::string(si_unit(expected)) + ")";
-    wrong.error += ", got a " + std::string(quantity_name(result.quantity)) + " (\"" +
+    wrong.error += ", got " + with_article(quantity_name(result.quantity)) + " (\"" +
                    std::string(text) + "\")";
     return wrong;
   }

@@ -18,6 +18,12 @@ enum class Quantity {
   frequency_Hz,
   mass_kg,
   force_rate_N_per_s,
+  // Joint-space quantities of multi-axis device profiles.
+  angle_rad,
+  torque_N_m,
+  inertia_kg_m2,
+  rotational_damping_N_m_s_per_rad,
+  rotational_stiffness_N_m_per_rad,
 };
 
 // The SI unit written in messages, e.g. "N/m".

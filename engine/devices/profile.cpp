@@ -121,6 +121,10 @@ DeviceProfile parse_device_profile(std::string_view json_text, const std::string
   const nlohmann::json root = parse_json_text(json_text, display_name);
   ObjectReader reader(root, "", display_name);
   DeviceProfile profile;
+  // A 2-DOF profile is refused before any other key, naming what it is.
+  if (reader.choice("kind", {"capstan", "planar"}, "capstan") == "planar") {
+    reader.fail("kind", "a 2-DOF (planar) profile: a 1-DOF device needs a 1-DOF profile such as \"hapkit3\"");
+  }
   profile.name = reader.string("name");
   reader.string_or("description", "");  // for people: checked to be text, not kept
   profile.sensor = parse_part(reader, "sensor", parse_sensor);
@@ -129,6 +133,18 @@ DeviceProfile parse_device_profile(std::string_view json_text, const std::string
   profile.plant = parse_part(reader, "plant", parse_plant);
   reader.finish();
   return profile;
+}
+
+std::string profile_kind_of(std::string_view json_text) noexcept {
+  try {
+    const nlohmann::json root = nlohmann::json::parse(json_text, nullptr, false);
+    if (!root.is_object()) return "";
+    const auto kind = root.find("kind");
+    if (kind == root.end()) return "capstan";
+    return kind->is_string() ? kind->get<std::string>() : "";
+  } catch (...) {
+    return "";  // allocation failure: no kind
+  }
 }
 
 DeviceProfile load_device_profile(const std::string& name_or_path, const std::string& base_dir) {
@@ -144,7 +160,7 @@ DeviceProfile load_device_profile(const std::string& name_or_path, const std::st
       return parse_device_profile(builtin.json_text,
                                   "environments/devices/" + std::string(builtin.name) + ".json");
     }
-    names.push_back(builtin.name);
+    if (profile_kind_of(builtin.json_text) != "planar") names.push_back(builtin.name);
   }
   std::string message = "unknown device profile \"" + name_or_path + "\"";
   const std::string suggestion = nearest_name(name_or_path, names);

@@ -97,6 +97,13 @@ class UnknownProfileError : public InputError {
 DeviceProfile load_device_profile(const std::string& name_or_path, const std::string& base_dir);
 
 // Parses a profile from JSON text; `display_name` names it in messages. Throws InputError.
+// A 2-DOF profile ("kind": "planar", engine/devices/planar/planar_profile.hpp) is refused
+// with a message that says so.
 DeviceProfile parse_device_profile(std::string_view json_text, const std::string& display_name);
+
+// The "kind" a profile's JSON text declares: "planar" (2-DOF), "capstan" (1-DOF, also when
+// absent), or "" when the text is not a JSON object. For choosing a loader and for
+// suggesting names of the right kind; throws nothing.
+std::string profile_kind_of(std::string_view json_text) noexcept;
 
 }  // namespace hapscene

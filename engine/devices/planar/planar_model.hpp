@@ -1,0 +1,173 @@
+#pragma once
+// The device-specific half of a 2-DOF tick, compiled from a planar profile (the 1-DOF twin
+// is engine/devices/device_model.hpp):
+//   sense:   raw readings per joint (counts, or the board's angles) -> joint angles q (rad)
+//            -> solve_linkage -> the handle position and the Jacobian at that pose;
+//   command: a task-space force F at that pose -> joint torques J^T F -> motor torques
+//            (the coupling's transpose, the capstan ratio, the direction) -> per motor the
+//            duty and direction pin, or a torque in N m. When a motor would exceed what its
+//            drive gives, both motor torques scale by the same factor, so the force keeps
+//            its direction, and the command says so (the caller counts it).
+// Inline, no allocation, no exceptions: both run inside the tick.
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+
+#include "engine/base/axes.hpp"
+#include "engine/devices/kinematics.hpp"
+#include "engine/devices/planar/linkage.hpp"
+#include "engine/devices/planar/planar_profile.hpp"
+#include "protocol/flip_counter.hpp"
+
+namespace hapscene {
+
+// One joint's sensor and motor, combined into the constants a tick uses.
+struct PlanarJointModel {
+  bool reads_angle{};           // the board reports degrees (else counts)
+  bool unwraps{};               // an MR sensor's wrapping counts
+  std::int32_t flip_threshold_counts{};
+  std::int32_t span_counts{};
+  std::int32_t min_counts{};
+  double rad_per_count{};       // counts to the joint's sensed angle (signed)
+  double offset_rad{};          // sensed angle at count 0 (or added to the board's angle)
+  double counts_per_revolution{};  // angle: the board's resolution (for quantizing)
+  // Drive
+  PlanarDriveLaw law{PlanarDriveLaw::linear};
+  double motor_per_joint_torque{};  // direction_sign * transmission ratio
+  double motor_torque_max_N_m{};    // the largest motor torque the drive gives
+  double duty_per_N_m{};            // linear
+  double inverse_motor_constant{};  // sqrt: 1 / Km
+  double motor_constant_N_m{};      // sqrt: Km
+  double duty_max{1.0};
+};
+
+// A planar profile compiled for the tick: immutable, read through a const reference.
+struct PlanarModel {
+  Linkage linkage;
+  std::array<PlanarJointModel, 2> joints{};
+  double coupling{};  // q2 = sensed_2 + coupling * q1
+};
+
+PlanarModel compile_planar_model(const PlanarProfile& profile) noexcept;
+
+// What the device reads for both joints: counts (MR, encoder) or angles in degrees (a
+// board that reports angles); each joint uses the one its sensor gives.
+struct PlanarReading {
+  std::array<std::int32_t, 2> counts{};
+  Vec2 angle_deg{};
+};
+
+// The sensor stage's state for one run (per joint flip counters, for MR sensors).
+struct PlanarSensorState {
+  std::array<FlipCounter, 2> flip_counter{};
+  std::array<std::int32_t, 2> raw_counts{};
+  std::array<std::int32_t, 2> unwrapped_counts{};
+  Vec2 q_rad{};  // the latest joint angles
+};
+
+// A fresh sensor stage for a run (an encoder's counter is set never to flip).
+PlanarSensorState make_planar_sensor_state(const PlanarModel& model) noexcept;
+
+// Sensor stage: raw readings to joint angles (kept in `state->q_rad`), then the pose.
+inline LinkagePose sense_planar(const PlanarModel& model, const PlanarReading& reading,
+                                PlanarSensorState* state) noexcept {
+  Vec2 q{};
+  for (int i = 0; i < 2; ++i) {
+    const PlanarJointModel& joint = model.joints[static_cast<std::size_t>(i)];
+    if (joint.reads_angle) {
+      q[i] = reading.angle_deg[i] * (std::numbers::pi / 180.0) + joint.offset_rad;
+    } else {
+      const std::size_t k = static_cast<std::size_t>(i);
+      state->raw_counts[k] = reading.counts[k];
+      state->unwrapped_counts[k] = state->flip_counter[k].update(reading.counts[k]);
+      q[i] = joint.rad_per_count * state->unwrapped_counts[k] + joint.offset_rad;
+    }
+  }
+  q[1] += model.coupling * q[0];
+  state->q_rad = q;
+  return solve_linkage(model.linkage, q);
+}
+
+// What the host sends both motors, and what happened on the way.
+struct PlanarMotorCommand {
+  std::array<MotorCommand, 2> motor{};  // duty and direction pin per motor (torque law: duty
+                                        // is the fraction of the clamp, for logs)
+  Vec2 torque_N_m{};    // motor torques after scaling, signed as the direction pin (the
+                        // torque law's command)
+  double scale{1.0};    // the common factor applied to both (1: none)
+  bool saturated{};     // a motor needed more than its drive gives: both were scaled
+};
+
+// Joint torques (tau = J^T F) to motor torques: the coupling's transpose (virtual work:
+// q2 depends on q1, so joint 1's motor also carries coupling * tau2), then per motor the
+// ratio and the direction.
+inline Vec2 motor_torques_from_joint_N_m(const PlanarModel& model, const Vec2& joint_torque_N_m) noexcept {
+  const double through_1 = joint_torque_N_m[0] + model.coupling * joint_torque_N_m[1];
+  return Vec2{{model.joints[0].motor_per_joint_torque * through_1,
+               model.joints[1].motor_per_joint_torque * joint_torque_N_m[1]}};
+}
+
+// The inverse, for a simulated plant: the joint torques the motor torques produce.
+inline Vec2 joint_torques_from_motor_N_m(const PlanarModel& model, const Vec2& motor_torque_N_m) noexcept {
+  const double tau_2 = motor_torque_N_m[1] / model.joints[1].motor_per_joint_torque;
+  const double through_1 = motor_torque_N_m[0] / model.joints[0].motor_per_joint_torque;
+  return Vec2{{through_1 - model.coupling * tau_2, tau_2}};
+}
+
+// Command stage: the force on the handle at the pose whose Jacobian is `jacobian`.
+inline PlanarMotorCommand planar_motor_command(const PlanarModel& model, const Jacobian2& jacobian,
+                                               const Vec2& force_N) noexcept {
+  PlanarMotorCommand command;
+  Vec2 torque = motor_torques_from_joint_N_m(model, joint_torques_N_m(jacobian, force_N));
+  if (!all_finite(torque)) torque = Vec2{};
+  // One factor for both motors: the smallest that brings each within its drive.
+  double scale = 1.0;
+  for (int i = 0; i < 2; ++i) {
+    const double needed = std::fabs(torque[i]);
+    const double available = model.joints[static_cast<std::size_t>(i)].motor_torque_max_N_m;
+    if (needed > available) scale = std::fmin(scale, available / needed);
+  }
+  if (scale < 1.0) {
+    torque *= scale;
+    // The limiting motor lands on its limit up to rounding: never past it.
+    for (int i = 0; i < 2; ++i) {
+      const double available = model.joints[static_cast<std::size_t>(i)].motor_torque_max_N_m;
+      torque[i] = std::fmax(-available, std::fmin(torque[i], available));
+    }
+    command.saturated = true;
+    command.scale = scale;
+  }
+  command.torque_N_m = torque;
+  for (int i = 0; i < 2; ++i) {
+    const PlanarJointModel& joint = model.joints[static_cast<std::size_t>(i)];
+    MotorCommand& motor = command.motor[static_cast<std::size_t>(i)];
+    const double magnitude = std::fabs(torque[i]);
+    double duty;
+    if (joint.law == PlanarDriveLaw::sqrt) {
+      duty = std::sqrt(magnitude * joint.inverse_motor_constant);
+    } else if (joint.law == PlanarDriveLaw::linear) {
+      duty = magnitude * joint.duty_per_N_m;
+    } else {
+      duty = magnitude / joint.motor_torque_max_N_m;
+    }
+    // Rounding at the limit: never above the drive's maximum.
+    motor.duty = std::fmin(duty, joint.law == PlanarDriveLaw::torque ? 1.0 : joint.duty_max);
+    motor.direction_high = torque[i] > 0.0;
+  }
+  return command;
+}
+
+// For a simulated plant and tests: the motor torques a command produces (duty laws: from
+// duty and pin; the torque law: the torque, clamped as the board does).
+Vec2 planar_command_torques_N_m(const PlanarModel& model, const PlanarMotorCommand& command) noexcept;
+
+// For a simulated sensor and tests: what the device reads at joint angles q, quantized as
+// the sensor is (rounded to a count, or to the board's 360 / counts_per_revolution deg);
+// MR counts wrap into the sensor's period [min, min + span).
+PlanarReading planar_reading_for(const PlanarModel& model, const Vec2& q_rad) noexcept;
+
+// The sensed angle of one count (rad): the sensor's resolution at the joint.
+double planar_joint_resolution_rad(const PlanarModel& model, int joint) noexcept;
+
+}  // namespace hapscene
