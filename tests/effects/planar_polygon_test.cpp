@@ -212,6 +212,19 @@ TEST_CASE("planar polygon: friction does not let the proxy into a corner it cann
   CHECK_FALSE(u.outline.in_solid(state.proxy_m));
 }
 
+TEST_CASE("planar polygon: non-finite input gives no force and keeps the proxy") {
+  const PlanarPolygon u = make_polygon(u_shape(), true);
+  PlanarProxyState state;
+  step(u, state, v2(0.015, 0.02));
+  step(u, state, v2(0.012, 0.008));
+  const PlanarProxyState before = state;
+  CHECK(step(u, state, v2(NAN, 0.008)) == v2(0.0, 0.0));
+  CHECK(step(u, state, v2(0.01, INFINITY)) == v2(0.0, 0.0));
+  CHECK(state.proxy_m == before.proxy_m);
+  CHECK(state.contact == before.contact);
+  CHECK(step(u, state, v2(0.012, 0.008)) == v2(0.0, 1000.0 * (0.01 - 0.008)));
+}
+
 TEST_CASE("planar polygon: a run that starts inside follows the handle until it leaves") {
   const PlanarPolygon square = make_polygon({v2(0.0, 0.0), v2(0.02, 0.0), v2(0.02, 0.02), v2(0.0, 0.02)}, true);
   PlanarProxyState state;
@@ -303,7 +316,36 @@ TEST_CASE("planar polygon: tick time with 1000 edges" * doctest::skip()) {
     batch_ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count() / kBatch);
   }
   std::sort(batch_ns.begin(), batch_ns.end());
-  std::printf("1000-edge polygon: median %.1f ns per tick (batches of %d), p90 %.1f ns (sink %g)\n",
+  std::printf("1000-edge regular polygon: median %.1f ns per tick (batches of %d), p90 %.1f ns (sink %g)\n",
+              batch_ns[batch_ns.size() / 2], kBatch, batch_ns[batch_ns.size() * 9 / 10], sink);
+  CHECK(batch_ns[batch_ns.size() / 2] < 1000.0);
+
+  // A comb of 1000 edges (250 teeth 0.4 mm apart, 50 mm long), the handle sweeping
+  // across the teeth and back, 1 mm a tick, pressed in between them.
+  std::vector<Vec2> comb;
+  for (int i = 0; i < 499; ++i) {
+    comb.push_back(v2(0.0002 * i, 0.0));
+    comb.push_back(v2(0.0002 * i + 0.0001, 0.05));
+  }
+  comb.push_back(v2(0.1, -0.01));
+  comb.push_back(v2(0.0, -0.01));
+  const PlanarPolygon teeth = make_polygon(comb, true);
+  REQUIRE(teeth.outline.edge_count() == 1000);
+  PlanarProxyState comb_state;
+  batch_ns.clear();
+  for (int batch = 0; batch < 400; ++batch) {
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < kBatch; ++i, ++k) {
+      const double phase = (k % 200) / 100.0;
+      PlanarInput input;
+      input.x_m = v2(0.1 * (phase < 1.0 ? phase : 2.0 - phase), 0.03 + 0.025 * std::sin(k * 0.05));
+      sink += teeth.force_N(input, comb_state)[0];
+    }
+    const auto stop = std::chrono::steady_clock::now();
+    batch_ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count() / kBatch);
+  }
+  std::sort(batch_ns.begin(), batch_ns.end());
+  std::printf("1000-edge comb: median %.1f ns per tick (batches of %d), p90 %.1f ns (sink %g)\n",
               batch_ns[batch_ns.size() / 2], kBatch, batch_ns[batch_ns.size() * 9 / 10], sink);
   CHECK(batch_ns[batch_ns.size() / 2] < 1000.0);
 }

@@ -159,6 +159,19 @@ TEST_CASE("planar box: the closed-loop proxy stays on the side the handle came i
   CHECK(state.contact == ProxyContact::none);
 }
 
+TEST_CASE("planar box: a handle exactly on an edge is free; from there, in is caught") {
+  const PlanarBox box = PlanarBox::make(v2(-0.02, 0.10), v2(0.02, 0.14), 400.0, true);
+  PlanarProxyState state;
+  CHECK(run(box, state, {v2(0.0, 0.09), v2(0.005, 0.10)}) == v2(0.0, 0.0));
+  CHECK(state.contact == ProxyContact::none);
+  CHECK(run(box, state, {v2(0.006, 0.1002)})[1] == doctest::Approx(400.0 * -0.0002));
+  CHECK(near(state.proxy_m, v2(0.006, 0.10)));
+  // Along the edge, on it: no force, and the contact is let go only once outside.
+  CHECK(run(box, state, {v2(0.008, 0.10)}) == v2(0.0, 0.0));
+  CHECK(run(box, state, {v2(0.009, 0.0999)}) == v2(0.0, 0.0));
+  CHECK(state.contact == ProxyContact::none);
+}
+
 TEST_CASE("planar box: a thin box swept across in one tick does not pop through") {
   // 0.5 mm thick, 100 mm long; the handle jumps 20 mm across it in one tick.
   const PlanarBox box = PlanarBox::make(v2(-0.05, 0.0), v2(0.05, 0.0005), 1000.0, true);

@@ -9,6 +9,12 @@ namespace {
 // A hit or a slide within this fraction of an edge's length of one of its ends lands on
 // the vertex there (a nanometre on a metre-long edge: far below any sensor's resolution).
 constexpr double kVertexSnap = 1e-9;
+// Work per tick at most: steps (a straight move, a slide along an edge or a decision on
+// a vertex) and straight moves (each a query of the grid along the path). A proxy left
+// far behind the handle (which went through the solid) catches up over the next ticks;
+// it is on the outline or in free space after every step, so stopping early is safe.
+constexpr int kMaxStepsPerTick = 64;
+constexpr int kMaxStraightMovesPerTick = 8;
 // Cells per axis at most: bounds the grid's memory whatever the outline's proportions.
 constexpr int kMaxCellsPerAxis = 512;
 
@@ -101,6 +107,66 @@ void for_each_cell(const GridShape& grid, const Vec2& a, const Vec2& b, Visit&& 
         visit(r * grid.columns + c);
       }
     }
+  }
+}
+
+// Visits the cells segment a-b passes through in order from a (a grid walk), calling
+// visit(cell, t_leave) with the fraction of the path at which it leaves the cell; stops
+// when visit returns true. Edges are listed in every cell they come within a margin of,
+// so a crossing near a cell's border is found in either cell.
+template <typename Visit>
+void walk_cells(const GridShape& grid, const Vec2& a, const Vec2& b, Visit&& visit) noexcept {
+  const Vec2 d = b - a;
+  const double cell[2] = {grid.cell_width_m, grid.cell_height_m};
+  const int count[2] = {grid.columns, grid.rows};
+  const double margin = kVertexSnap * std::max(grid.cell_width_m, grid.cell_height_m);
+  // Clip the path to the grid's box (grown by the margin, as the cells' lists are).
+  double t_in = 0.0;
+  double t_out = 1.0;
+  for (int k = 0; k < 2; ++k) {
+    const double low = grid.origin_m[k] - margin;
+    const double high = grid.origin_m[k] + cell[k] * count[k] + margin;
+    if (d[k] == 0.0) {
+      if (a[k] < low || a[k] > high) return;
+      continue;
+    }
+    double t_low = (low - a[k]) / d[k];
+    double t_high = (high - a[k]) / d[k];
+    if (t_low > t_high) std::swap(t_low, t_high);
+    t_in = std::max(t_in, t_low);
+    t_out = std::min(t_out, t_high);
+  }
+  if (t_in > t_out) return;
+  int index[2];
+  int step[2];
+  double t_next[2];   // where the path crosses into the next cell along each axis
+  double t_delta[2];  // path fraction per cell along each axis
+  const Vec2 start = a + d * t_in;
+  for (int k = 0; k < 2; ++k) {
+    index[k] = static_cast<int>(std::clamp(std::floor((start[k] - grid.origin_m[k]) / cell[k]), 0.0, count[k] - 1.0));
+    if (d[k] > 0.0) {
+      step[k] = 1;
+      t_next[k] = (grid.origin_m[k] + (index[k] + 1) * cell[k] - a[k]) / d[k];
+      t_delta[k] = cell[k] / d[k];
+    } else if (d[k] < 0.0) {
+      step[k] = -1;
+      t_next[k] = (grid.origin_m[k] + index[k] * cell[k] - a[k]) / d[k];
+      t_delta[k] = -cell[k] / d[k];
+    } else {
+      step[k] = 0;
+      t_next[k] = INFINITY;
+      t_delta[k] = INFINITY;
+    }
+  }
+  // At most one cell per column and row crossed, plus the first.
+  for (int guard = count[0] + count[1] + 2; guard > 0; --guard) {
+    const int axis = t_next[0] < t_next[1] ? 0 : 1;
+    const double t_leave = std::min(t_next[axis], t_out);
+    if (visit(index[1] * grid.columns + index[0], t_leave)) return;
+    if (t_next[axis] >= t_out) return;
+    index[axis] += step[axis];
+    if (index[axis] < 0 || index[axis] >= count[axis]) return;
+    t_next[axis] += t_delta[axis];
   }
 }
 
@@ -247,14 +313,15 @@ int PolygonOutline::most_edges_per_cell() const noexcept {
   return most;
 }
 
-template <typename Visit>
-void PolygonOutline::for_each_edge_near(const Vec2& a, const Vec2& b, Visit&& visit) const noexcept {
+template <typename Visit, typename Done>
+void PolygonOutline::for_each_edge_near(const Vec2& a, const Vec2& b, Visit&& visit, Done&& done) const noexcept {
   const GridShape grid{origin_m_, cell_width_m_, cell_height_m_, columns_, rows_};
-  for_each_cell(grid, a, b, [&](int cell) {
+  walk_cells(grid, a, b, [&](int cell, double t_leave) {
     const int end = cell_start_[static_cast<std::size_t>(cell) + 1];
     for (int k = cell_start_[static_cast<std::size_t>(cell)]; k < end; ++k) {
       visit(cell_edges_[static_cast<std::size_t>(k)]);
     }
+    return done(t_leave);
   });
 }
 
@@ -273,7 +340,7 @@ PolygonOutline::Hit PolygonOutline::first_entry(const Vec2& a, const Vec2& b, in
     const double snap_m = kVertexSnap * length_m(e);
     if (along_m < -snap_m || along_m > length_m(e) + snap_m) return;  // the line, not the edge
     best = Hit{e, t, along_m};
-  });
+  }, [&](double t_leave) { return best.t <= t_leave; });  // later cells only hold later crossings
   return best;
 }
 
@@ -307,8 +374,10 @@ void PolygonOutline::step_proxy(const Vec2& x_m, const FrictionCoefficients& fri
   ProxyContact contact = state.contact;
   int feature = state.feature;
   bool sliding = state.sliding;
+  int straight_moves = 0;
   // Straight toward x from where the proxy is; true when it got there.
   const auto move_toward_x = [&](int skip_a, int skip_b) {
+    ++straight_moves;
     const Hit hit = first_entry(proxy, x_m, skip_a, skip_b);
     sliding = false;
     if (hit.edge < 0) {
@@ -321,8 +390,7 @@ void PolygonOutline::step_proxy(const Vec2& x_m, const FrictionCoefficients& fri
     return false;
   };
   int from_vertex = -1;  // the vertex a slide along the current edge started from
-  const int max_steps = 2 * edge_count() + 16;
-  for (int step = 0; step < max_steps; ++step) {
+  for (int step = 0; step < kMaxStepsPerTick && straight_moves < kMaxStraightMovesPerTick; ++step) {
     if (contact == ProxyContact::none) {
       if (move_toward_x(-1, -1)) break;
       from_vertex = -1;

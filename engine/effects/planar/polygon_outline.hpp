@@ -11,8 +11,9 @@
 // less (a concave corner: the proxy can be held in it).
 //
 // Spatial index. A uniform grid over the outline's bounding box, about one cell per edge,
-// lists the edges passing through each cell (built at load, fixed memory). A move of the
-// proxy tests only the edges of the cells its path passes through.
+// lists the edges passing through each cell (built at load, fixed memory). A straight
+// move of the proxy walks the cells its path passes through, in order, testing their
+// edges, and stops at the first cell that holds a crossing.
 //
 // Closed loop (step_proxy). Each tick the proxy moves toward the handle x:
 // - free: straight toward x; the first edge the path enters (from its free side to its
@@ -27,8 +28,10 @@
 // - on a vertex: it leaves toward x when x lies in the free space around the vertex;
 //   else it slides onto whichever of the two edges brings it closer to x (the one with the
 //   larger positive component of x - vertex along it); when neither does it holds there
-//   (a concave corner holds). Each slide brings the proxy closer to x, so a tick ends;
-//   its steps are capped at 2 n + 16 all the same.
+//   (a concave corner holds).
+// Each step brings the proxy closer to x. A tick takes at most 64 steps and 8 straight
+// moves (bounded work whatever the outline); a proxy left far behind, when the handle
+// went deep through the solid, catches up over the next ticks, always outside the solid.
 // The proxy never crosses an edge, so a thin polygon never pops through: the proxy stays
 // on the side the handle came from until the handle leaves the solid there or slides off
 // the end of the wall. A run that starts with the handle in the solid puts the proxy at
@@ -97,10 +100,11 @@ class PolygonOutline {
   double along(int i, const Vec2& x_m) const noexcept { return dot(x_m - vertex(i), tangent(i)); }
   // The first edge the path from a to b enters, skipping edges skip_a and skip_b.
   Hit first_entry(const Vec2& a, const Vec2& b, int skip_a, int skip_b) const noexcept;
-  // Calls visit(edge) for every edge listed in a cell the segment a-b passes through
-  // (an edge may come more than once).
-  template <typename Visit>
-  void for_each_edge_near(const Vec2& a, const Vec2& b, Visit&& visit) const noexcept;
+  // Calls visit(edge) for every edge listed in the cells the segment a-b passes through,
+  // cell by cell from a, until done(t) is true for the fraction t of the path at which it
+  // leaves the cell (an edge may come more than once).
+  template <typename Visit, typename Done>
+  void for_each_edge_near(const Vec2& a, const Vec2& b, Visit&& visit, Done&& done) const noexcept;
   // Puts the proxy where a hit stopped it: on the edge, or on a vertex near its ends.
   void place(const Hit& hit, Vec2* proxy, ProxyContact* contact, int* feature) const noexcept;
 
