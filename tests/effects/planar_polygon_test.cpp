@@ -361,8 +361,9 @@ TEST_CASE("planar polygon: random star polygons and wild handle paths never put 
     return static_cast<double>(seed >> 11) * 0x1.0p-53;
   };
   int contacts = 0;
-  for (int shape = 0; shape < 24; ++shape) {
-    const int n = 5 + static_cast<int>(uniform() * 60);
+  for (int shape = 0; shape < 32; ++shape) {
+    // Small outlines (a grid of a few cells) and large ones (hundreds of cells).
+    const int n = shape < 24 ? 5 + static_cast<int>(uniform() * 60) : 200 + static_cast<int>(uniform() * 400);
     std::vector<Vec2> points;
     for (int i = 0; i < n; ++i) {
       const double angle = 2.0 * M_PI * (i + 0.8 * uniform()) / n;
@@ -390,4 +391,42 @@ TEST_CASE("planar polygon: random star polygons and wild handle paths never put 
     }
   }
   CHECK(contacts > 10000);  // the paths did press into the shapes
+}
+
+TEST_CASE("planar polygon: a proxy left far behind catches up over a few ticks, on the outline") {
+  // A comb of thin teeth; the handle, pressed into one tooth's side, is moved at once
+  // 40 teeth along, just below their tips (through the teeth): the proxy climbs over
+  // tooth after tooth, a bounded number per tick, staying on the outline, until it rests
+  // against the first tooth the handle is behind (where the foot of the perpendicular
+  // from the handle falls below the tip).
+  std::vector<Vec2> comb;
+  for (int i = 0; i < 100; ++i) {
+    comb.push_back(v2(0.001 * i, 0.0));
+    comb.push_back(v2(0.001 * i + 0.0005, 0.05));
+  }
+  comb.push_back(v2(0.1, -0.01));
+  comb.push_back(v2(0.0, -0.01));
+  const PlanarPolygon teeth = make_polygon(comb, true);
+  PlanarProxyState state;
+  step(teeth, state, v2(0.0102, 0.03));  // in the gap between teeth 10 and 11
+  step(teeth, state, v2(0.0108, 0.03));  // into tooth 11's left side
+  REQUIRE(state.contact == ProxyContact::edge);
+  const Vec2 target = v2(0.0508, 0.0499);
+  double previous_gap_m = norm(state.proxy_m - target);
+  int moving_ticks = 0;
+  for (int tick = 0; tick < 30; ++tick) {
+    const Vec2 before = state.proxy_m;
+    step(teeth, state, target);
+    CHECK(norm(teeth.outline.nearest_point(state.proxy_m) - state.proxy_m) < 1e-12);  // on the outline
+    const double gap_m = norm(state.proxy_m - target);
+    CHECK(gap_m <= previous_gap_m);
+    previous_gap_m = gap_m;
+    moving_ticks += !(state.proxy_m == before);
+  }
+  CHECK(moving_ticks > 1);   // more than one tick's work
+  CHECK(moving_ticks < 10);  // but not many
+  CHECK(state.contact == ProxyContact::edge);
+  CHECK(state.proxy_m[0] > 0.035);
+  // Lifted above the tips: free at once.
+  CHECK(step(teeth, state, v2(0.0508, 0.0505)) == v2(0.0, 0.0));
 }
