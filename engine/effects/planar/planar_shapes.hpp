@@ -68,7 +68,10 @@ struct PlanarWall {
 // elsewhere the proxy is x. Solid "outside" (a cage): the proxy is
 // (clamp(x, min_x, max_x), clamp(y, min_y, max_y)), which is x inside the box.
 // Closed loop: the outline's proxy (engine/effects/planar/polygon_outline.hpp) on the
-// edges bottom, right, top, left.
+// edges bottom, right, top, left. Pressed in from outside along a side's normal it rests
+// on the open loop's proxy to rounding (the outline computes the foot as corner + distance
+// along the side: within 1e-15 m of it, tests/effects/planar_shapes_test.cpp); the wall's
+// and the circle's closed loops give the open loop's numbers exactly.
 struct PlanarBox {
   static constexpr const char* kType = "box";
   static constexpr Needs kNeeds{};

@@ -462,6 +462,17 @@ void PolygonOutline::step_proxy(const Vec2& x_m, const FrictionCoefficients& fri
     }
     from_vertex = v;
   }
+  // Stopped by the cap just after choosing an edge at a vertex: the proxy is still on
+  // the vertex, and rests there (so a later move away skips both of its edges).
+  if (contact == ProxyContact::edge) {
+    const double at_m = along(feature, proxy);
+    const double snap_m = kVertexSnap * length_m(feature);
+    if (at_m <= snap_m || at_m >= length_m(feature) - snap_m) {
+      feature = at_m <= snap_m ? feature : next(feature);
+      proxy = vertex(feature);
+      contact = ProxyContact::vertex;
+    }
+  }
   state.proxy_m = proxy;
   state.contact = contact;
   state.feature = feature;
