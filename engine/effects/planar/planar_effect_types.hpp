@@ -1,0 +1,111 @@
+#pragma once
+// The list of 2-D built-in effect types, apart from the 1-D list (engine/effects/
+// effect_types.hpp) until the scene's tick is generic over the number of axes. A type is a
+// struct with kType, kNeeds, kUsesProxy, parse(ObjectReader&), can_act_within(min, max),
+// open_loop_force_N(input) and either force_N(input) (a field) or force_N(input, state)
+// (a shape with a proxy, kUsesProxy). The variant, the bank, its per-run proxy states and
+// the table of "type" names follow from the list.
+#include <cstddef>
+#include <span>
+#include <string>
+#include <string_view>
+#include <tuple>
+#include <variant>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "engine/effects/planar/planar_fields.hpp"
+#include "engine/effects/planar/planar_input.hpp"
+#include "engine/effects/planar/planar_shapes.hpp"
+#include "engine/effects/planar/proxy_state.hpp"
+
+namespace hapscene {
+
+class ObjectReader;
+
+template <typename... Types>
+struct PlanarEffectTypeList {
+  using Variant = std::variant<Types...>;
+
+  // A scene's 2-D effects grouped by type (in the order of the list; within a group in
+  // the order of the file). The shapes' proxies live outside, in the run: one
+  // PlanarProxyState per shape effect, in the order the groups list them
+  // (proxy_count() of them, value-initialised when a run starts).
+  struct Bank {
+    std::tuple<std::vector<Types>...> groups;
+
+    template <typename T>
+    std::vector<T>& group() noexcept { return std::get<std::vector<T>>(groups); }
+    template <typename T>
+    const std::vector<T>& group() const noexcept { return std::get<std::vector<T>>(groups); }
+
+    std::size_t proxy_count() const noexcept {
+      return (std::size_t{0} + ... + (Types::kUsesProxy ? group<Types>().size() : std::size_t{0}));
+    }
+
+    // Closed loop: the sum of every effect's force, moving the shapes' proxies.
+    // `proxies` holds proxy_count() states.
+    Vec2 force_N(const PlanarInput& input, std::span<PlanarProxyState> proxies) const noexcept {
+      Vec2 force_N{};
+      std::size_t next_proxy = 0;
+      (add_group_N<Types>(input, proxies, &next_proxy, &force_N), ...);
+      return force_N;
+    }
+
+    // Open loop: the same sum without history (each shape's proxy at the nearest point of
+    // its boundary when the handle is in its solid).
+    Vec2 open_loop_force_N(const PlanarInput& input) const noexcept {
+      Vec2 force_N{};
+      (add_open_group_N<Types>(input, &force_N), ...);
+      return force_N;
+    }
+
+   private:
+    template <typename T>
+    void add_group_N(const PlanarInput& input, std::span<PlanarProxyState> proxies, std::size_t* next_proxy,
+                     Vec2* force_N) const noexcept {
+      for (const T& e : group<T>()) {
+        if constexpr (T::kUsesProxy) {
+          *force_N += e.force_N(input, proxies[(*next_proxy)++]);
+        } else {
+          *force_N += e.force_N(input);
+        }
+      }
+    }
+    template <typename T>
+    void add_open_group_N(const PlanarInput& input, Vec2* force_N) const noexcept {
+      for (const T& e : group<T>()) *force_N += e.open_loop_force_N(input);
+    }
+  };
+
+  // Adds one effect to its group.
+  static void add(Bank& bank, Variant effect) {
+    std::visit([&](auto&& e) { bank.template group<std::decay_t<decltype(e)>>().push_back(std::move(e)); },
+               std::move(effect));
+  }
+};
+
+// The 2-D built-in effects, in the order the tick adds them up.
+using PlanarBuiltInEffects =
+    PlanarEffectTypeList<PlanarSpring, PlanarWall, PlanarBox, PlanarCircle, PlanarPolygon, PlanarDamper, PlanarTexture>;
+using PlanarEffect = PlanarBuiltInEffects::Variant;
+using PlanarEffectBank = PlanarBuiltInEffects::Bank;
+
+// The 2-D "type" names and their parsers, in the order of the list (like the 1-D
+// loader's table). parse reads the effect's own keys; the caller reads "type" and
+// "enabled" and calls finish().
+struct PlanarEffectType {
+  std::string_view name;
+  PlanarEffect (*parse)(ObjectReader& reader);
+};
+std::span<const PlanarEffectType> planar_effect_types();
+
+// One element of a 2-D scene's "effects" at `pointer` of `file`: its "type" (unknown
+// names are refused with a suggestion), "enabled" (a boolean, default true; a disabled
+// effect is not parsed further), its keys, and no others. Returns false when disabled.
+// Throws InputError with the file and the JSON pointer.
+bool parse_planar_effect(const nlohmann::json& value, const std::string& pointer, const std::string& file,
+                         PlanarEffect* effect);
+
+}  // namespace hapscene

@@ -1,0 +1,75 @@
+#pragma once
+// The 2-D penalty fields: spring, damper and texture. They need no proxy: each force is
+// a function of the handle state alone, the same in closed and open loop.
+//   spring:  F = -K (x - c), component by component: fx = -K (x - cx), fy = -K (y - cy)
+//   damper:  F = -B v:  fx = -B vx, fy = -B vy
+//   texture: bands perpendicular to the unit direction u (the direction as written,
+//            divided by its length sqrt(dx dx + dy dy)): the handle is in a band when
+//            s = x ux + y uy (in that order) has (s - o) mod (w + s) below w, with the
+//            1-D texture's rule for edges (engine/effects/texture.hpp: positions within
+//            a billionth of a period of an edge count as on it); there F = -B v, else 0.
+#include "engine/base/axes.hpp"
+#include "engine/effects/planar/planar_input.hpp"
+#include "engine/effects/texture.hpp"
+
+namespace hapscene {
+
+class ObjectReader;
+
+struct PlanarSpring {
+  static constexpr const char* kType = "spring";
+  static constexpr Needs kNeeds{};
+  static constexpr bool kUsesProxy = false;
+
+  double stiffness_N_per_m{};
+  Vec2 center_m{};
+
+  static PlanarSpring parse(ObjectReader& reader);
+
+  Vec2 force_N(const PlanarInput& in) const noexcept {
+    return Vec2{{-stiffness_N_per_m * (in.x_m[0] - center_m[0]), -stiffness_N_per_m * (in.x_m[1] - center_m[1])}};
+  }
+  Vec2 open_loop_force_N(const PlanarInput& in) const noexcept { return force_N(in); }
+  bool can_act_within(const Vec2&, const Vec2&) const noexcept { return stiffness_N_per_m != 0.0; }
+};
+
+struct PlanarDamper {
+  static constexpr const char* kType = "damper";
+  static constexpr Needs kNeeds{.velocity = true};
+  static constexpr bool kUsesProxy = false;
+
+  double damping_N_s_per_m{};
+
+  static PlanarDamper parse(ObjectReader& reader);
+
+  Vec2 force_N(const PlanarInput& in) const noexcept {
+    return Vec2{{-damping_N_s_per_m * in.v_m_per_s[0], -damping_N_s_per_m * in.v_m_per_s[1]}};
+  }
+  Vec2 open_loop_force_N(const PlanarInput& in) const noexcept { return force_N(in); }
+  bool can_act_within(const Vec2&, const Vec2&) const noexcept { return damping_N_s_per_m != 0.0; }
+};
+
+struct PlanarTexture {
+  static constexpr const char* kType = "texture";
+  static constexpr Needs kNeeds{.velocity = true};
+  static constexpr bool kUsesProxy = false;
+
+  Texture bands;      // width, spacing, offset, damping and period along the direction
+  Vec2 direction{};   // unit vector
+
+  static PlanarTexture parse(ObjectReader& reader);
+
+  bool in_band(const Vec2& x_m) const noexcept {
+    return bands.in_field(x_m[0] * direction[0] + x_m[1] * direction[1]);
+  }
+  Vec2 force_N(const PlanarInput& in) const noexcept {
+    if (!in_band(in.x_m)) return Vec2{};
+    return Vec2{{-bands.damping_N_s_per_m * in.v_m_per_s[0], -bands.damping_N_s_per_m * in.v_m_per_s[1]}};
+  }
+  Vec2 open_loop_force_N(const PlanarInput& in) const noexcept { return force_N(in); }
+  bool can_act_within(const Vec2&, const Vec2&) const noexcept {
+    return bands.damping_N_s_per_m != 0.0 && bands.width_m > 0.0;
+  }
+};
+
+}  // namespace hapscene

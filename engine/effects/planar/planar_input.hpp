@@ -1,0 +1,17 @@
+#pragma once
+// What a 2-D effect sees each tick: the handle state in the device's task frame (SI,
+// x and y in metres). The same fields as the 1-D EffectInput, with vectors for position
+// and velocity; effects declare what they read besides position with Needs.
+#include "engine/base/axes.hpp"
+#include "engine/effects/effect_input.hpp"
+
+namespace hapscene {
+
+struct PlanarInput {
+  Vec2 x_m{};          // handle position
+  Vec2 v_m_per_s{};    // estimated velocity; zero when no effect needs it
+  double t_s{};        // time since the run started
+  double dt_s{};       // tick period
+};
+
+}  // namespace hapscene

@@ -1,0 +1,110 @@
+#include "engine/effects/planar/planar_reader.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "engine/base/errors.hpp"
+#include "engine/base/json_source.hpp"
+
+namespace hapscene {
+namespace {
+
+// Fails at `pointer` (an element below a key, such as "/effects/3/points/2").
+[[noreturn]] void fail_at(const ObjectReader& reader, const std::string& pointer,
+                          const std::string& message) {
+  throw InputError(located_message(reader.file(), pointer, message));
+}
+
+// "[x, y] of lengths in m (or strings with a unit)": what a vector key takes, for messages.
+std::string vector_form(Quantity quantity) {
+  const std::string unit(si_unit(quantity));
+  if (unit.empty()) return "a 2-D vector [x, y] of numbers";
+  return "a 2-D vector [x, y] of " + std::string(quantity_name(quantity)) + "s in " + unit +
+         " (or strings with a unit)";
+}
+
+// Reads one [x, y] value found at `pointer` (its components at pointer/0 and pointer/1).
+Vec2 vector_at(const ObjectReader& parent, const nlohmann::json& value,
+               const std::string& pointer, Quantity quantity, Range component) {
+  if (!value.is_array() || value.size() != 2) {
+    std::string got = json_type_name(value);
+    if (value.is_array()) got = "an array of " + std::to_string(value.size());
+    std::string message = "expected " + vector_form(quantity) + ", got " + got;
+    // A 1-D scene's form of the key (a single number or string) in a 2-D scene.
+    if (value.is_number() || value.is_string()) message += " (a 1-D form: a 2-D scene takes [x, y])";
+    fail_at(parent, pointer, message);
+  }
+  const nlohmann::json pair = nlohmann::json::object({{"0", value[0]}, {"1", value[1]}});
+  ObjectReader holder(pair, pointer, parent.file(), parent.base_dir());
+  Vec2 result;
+  result[0] = holder.quantity("0", quantity, component);
+  result[1] = holder.quantity("1", quantity, component);
+  return result;
+}
+
+}  // namespace
+
+Vec2 read_vector(ObjectReader& reader, std::string_view key, Quantity quantity, Range component) {
+  const nlohmann::json* value = reader.get(key);
+  if (value == nullptr) reader.fail("", "missing required key \"" + std::string(key) + "\"");
+  return vector_at(reader, *value, reader.pointer_to(key), quantity, component);
+}
+
+Vec2 read_vector_or(ObjectReader& reader, std::string_view key, Quantity quantity, Vec2 fallback,
+                    Range component) {
+  const nlohmann::json* value = reader.get(key);
+  if (value == nullptr) return fallback;
+  return vector_at(reader, *value, reader.pointer_to(key), quantity, component);
+}
+
+Vec2 read_direction(ObjectReader& reader, std::string_view key) {
+  const Vec2 raw = read_vector(reader, key, Quantity::dimensionless, ranges::kDirectionComponent);
+  const double length = std::sqrt(raw[0] * raw[0] + raw[1] * raw[1]);
+  if (!(length > 0.0)) reader.fail(key, "must not be the zero vector: it gives the direction");
+  Vec2 unit;
+  unit[0] = raw[0] / length;
+  unit[1] = raw[1] / length;
+  return unit;
+}
+
+std::vector<Vec2> read_points(ObjectReader& reader, std::string_view key, Range component,
+                              std::size_t min_count, std::size_t max_count) {
+  const nlohmann::json* value = reader.get(key);
+  if (value == nullptr) reader.fail("", "missing required key \"" + std::string(key) + "\"");
+  if (!value->is_array()) {
+    reader.fail(key, "expected an array of points [[x, y], ...], got " + json_type_name(*value));
+  }
+  if (value->size() < min_count || value->size() > max_count) {
+    reader.fail(key, "expected " + std::to_string(min_count) + " to " + std::to_string(max_count) +
+                         " points, got " + std::to_string(value->size()));
+  }
+  std::vector<Vec2> points;
+  points.reserve(value->size());
+  const std::string pointer = reader.pointer_to(key);
+  for (std::size_t i = 0; i < value->size(); ++i) {
+    points.push_back(vector_at(reader, (*value)[i], json_pointer_append(pointer, i),
+                               Quantity::length_m, component));
+  }
+  return points;
+}
+
+bool read_solid_inside(ObjectReader& reader) {
+  return reader.choice("solid", {"inside", "outside"}) == "inside";
+}
+
+FrictionCoefficients read_friction(ObjectReader& reader) {
+  const nlohmann::json* value = reader.get("friction");
+  if (value == nullptr) return {};
+  ObjectReader block(*value, reader.pointer_to("friction"), reader.file(), reader.base_dir());
+  FrictionCoefficients friction;
+  friction.static_mu = block.quantity("static", Quantity::dimensionless, ranges::kFrictionCoefficient);
+  friction.dynamic_mu = block.quantity("dynamic", Quantity::dimensionless, ranges::kFrictionCoefficient);
+  if (friction.dynamic_mu > friction.static_mu) {
+    block.fail("dynamic", "must not exceed the static coefficient (" + format_number(friction.static_mu) +
+                              "), got " + format_number(friction.dynamic_mu));
+  }
+  block.finish();
+  return friction;
+}
+
+}  // namespace hapscene

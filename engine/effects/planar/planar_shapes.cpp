@@ -1,0 +1,134 @@
+// The shapes' closed loops (wall, circle) and open-loop formulas (box), and whether each
+// can act within a rectangular workspace.
+#include <algorithm>
+#include <cmath>
+
+#include "engine/effects/planar/planar_shapes.hpp"
+
+namespace hapscene {
+
+Vec2 PlanarWall::force_N(const PlanarInput& in, PlanarProxyState& state) const noexcept {
+  if (!all_finite(in.x_m)) return Vec2{};
+  const double d = depth_m(in.x_m);
+  const bool in_solid = d > 0.0;
+  if (!state.started) {
+    state = PlanarProxyState{};
+    state.started = true;
+    state.passive = in_solid;
+  }
+  if (state.passive && in_solid) {
+    state.proxy_m = in.x_m;
+    state.contact = ProxyContact::none;
+    return Vec2{};
+  }
+  state.passive = false;
+  state.proxy_m = open_loop_proxy_m(in.x_m);
+  state.contact = in_solid ? ProxyContact::surface : ProxyContact::none;
+  return open_loop_force_N(in);
+}
+
+bool PlanarWall::can_act_within(const Vec2& min_m, const Vec2& max_m) const noexcept {
+  if (stiffness_N_per_m == 0.0) return false;
+  // Some corner of the workspace is in the solid.
+  for (const double x : {min_m[0], max_m[0]}) {
+    for (const double y : {min_m[1], max_m[1]}) {
+      if (depth_m(Vec2{{x, y}}) > 0.0) return true;
+    }
+  }
+  return false;
+}
+
+PlanarBox PlanarBox::make(const Vec2& min_m, const Vec2& max_m, double stiffness_N_per_m, bool solid_inside) {
+  PlanarBox box;
+  box.min_m = min_m;
+  box.max_m = max_m;
+  box.stiffness_N_per_m = stiffness_N_per_m;
+  box.solid_inside = solid_inside;
+  // Edges 0 to 3: bottom, right, top, left.
+  box.outline = PolygonOutline({min_m, Vec2{{max_m[0], min_m[1]}}, max_m, Vec2{{min_m[0], max_m[1]}}}, solid_inside);
+  return box;
+}
+
+Vec2 PlanarBox::open_loop_proxy_m(const Vec2& x_m) const noexcept {
+  if (!solid_inside) {
+    return Vec2{{std::clamp(x_m[0], min_m[0], max_m[0]), std::clamp(x_m[1], min_m[1], max_m[1])}};
+  }
+  const bool inside = min_m[0] < x_m[0] && x_m[0] < max_m[0] && min_m[1] < x_m[1] && x_m[1] < max_m[1];
+  if (!inside) return x_m;
+  const double left = x_m[0] - min_m[0];
+  const double right = max_m[0] - x_m[0];
+  const double bottom = x_m[1] - min_m[1];
+  const double top = max_m[1] - x_m[1];
+  const double nearest = std::min({left, right, bottom, top});
+  if (left == nearest) return Vec2{{min_m[0], x_m[1]}};
+  if (right == nearest) return Vec2{{max_m[0], x_m[1]}};
+  if (bottom == nearest) return Vec2{{x_m[0], min_m[1]}};
+  return Vec2{{x_m[0], max_m[1]}};
+}
+
+bool PlanarBox::can_act_within(const Vec2& low_m, const Vec2& high_m) const noexcept {
+  if (stiffness_N_per_m == 0.0) return false;
+  if (solid_inside) {
+    return min_m[0] < high_m[0] && low_m[0] < max_m[0] && min_m[1] < high_m[1] && low_m[1] < max_m[1];
+  }
+  // A cage acts where the workspace reaches out of the box.
+  return low_m[0] < min_m[0] || high_m[0] > max_m[0] || low_m[1] < min_m[1] || high_m[1] > max_m[1];
+}
+
+Vec2 PlanarCircle::open_loop_proxy_m(const Vec2& x_m) const noexcept {
+  const double dx = x_m[0] - center_m[0];
+  const double dy = x_m[1] - center_m[1];
+  const double distance = std::sqrt(dx * dx + dy * dy);
+  const bool in_solid = solid_inside ? distance < radius_m : distance > radius_m;
+  if (!in_solid) return x_m;
+  if (distance == 0.0) return Vec2{{center_m[0] + radius_m, center_m[1]}};
+  return Vec2{{center_m[0] + dx * (radius_m / distance), center_m[1] + dy * (radius_m / distance)}};
+}
+
+Vec2 PlanarCircle::force_N(const PlanarInput& in, PlanarProxyState& state) const noexcept {
+  if (!all_finite(in.x_m)) return Vec2{};
+  const double dx = in.x_m[0] - center_m[0];
+  const double dy = in.x_m[1] - center_m[1];
+  const double distance = std::sqrt(dx * dx + dy * dy);
+  const bool in_solid = solid_inside ? distance < radius_m : distance > radius_m;
+  if (!state.started) {
+    state = PlanarProxyState{};
+    state.started = true;
+    state.passive = in_solid;
+  }
+  if (!in_solid || state.passive) {
+    state.passive = state.passive && in_solid;
+    state.proxy_m = in.x_m;
+    state.contact = ProxyContact::none;
+    return Vec2{};
+  }
+  if (distance > 0.0) {
+    state.proxy_m = open_loop_proxy_m(in.x_m);
+  } else if (state.contact != ProxyContact::surface) {
+    // Straight in to the centre from outside: the proxy stays where the path met the circle.
+    const double qx = state.proxy_m[0] - center_m[0];
+    const double qy = state.proxy_m[1] - center_m[1];
+    const double q_distance = std::sqrt(qx * qx + qy * qy);
+    state.proxy_m = q_distance > 0.0
+                        ? Vec2{{center_m[0] + qx * (radius_m / q_distance), center_m[1] + qy * (radius_m / q_distance)}}
+                        : open_loop_proxy_m(in.x_m);
+  }
+  state.contact = ProxyContact::surface;
+  return proxy_force_N(stiffness_N_per_m, state.proxy_m, in.x_m);
+}
+
+bool PlanarCircle::can_act_within(const Vec2& min_m, const Vec2& max_m) const noexcept {
+  if (stiffness_N_per_m == 0.0) return false;
+  if (solid_inside) {
+    // The disc reaches the workspace: the workspace's point nearest the centre is inside.
+    const double nx = std::clamp(center_m[0], min_m[0], max_m[0]) - center_m[0];
+    const double ny = std::clamp(center_m[1], min_m[1], max_m[1]) - center_m[1];
+    return nx * nx + ny * ny < radius_m * radius_m;
+  }
+  // A cage acts where the workspace reaches out of the disc: its farthest corner.
+  const double fx = std::max(std::fabs(min_m[0] - center_m[0]), std::fabs(max_m[0] - center_m[0]));
+  const double fy = std::max(std::fabs(min_m[1] - center_m[1]), std::fabs(max_m[1] - center_m[1]));
+  return fx * fx + fy * fy > radius_m * radius_m;
+}
+
+}  // namespace hapscene

@@ -1,0 +1,517 @@
+#include "engine/effects/planar/polygon_outline.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hapscene {
+namespace {
+
+// A hit or a slide within this fraction of an edge's length of one of its ends lands on
+// the vertex there (a nanometre on a metre-long edge: far below any sensor's resolution).
+constexpr double kVertexSnap = 1e-9;
+// Work per tick at most: steps (a straight move, a slide along an edge or a decision on
+// a vertex) and straight moves (each a query of the grid along the path). A proxy left
+// far behind the handle (which went through the solid) catches up over the next ticks;
+// it is on the outline or in free space after every step, so stopping early is safe.
+constexpr int kMaxStepsPerTick = 64;
+constexpr int kMaxStraightMovesPerTick = 8;
+// Cells per axis at most: bounds the grid's memory whatever the outline's proportions.
+constexpr int kMaxCellsPerAxis = 512;
+
+struct GridShape {
+  Vec2 origin_m{};
+  double cell_width_m{1.0};
+  double cell_height_m{1.0};
+  int columns{1};
+  int rows{1};
+};
+
+// About one cell per edge, the cells about square, over the points' bounding box.
+GridShape grid_shape(const std::vector<Vec2>& points) {
+  Vec2 low = points.front();
+  Vec2 high = points.front();
+  for (const Vec2& p : points) {
+    for (int k = 0; k < 2; ++k) {
+      low[k] = std::min(low[k], p[k]);
+      high[k] = std::max(high[k], p[k]);
+    }
+  }
+  const double width_m = high[0] - low[0];
+  const double height_m = high[1] - low[1];
+  const double cells = static_cast<double>(points.size());
+  const auto clamp_cells = [](double count) {
+    return static_cast<int>(std::clamp(std::round(count), 1.0, static_cast<double>(kMaxCellsPerAxis)));
+  };
+  GridShape shape;
+  shape.origin_m = low;
+  shape.columns = clamp_cells(std::sqrt(cells * width_m / height_m));
+  shape.rows = clamp_cells(std::sqrt(cells * height_m / width_m));
+  shape.cell_width_m = width_m / shape.columns;
+  shape.cell_height_m = height_m / shape.rows;
+  return shape;
+}
+
+// Whether segment a-b passes through the rectangle [low, high] (boundary included).
+bool segment_touches_box(const Vec2& a, const Vec2& b, const Vec2& low, const Vec2& high) noexcept {
+  if (std::max(a[0], b[0]) < low[0] || std::min(a[0], b[0]) > high[0]) return false;
+  if (std::max(a[1], b[1]) < low[1] || std::min(a[1], b[1]) > high[1]) return false;
+  // The corners all strictly on one side of the segment's line: it misses the box.
+  const Vec2 d = b - a;
+  int above = 0;
+  int below = 0;
+  const Vec2 corners[4] = {low, Vec2{{high[0], low[1]}}, high, Vec2{{low[0], high[1]}}};
+  for (const Vec2& corner : corners) {
+    const double c = cross(d, corner - a);
+    above += c > 0.0;
+    below += c < 0.0;
+  }
+  return above != 4 && below != 4;
+}
+
+// The cell range [first, last] along one axis that [low, high] overlaps, or false when
+// it lies outside the grid.
+bool cell_span(double low, double high, double origin, double cell, int count, double margin,
+               int* first, int* last) noexcept {
+  const double extent = cell * count;
+  if (high < origin - margin || low > origin + extent + margin) return false;
+  const auto index = [&](double value) {
+    return static_cast<int>(std::clamp(std::floor((value - origin) / cell), 0.0, count - 1.0));
+  };
+  *first = index(low - margin);
+  *last = index(high + margin);
+  return true;
+}
+
+// Visits every cell of the grid that segment a-b passes through (cells grown by margin).
+template <typename Visit>
+void for_each_cell(const GridShape& grid, const Vec2& a, const Vec2& b, Visit&& visit) noexcept {
+  const double margin = kVertexSnap * std::max(grid.cell_width_m, grid.cell_height_m);
+  int c0 = 0, c1 = 0, r0 = 0, r1 = 0;
+  if (!cell_span(std::min(a[0], b[0]), std::max(a[0], b[0]), grid.origin_m[0], grid.cell_width_m,
+                 grid.columns, margin, &c0, &c1)) {
+    return;
+  }
+  if (!cell_span(std::min(a[1], b[1]), std::max(a[1], b[1]), grid.origin_m[1], grid.cell_height_m,
+                 grid.rows, margin, &r0, &r1)) {
+    return;
+  }
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) {
+      const Vec2 low{{grid.origin_m[0] + c * grid.cell_width_m - margin,
+                      grid.origin_m[1] + r * grid.cell_height_m - margin}};
+      const Vec2 high{{grid.origin_m[0] + (c + 1) * grid.cell_width_m + margin,
+                       grid.origin_m[1] + (r + 1) * grid.cell_height_m + margin}};
+      if (c0 == c1 && r0 == r1) {
+        visit(r * grid.columns + c);  // the segment's box lies in this one cell
+      } else if (segment_touches_box(a, b, low, high)) {
+        visit(r * grid.columns + c);
+      }
+    }
+  }
+}
+
+// Visits the cells segment a-b passes through in order from a (a grid walk), calling
+// visit(cell, t_leave) with the fraction of the path at which it leaves the cell; stops
+// when visit returns true. Edges are listed in every cell they come within a margin of,
+// so a crossing near a cell's border is found in either cell.
+template <typename Visit>
+void walk_cells(const GridShape& grid, const Vec2& a, const Vec2& b, Visit&& visit) noexcept {
+  const Vec2 d = b - a;
+  const double cell[2] = {grid.cell_width_m, grid.cell_height_m};
+  const int count[2] = {grid.columns, grid.rows};
+  const double margin = kVertexSnap * std::max(grid.cell_width_m, grid.cell_height_m);
+  // Clip the path to the grid's box (grown by the margin, as the cells' lists are).
+  double t_in = 0.0;
+  double t_out = 1.0;
+  for (int k = 0; k < 2; ++k) {
+    const double low = grid.origin_m[k] - margin;
+    const double high = grid.origin_m[k] + cell[k] * count[k] + margin;
+    if (d[k] == 0.0) {
+      if (a[k] < low || a[k] > high) return;
+      continue;
+    }
+    double t_low = (low - a[k]) / d[k];
+    double t_high = (high - a[k]) / d[k];
+    if (t_low > t_high) std::swap(t_low, t_high);
+    t_in = std::max(t_in, t_low);
+    t_out = std::min(t_out, t_high);
+  }
+  if (t_in > t_out) return;
+  int index[2];
+  int step[2];
+  double t_next[2];   // where the path crosses into the next cell along each axis
+  double t_delta[2];  // path fraction per cell along each axis
+  const Vec2 start = a + d * t_in;
+  for (int k = 0; k < 2; ++k) {
+    index[k] = static_cast<int>(std::clamp(std::floor((start[k] - grid.origin_m[k]) / cell[k]), 0.0, count[k] - 1.0));
+    if (d[k] > 0.0) {
+      step[k] = 1;
+      t_next[k] = (grid.origin_m[k] + (index[k] + 1) * cell[k] - a[k]) / d[k];
+      t_delta[k] = cell[k] / d[k];
+    } else if (d[k] < 0.0) {
+      step[k] = -1;
+      t_next[k] = (grid.origin_m[k] + index[k] * cell[k] - a[k]) / d[k];
+      t_delta[k] = -cell[k] / d[k];
+    } else {
+      step[k] = 0;
+      t_next[k] = INFINITY;
+      t_delta[k] = INFINITY;
+    }
+  }
+  // At most one cell per column and row crossed, plus the first.
+  for (int guard = count[0] + count[1] + 2; guard > 0; --guard) {
+    const int axis = t_next[0] < t_next[1] ? 0 : 1;
+    const double t_leave = std::min(t_next[axis], t_out);
+    if (visit(index[1] * grid.columns + index[0], t_leave)) return;
+    if (t_next[axis] >= t_out) return;
+    index[axis] += step[axis];
+    if (index[axis] < 0 || index[axis] >= count[axis]) return;
+    t_next[axis] += t_delta[axis];
+  }
+}
+
+// Each edge listed in every cell it passes through: start offsets per cell, then edges.
+void build_grid(const std::vector<Vec2>& points, const GridShape& grid, std::vector<int>* cell_start,
+                std::vector<int>* cell_edges) {
+  const int n = static_cast<int>(points.size());
+  const std::size_t cells = static_cast<std::size_t>(grid.columns) * static_cast<std::size_t>(grid.rows);
+  std::vector<int> counts(cells, 0);
+  for (int i = 0; i < n; ++i) {
+    for_each_cell(grid, points[static_cast<std::size_t>(i)], points[static_cast<std::size_t>((i + 1) % n)],
+                  [&](int cell) { ++counts[static_cast<std::size_t>(cell)]; });
+  }
+  cell_start->assign(cells + 1, 0);
+  for (std::size_t k = 0; k < cells; ++k) (*cell_start)[k + 1] = (*cell_start)[k] + counts[k];
+  cell_edges->assign(static_cast<std::size_t>(cell_start->back()), 0);
+  std::vector<int> filled(cell_start->begin(), cell_start->end() - 1);
+  for (int i = 0; i < n; ++i) {
+    for_each_cell(grid, points[static_cast<std::size_t>(i)], points[static_cast<std::size_t>((i + 1) % n)],
+                  [&](int cell) { (*cell_edges)[static_cast<std::size_t>(filled[static_cast<std::size_t>(cell)]++)] = i; });
+  }
+}
+
+int sign_of(double value) { return (value > 0.0) - (value < 0.0); }
+
+// Whether point c on the line of a-b lies within the segment's bounding box.
+bool within_box(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) && std::min(a[1], b[1]) <= c[1] &&
+         c[1] <= std::max(a[1], b[1]);
+}
+
+// Whether closed segments a-b and c-d share a point (crossing, touching or overlapping).
+bool segments_meet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const int o1 = sign_of(cross(b - a, c - a));
+  const int o2 = sign_of(cross(b - a, d - a));
+  const int o3 = sign_of(cross(d - c, a - c));
+  const int o4 = sign_of(cross(d - c, b - c));
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && within_box(a, b, c)) || (o2 == 0 && within_box(a, b, d)) ||
+         (o3 == 0 && within_box(c, d, a)) || (o4 == 0 && within_box(c, d, b));
+}
+
+double signed_area_m2(const std::vector<Vec2>& points) {
+  double twice = 0.0;
+  const std::size_t n = points.size();
+  for (std::size_t i = 0; i < n; ++i) twice += cross(points[i], points[(i + 1) % n]);
+  return 0.5 * twice;
+}
+
+}  // namespace
+
+std::string PolygonOutline::check_polygon(const std::vector<Vec2>& points) {
+  const std::size_t n = points.size();
+  if (n < 3) return "a polygon needs at least 3 points, got " + std::to_string(n);
+  const auto name = [](std::size_t i) { return std::to_string(i); };
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    if (points[i] == points[j]) {
+      if (j == 0) {
+        return "points " + name(n - 1) + " and 0 coincide: the outline closes by itself, leave out the last point";
+      }
+      return "points " + name(i) + " and " + name(j) + " coincide";
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 d1 = points[(i + 1) % n] - points[i];
+    const Vec2 d2 = points[(i + 2) % n] - points[(i + 1) % n];
+    if (cross(d1, d2) == 0.0 && dot(d1, d2) < 0.0) {
+      return "edges " + name(i) + " and " + name((i + 1) % n) + " fold back on each other at point " +
+             name((i + 1) % n);
+    }
+  }
+  const GridShape probe_shape = [&] {
+    Vec2 low = points.front(), high = points.front();
+    for (const Vec2& p : points) {
+      for (int k = 0; k < 2; ++k) low[k] = std::min(low[k], p[k]), high[k] = std::max(high[k], p[k]);
+    }
+    GridShape shape;
+    shape.cell_width_m = high[0] - low[0];
+    shape.cell_height_m = high[1] - low[1];
+    return shape;
+  }();
+  if (!(probe_shape.cell_width_m > 0.0) || !(probe_shape.cell_height_m > 0.0)) {
+    return "the points lie on one line: the polygon encloses no area";
+  }
+  // Edges that share a point can only do so in a cell they both pass through.
+  const GridShape grid = grid_shape(points);
+  std::vector<int> cell_start, cell_edges;
+  build_grid(points, grid, &cell_start, &cell_edges);
+  for (std::size_t k = 0; k + 1 < cell_start.size(); ++k) {
+    for (int a = cell_start[k]; a < cell_start[k + 1]; ++a) {
+      for (int b = a + 1; b < cell_start[k + 1]; ++b) {
+        std::size_t i = static_cast<std::size_t>(cell_edges[static_cast<std::size_t>(a)]);
+        std::size_t j = static_cast<std::size_t>(cell_edges[static_cast<std::size_t>(b)]);
+        if (i == j) continue;
+        if (i > j) std::swap(i, j);
+        if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // neighbours share their vertex
+        if (segments_meet(points[i], points[(i + 1) % n], points[j], points[(j + 1) % n])) {
+          return "edges " + name(i) + " (points " + name(i) + " to " + name((i + 1) % n) + ") and " + name(j) +
+                 " (points " + name(j) + " to " + name((j + 1) % n) +
+                 ") cross or touch: the outline must not intersect itself";
+        }
+      }
+    }
+  }
+  if (signed_area_m2(points) == 0.0) return "the polygon encloses no area";
+  return {};
+}
+
+PolygonOutline::PolygonOutline(const std::vector<Vec2>& points, bool solid_inside)
+    : vertices_(points), solid_inside_(solid_inside) {
+  const std::size_t n = points.size();
+  // Free space is on the left of each edge (walking the points in order) when the points
+  // run anticlockwise around a cage, or clockwise around a solid.
+  const bool free_on_left = (signed_area_m2(points) > 0.0) != solid_inside;
+  tangents_.resize(n);
+  normals_.resize(n);
+  lengths_m_.resize(n);
+  wide_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 d = points[(i + 1) % n] - points[i];
+    lengths_m_[i] = std::sqrt(dot(d, d));
+    tangents_[i] = d / lengths_m_[i];
+    const Vec2 left{{-tangents_[i][1], tangents_[i][0]}};
+    normals_[i] = free_on_left ? left : -left;
+  }
+  // Vertex i joins edge i - 1 to edge i: a turn toward the free side narrows it.
+  for (std::size_t i = 0; i < n; ++i) {
+    const double turn = cross(tangents_[(i + n - 1) % n], tangents_[i]);
+    wide_[i] = free_on_left ? turn <= 0.0 : turn >= 0.0;
+  }
+  const GridShape grid = grid_shape(points);
+  origin_m_ = grid.origin_m;
+  cell_width_m_ = grid.cell_width_m;
+  cell_height_m_ = grid.cell_height_m;
+  columns_ = grid.columns;
+  rows_ = grid.rows;
+  build_grid(points, grid, &cell_start_, &cell_edges_);
+}
+
+int PolygonOutline::most_edges_per_cell() const noexcept {
+  int most = 0;
+  for (std::size_t k = 0; k + 1 < cell_start_.size(); ++k) most = std::max(most, cell_start_[k + 1] - cell_start_[k]);
+  return most;
+}
+
+template <typename Visit, typename Done>
+void PolygonOutline::for_each_edge_near(const Vec2& a, const Vec2& b, Visit&& visit, Done&& done) const noexcept {
+  const GridShape grid{origin_m_, cell_width_m_, cell_height_m_, columns_, rows_};
+  walk_cells(grid, a, b, [&](int cell, double t_leave) {
+    const int end = cell_start_[static_cast<std::size_t>(cell) + 1];
+    for (int k = cell_start_[static_cast<std::size_t>(cell)]; k < end; ++k) {
+      visit(cell_edges_[static_cast<std::size_t>(k)]);
+    }
+    return done(t_leave);
+  });
+}
+
+PolygonOutline::Hit PolygonOutline::first_entry(const Vec2& a, const Vec2& b, int skip_a,
+                                                int skip_b) const noexcept {
+  Hit best;
+  best.t = 2.0;
+  for_each_edge_near(a, b, [&](int e) {
+    if (e == skip_a || e == skip_b) return;
+    const double side_a = side(e, a);
+    const double side_b = side(e, b);
+    if (!(side_a >= 0.0 && side_b < 0.0)) return;  // not entering the solid through this line
+    const double t = side_a / (side_a - side_b);
+    if (!(t < best.t)) return;
+    const double along_m = along(e, a + (b - a) * t);
+    const double snap_m = kVertexSnap * length_m(e);
+    if (along_m < -snap_m || along_m > length_m(e) + snap_m) return;  // the line, not the edge
+    best = Hit{e, t, along_m};
+  }, [&](double t_leave) { return best.t <= t_leave; });  // later cells only hold later crossings
+  return best;
+}
+
+void PolygonOutline::place(const Hit& hit, Vec2* proxy, ProxyContact* contact, int* feature) const noexcept {
+  const double snap_m = kVertexSnap * length_m(hit.edge);
+  if (hit.along_m <= snap_m) {
+    *proxy = vertex(hit.edge);
+    *contact = ProxyContact::vertex;
+    *feature = hit.edge;
+  } else if (hit.along_m >= length_m(hit.edge) - snap_m) {
+    *proxy = vertex(next(hit.edge));
+    *contact = ProxyContact::vertex;
+    *feature = next(hit.edge);
+  } else {
+    *proxy = vertex(hit.edge) + tangent(hit.edge) * hit.along_m;
+    *contact = ProxyContact::edge;
+    *feature = hit.edge;
+  }
+}
+
+void PolygonOutline::step_proxy(const Vec2& x_m, const FrictionCoefficients& friction,
+                                PlanarProxyState& state) const noexcept {
+  if (!all_finite(x_m) || vertices_.empty()) return;
+  if (!state.started) {
+    state = PlanarProxyState{};
+    state.proxy_m = x_m;
+    state.started = true;
+    return;
+  }
+  Vec2 proxy = state.proxy_m;
+  ProxyContact contact = state.contact;
+  int feature = state.feature;
+  bool sliding = state.sliding;
+  int straight_moves = 0;
+  // Straight toward x from where the proxy is; true when it got there.
+  const auto move_toward_x = [&](int skip_a, int skip_b) {
+    ++straight_moves;
+    const Hit hit = first_entry(proxy, x_m, skip_a, skip_b);
+    sliding = false;
+    if (hit.edge < 0) {
+      proxy = x_m;
+      contact = ProxyContact::none;
+      feature = -1;
+      return true;
+    }
+    place(hit, &proxy, &contact, &feature);
+    return false;
+  };
+  int from_vertex = -1;  // the vertex a slide along the current edge started from
+  for (int step = 0; step < kMaxStepsPerTick && straight_moves < kMaxStraightMovesPerTick; ++step) {
+    if (contact == ProxyContact::none) {
+      if (move_toward_x(-1, -1)) break;
+      from_vertex = -1;
+      continue;
+    }
+    if (contact == ProxyContact::edge) {
+      const int e = feature;
+      const double side_x = side(e, x_m);
+      if (side_x > 0.0) {  // x is on the free side: leave the edge
+        if (move_toward_x(e, e)) break;
+        from_vertex = -1;
+        continue;
+      }
+      // Slide toward the foot of the perpendicular from x, held back by friction.
+      const double depth_m = -side_x;
+      const double at_m = along(e, proxy);
+      const double foot_m = along(e, x_m);
+      double to_m = foot_m;
+      bool stuck = false;
+      if (friction.any()) {
+        const double gap_m = foot_m - at_m;
+        const double mu = sliding ? friction.dynamic_mu : friction.static_mu;
+        if (std::fabs(gap_m) <= mu * depth_m) {
+          stuck = true;
+          sliding = false;
+          to_m = at_m;
+        } else {
+          sliding = true;
+          to_m = foot_m - std::copysign(friction.dynamic_mu * depth_m, gap_m);
+        }
+      }
+      const double snap_m = kVertexSnap * length_m(e);
+      int reached = -1;
+      if (to_m <= snap_m) reached = e;
+      if (to_m >= length_m(e) - snap_m) reached = next(e);
+      if (reached < 0) {
+        if (!stuck) proxy = vertex(e) + tangent(e) * to_m;
+        break;
+      }
+      proxy = vertex(reached);
+      contact = ProxyContact::vertex;
+      feature = reached;
+      if (stuck || reached == from_vertex) break;  // no further this tick
+      continue;
+    }
+    // On a vertex: leave toward x, slide onto an edge, or hold.
+    const int v = feature;
+    const int in = previous(v);
+    const int out = v;
+    const double side_in = side(in, x_m);
+    const double side_out = side(out, x_m);
+    const bool x_free_here = wide(v) ? (side_in > 0.0 || side_out > 0.0) : (side_in >= 0.0 && side_out >= 0.0);
+    if (x_free_here) {
+      if (move_toward_x(in, out)) break;
+      from_vertex = -1;
+      continue;
+    }
+    const Vec2 d = x_m - proxy;
+    const double gain_out = side_out <= 0.0 ? dot(d, tangent(out)) : 0.0;
+    const double gain_in = side_in <= 0.0 ? -dot(d, tangent(in)) : 0.0;
+    if (gain_out > kVertexSnap * length_m(out) && gain_out >= gain_in) {
+      contact = ProxyContact::edge;
+      feature = out;
+    } else if (gain_in > kVertexSnap * length_m(in)) {
+      contact = ProxyContact::edge;
+      feature = in;
+    } else {
+      break;  // held in the corner
+    }
+    from_vertex = v;
+  }
+  // Stopped by the cap just after choosing an edge at a vertex: the proxy is still on
+  // the vertex, and rests there (so a later move away skips both of its edges).
+  if (contact == ProxyContact::edge) {
+    const double at_m = along(feature, proxy);
+    const double snap_m = kVertexSnap * length_m(feature);
+    if (at_m <= snap_m || at_m >= length_m(feature) - snap_m) {
+      feature = at_m <= snap_m ? feature : next(feature);
+      proxy = vertex(feature);
+      contact = ProxyContact::vertex;
+    }
+  }
+  state.proxy_m = proxy;
+  state.contact = contact;
+  state.feature = feature;
+  state.sliding = sliding;
+}
+
+bool PolygonOutline::in_solid(const Vec2& x_m) const noexcept {
+  bool inside = false;
+  const int n = edge_count();
+  for (int i = 0; i < n; ++i) {
+    const Vec2& a = vertex(i);
+    const Vec2& b = vertex(next(i));
+    if ((a[1] > x_m[1]) != (b[1] > x_m[1])) {
+      const double crossing_x = a[0] + (x_m[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+      if (x_m[0] < crossing_x) inside = !inside;
+    }
+  }
+  return inside == solid_inside_;
+}
+
+Vec2 PolygonOutline::nearest_point(const Vec2& x_m) const noexcept {
+  Vec2 best = x_m;
+  double best_m2 = INFINITY;
+  const int n = edge_count();
+  for (int i = 0; i < n; ++i) {
+    const double at_m = std::clamp(along(i, x_m), 0.0, length_m(i));
+    const Vec2 point = at_m <= 0.0 ? vertex(i) : at_m >= length_m(i) ? vertex(next(i)) : vertex(i) + tangent(i) * at_m;
+    const Vec2 gap = point - x_m;
+    const double distance_m2 = dot(gap, gap);
+    if (distance_m2 < best_m2) {
+      best_m2 = distance_m2;
+      best = point;
+    }
+  }
+  return best;
+}
+
+Vec2 PolygonOutline::open_loop_proxy(const Vec2& x_m) const noexcept {
+  return in_solid(x_m) ? nearest_point(x_m) : x_m;
+}
+
+}  // namespace hapscene
