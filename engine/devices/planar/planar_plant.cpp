@@ -88,6 +88,28 @@ void check_parameters(const PlanarPlantParameters& p) {
 
 double sign_of(double v) noexcept { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
 
+// Where, as a fraction of a step, a joint passed `level`: the root of the cubic Hermite
+// interpolant through its angles and rates at both ends (the sign changes over [0, 1]), by
+// bisection. Locates an end stop's edge to the integrator's order rather than to the step.
+double crossing_fraction(double q0, double v0_dt, double q1, double v1_dt, double level) noexcept {
+  const auto at = [&](double s) noexcept {
+    const double s2 = s * s, s3 = s2 * s;
+    return (2 * s3 - 3 * s2 + 1) * q0 + (s3 - 2 * s2 + s) * v0_dt + (-2 * s3 + 3 * s2) * q1 + (s3 - s2) * v1_dt - level;
+  };
+  double low = 0.0, high = 1.0;
+  const bool rising = at(0.0) < 0.0;
+  for (int i = 0; i < 50; ++i) {
+    const double mid = 0.5 * (low + high);
+    if ((at(mid) < 0.0) == rising) low = mid;
+    else high = mid;
+  }
+  return high;
+}
+
+// A joint this close to an end stop's edge at a step's start has just been placed there by
+// a located crossing: not a crossing again.
+constexpr double kOnEdge_rad = 1e-10;
+
 }  // namespace
 
 // ---- The mass model ----
@@ -350,7 +372,7 @@ bool PlanarPlant::integrate(double t_s, double h_s, const Friction& friction) no
 // joint stops (or starts) there, and the rest of the substep follows from that state.
 void PlanarPlant::substep(double h_s) noexcept {
   hand_force_N_ = hand_.force_N(t_s_, pose_.handle_m, handle_velocity_m_per_s());
-  constexpr int kPasses = 6;
+  constexpr int kPasses = 8;
   double done_s = 0.0;
   double breakaway[2]{};
   for (int pass = 0; pass < kPasses && done_s < h_s; ++pass) {
@@ -380,7 +402,7 @@ void PlanarPlant::substep(double h_s) noexcept {
     // The earliest event within the substep, as a fraction of it.
     double first = 1.0;
     int which = -1;
-    bool reversal = false;
+    enum class Event { reversal, break_away, stop_edge } event = Event::reversal;
     for (int i = 0; i < 2; ++i) {
       const double dir = friction.direction[i];
       if (dir == 0.0 || q_dot_rad_per_s_[i] * dir >= 0.0) continue;
@@ -388,7 +410,22 @@ void PlanarPlant::substep(double h_s) noexcept {
       if (fraction < first) {
         first = fraction;
         which = i;
-        reversal = true;
+        event = Event::reversal;
+      }
+    }
+    // A joint passing an end stop's edge: the stop's force has a kink there (and a jump
+    // where its damping engages), which costs an integrator its order unless the step ends on it.
+    for (int i = 0; i < 2; ++i) {
+      for (const double edge : {parameters_.stop_min_rad[i], parameters_.stop_max_rad[i]}) {
+        const double before = q0[i] - edge, after = q_rad_[i] - edge;
+        if (!std::isfinite(edge) || !(std::abs(before) > kOnEdge_rad) || before * after >= 0.0) continue;
+        const double fraction =
+            crossing_fraction(q0[i], v0[i] * tau_s, q_rad_[i], q_dot_rad_per_s_[i] * tau_s, edge);
+        if (fraction < first) {
+          first = fraction;
+          which = i;
+          event = Event::stop_edge;
+        }
       }
     }
     Vec2 hold_end{};
@@ -403,7 +440,7 @@ void PlanarPlant::substep(double h_s) noexcept {
         if (fraction < first) {
           first = fraction;
           which = i;
-          reversal = false;
+          event = Event::break_away;
         }
       }
     }
@@ -421,8 +458,8 @@ void PlanarPlant::substep(double h_s) noexcept {
       pose_ = solve_linkage(parameters_.linkage, q_rad_);
       break;
     }
-    if (reversal) q_dot_rad_per_s_[which] = 0.0;
-    else breakaway[which] = sign_of(hold_end[which]);
+    if (event == Event::reversal) q_dot_rad_per_s_[which] = 0.0;
+    else if (event == Event::break_away) breakaway[which] = sign_of(hold_end[which]);
     done_s += first * tau_s;
   }
   // Compensated sum of the clock (as in the 1-D plant).
