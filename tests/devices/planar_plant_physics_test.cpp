@@ -63,7 +63,7 @@ TEST_CASE("planar plant: without friction, motor or hand the kinetic energy stay
   const EnergyRun r = run_energy(p, moving_from(Vec2{}, Vec2{{3.0, -7.0}}));
   MESSAGE("serial 2R free spin: kinetic energy ", r.initial_J, " J, worst relative drift ", r.worst_relative_drift);
   CHECK(r.stop_contacts == 0);
-  CHECK(r.worst_relative_drift < 1e-6);
+  CHECK(r.worst_relative_drift < 1e-9);
 }
 
 TEST_CASE("planar plant: without friction, motor or hand the energy stays constant for 10 s (five-bar, elastic stops)") {
@@ -74,8 +74,8 @@ TEST_CASE("planar plant: without friction, motor or hand the energy stays consta
   MESSAGE("five-bar with elastic stops: energy ", r.initial_J, " J, worst relative drift ", r.worst_relative_drift,
           ", kinetic between contacts ", r.worst_free_relative, ", ticks in contact ", r.stop_contacts);
   CHECK(r.stop_contacts > 100);
-  CHECK(r.worst_relative_drift < 1e-3);
-  CHECK(r.worst_free_relative < 1e-3);
+  CHECK(r.worst_relative_drift < 5e-4);
+  CHECK(r.worst_free_relative < 5e-4);
 }
 
 TEST_CASE("planar plant: the serial arm's energy between elastic stop contacts stays constant too") {
@@ -84,8 +84,8 @@ TEST_CASE("planar plant: the serial arm's energy between elastic stop contacts s
   MESSAGE("serial 2R with elastic stops: worst relative drift ", r.worst_relative_drift, ", kinetic between contacts ",
           r.worst_free_relative, ", ticks in contact ", r.stop_contacts);
   CHECK(r.stop_contacts > 100);
-  CHECK(r.worst_relative_drift < 1e-3);
-  CHECK(r.worst_free_relative < 1e-3);
+  CHECK(r.worst_relative_drift < 5e-4);
+  CHECK(r.worst_free_relative < 5e-4);
 }
 
 TEST_CASE("planar plant: viscous friction makes the energy decay") {

@@ -26,9 +26,11 @@
 //   would change sign within a substep stops at the crossing, located linearly, as the
 //   1-D plant does); end stops: stiff springs with damping beyond each joint's range that
 //   only push; motor torque limits clamp each motor's command.
-// - Integration: classical RK4 (default, 2 substeps per 1 kHz tick: `bench --accuracy`'s
-//   planar rows give the error) or semi-implicit Euler, with the friction directions and
-//   the stuck joints fixed over a substep.
+// - Integration: classical RK4 (default: 4 substeps per 1 kHz tick, which keeps the stiff
+//   end stops' energy to 1e-4; engine/bench/planar_accuracy.hpp measures the error) or
+//   semi-implicit Euler, with the friction directions and the stuck joints fixed over a
+//   substep, and each substep split where a joint passes an end stop's edge (located on
+//   the cubic through the step's ends), where the stop force has a kink.
 // - Sensor: per motor, the motor angle in counts (angle per count, zero angle), nearest
 //   count plus optional seeded noise, optionally wrapping every period (an MR sensor) or a
 //   32-bit counter (an encoder).
@@ -95,7 +97,7 @@ struct PlanarSimulationConfig {
   PlanarHandConfig hand;  // none by default
   std::uint64_t noise_seed{1};
   PlanarIntegrator integrator{PlanarIntegrator::rk4};
-  int substeps_per_tick{2};
+  int substeps_per_tick{4};
 };
 
 // The equations of motion at one state: M(q) q_ddot + bias = generalized forces.
