@@ -233,3 +233,43 @@ TEST_CASE("planar plant: the hand's mass adds to the handle while it grips") {
     }
   }
 }
+
+TEST_CASE("planar hand: the path's corners are reported, and the plant's steps end on them") {
+  PlanarHandConfig c;
+  c.motion = PlanarHandMotion::line;
+  c.line_from_m = Vec2{{0.0, 0.1}};
+  c.line_to_m = Vec2{{0.03, 0.14}};  // 50 mm
+  c.line_back_and_forth = true;
+  c.speed_m_per_s = 0.1;
+  const PlanarHand line(c, Vec2{{0.0, 0.09}});  // lead-in 10 mm: corner at 0.1 s
+  CHECK(line.next_break_s(0.0) == doctest::Approx(0.1));
+  CHECK(line.next_break_s(0.1) == doctest::Approx(0.6));
+  CHECK(line.next_break_s(0.7) == doctest::Approx(1.1));
+  CHECK(line.next_break_s(1.2) == doctest::Approx(1.6));
+
+  // A circle entered from its centre: the reference velocity turns 90 degrees at 0.15 s,
+  // between two ticks' substeps only by rounding. With the step ending there, RK4 keeps its
+  // fourth order (without it, one stage sees the wrong side and the error is first order).
+  const PlanarPlantExample example = example_haply2diy_v3_plant();
+  const Vec2 home = home_of(example);
+  const auto run = [&](int substeps) {
+    PlanarPlantParameters p = example.parameters;
+    p.coulomb_N_m = Vec2{};
+    PlanarSimulationConfig config;
+    config.start_q_rad = example.home_q_rad;
+    config.substeps_per_tick = substeps;
+    config.hand.motion = PlanarHandMotion::circle;
+    config.hand.stiffness_N_per_m = 500.0;
+    config.hand.damping_N_s_per_m = 5.0;
+    config.hand.circle_center_m = home;
+    config.hand.circle_radius_m = 0.015;
+    config.hand.speed_m_per_s = 0.1;
+    PlanarPlant plant(p, config);
+    for (int k = 0; k < 500; ++k) plant.advance(kTick_s);
+    return plant.handle_m();
+  };
+  const Vec2 fine = run(64);
+  const double error_1 = norm(run(1) - fine), error_2 = norm(run(2) - fine);
+  CHECK(error_1 < 1e-8);
+  CHECK(error_1 > 8.0 * error_2);
+}

@@ -227,4 +227,52 @@ Vec2 PlanarHand::force_N(double t_s, const Vec2& p_m, const Vec2& v_m_per_s) con
          config_.damping_N_s_per_m * (reference_velocity_m_per_s(t_s) - v_m_per_s);
 }
 
+// Corners of the polyline as distances along the walk: the lead-in's points once, then the
+// loop's points, unfolded (forward, then backward) period after period when it goes back
+// and forth.
+double PlanarHand::next_polyline_corner_s(double t_s) const noexcept {
+  // A corner within a picometre of s (rounding) is the one just passed.
+  const double speed = config_.speed_m_per_s;
+  const double s = std::max(0.0, speed * t_s) + 1e-12;
+  const double loop_start = distance_m_[loop_begin_];
+  const double loop_length = distance_m_.back() - loop_start;
+  if (s < loop_start || !back_and_forth_ || !(loop_length > 0.0)) {
+    for (std::size_t i = 1; i < distance_m_.size(); ++i) {
+      if (distance_m_[i] > s) return distance_m_[i] / speed;
+    }
+    return INFINITY;
+  }
+  const double cycle = 2.0 * loop_length;
+  const double cycle_start = loop_start + std::floor((s - loop_start) / cycle) * cycle;
+  const double phase = s - cycle_start;
+  double best = INFINITY;
+  for (std::size_t i = loop_begin_; i < distance_m_.size(); ++i) {
+    const double forward = distance_m_[i] - loop_start;
+    for (const double corner : {forward, cycle - forward, cycle + forward}) {
+      if (corner > phase && corner < best) best = corner;
+    }
+  }
+  return (cycle_start + best) / speed;
+}
+
+double PlanarHand::next_break_s(double t_s) const noexcept {
+  t_s += 1e-12;  // a break within a picosecond of t (rounding) is the one just passed
+  switch (config_.motion) {
+    case PlanarHandMotion::line:
+    case PlanarHandMotion::sweep: return next_polyline_corner_s(t_s);
+    case PlanarHandMotion::circle: {
+      const double corner_s = lead_in_m_ / config_.speed_m_per_s;
+      return corner_s > t_s ? corner_s : INFINITY;
+    }
+    case PlanarHandMotion::release: return config_.release_s > t_s ? config_.release_s : INFINITY;
+    case PlanarHandMotion::path: {
+      for (const PlanarHandWaypoint& w : config_.path) {
+        if (w.t_s > t_s) return w.t_s;
+      }
+      return INFINITY;
+    }
+    default: return INFINITY;
+  }
+}
+
 }  // namespace hapscene

@@ -77,6 +77,10 @@ class PlanarHand {
   double added_mass_kg(double t_s) const noexcept { return gripping(t_s) ? config_.mass_kg : 0.0; }
   // The hand's force on the handle at time t for handle position p and velocity v.
   Vec2 force_N(double t_s, const Vec2& p_m, const Vec2& v_m_per_s) const noexcept;
+  // The first time after t where the force jumps (a corner of the path, where the
+  // reference velocity changes at once; a waypoint; a release), or infinity. The plant ends
+  // its integration steps there so that no step straddles a jump.
+  double next_break_s(double t_s) const noexcept;
 
   const PlanarHandConfig& config() const noexcept { return config_; }
 
@@ -87,6 +91,7 @@ class PlanarHand {
   void polyline_at(double t_s, Vec2* p_m, Vec2* v_m_per_s) const noexcept;
   void circle_at(double t_s, Vec2* p_m, Vec2* v_m_per_s) const noexcept;
   std::size_t path_segment(double t_s) const noexcept;
+  double next_polyline_corner_s(double t_s) const noexcept;
 
   PlanarHandConfig config_;
   Vec2 start_m_;

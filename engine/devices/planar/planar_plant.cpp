@@ -339,10 +339,14 @@ void PlanarPlant::settle_stuck_joints(double t_s, Friction* friction) const noex
   }
 }
 
+// The first and last stages look at the hand a hair inside the step (a millionth of it), so
+// a jump of the hand's force on the step's boundary (where substep() puts every jump) is
+// seen from the step's own side, not the neighbour's.
 bool PlanarPlant::integrate(double t_s, double h_s, const Friction& friction) noexcept {
   const Vec2 q0 = q_rad_, v0 = q_dot_rad_per_s_;
+  const double inside_s = 1e-6 * h_s;
   Vec2 a1{}, hold{};
-  if (!acceleration(t_s, q0, v0, friction, &a1, &hold)) return false;
+  if (!acceleration(t_s + inside_s, q0, v0, friction, &a1, &hold)) return false;
   if (config_.integrator == PlanarIntegrator::semi_implicit_euler) {
     q_dot_rad_per_s_ = v0 + h_s * a1;
     q_rad_ = q0 + h_s * q_dot_rad_per_s_;
@@ -354,7 +358,7 @@ bool PlanarPlant::integrate(double t_s, double h_s, const Friction& friction) no
     const Vec2 v3 = v0 + half * a2;
     if (!acceleration(t_s + half, q0 + half * v2, v3, friction, &a3, &hold)) return false;
     const Vec2 v4 = v0 + h_s * a3;
-    if (!acceleration(t_s + h_s, q0 + h_s * v3, v4, friction, &a4, &hold)) return false;
+    if (!acceleration(t_s + h_s - inside_s, q0 + h_s * v3, v4, friction, &a4, &hold)) return false;
     q_rad_ = q0 + (h_s / 6.0) * (v0 + 2.0 * v2 + 2.0 * v3 + v4);
     q_dot_rad_per_s_ = v0 + (h_s / 6.0) * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
   }
@@ -372,12 +376,16 @@ bool PlanarPlant::integrate(double t_s, double h_s, const Friction& friction) no
 // joint stops (or starts) there, and the rest of the substep follows from that state.
 void PlanarPlant::substep(double h_s) noexcept {
   hand_force_N_ = hand_.force_N(t_s_, pose_.handle_m, handle_velocity_m_per_s());
-  constexpr int kPasses = 8;
+  constexpr int kPasses = 10;
   double done_s = 0.0;
   double breakaway[2]{};
   for (int pass = 0; pass < kPasses && done_s < h_s; ++pass) {
     const double t_s = t_s_ + done_s;
-    const double tau_s = h_s - done_s;
+    // A jump of the hand's force within the rest of the substep ends this pass there.
+    const double rest_s = h_s - done_s;
+    const double break_s = hand_.next_break_s(t_s + 1e-6 * rest_s) - t_s;
+    const bool to_break = break_s < rest_s * (1.0 - 1e-6);
+    const double tau_s = to_break ? break_s : rest_s;
     Friction friction;
     for (int i = 0; i < 2; ++i) {
       if (!(parameters_.coulomb_N_m[i] > 0.0)) continue;
@@ -386,10 +394,10 @@ void PlanarPlant::substep(double h_s) noexcept {
       else friction.stuck[i] = true;
     }
     breakaway[0] = breakaway[1] = 0.0;
-    settle_stuck_joints(t_s, &friction);
+    settle_stuck_joints(t_s + 1e-6 * tau_s, &friction);
     Vec2 q_ddot{}, hold_start{};
     const Vec2 q0 = q_rad_, v0 = q_dot_rad_per_s_;
-    if (!acceleration(t_s, q0, v0, friction, &q_ddot, &hold_start) || !integrate(t_s, tau_s, friction)) {
+    if (!acceleration(t_s + 1e-6 * tau_s, q0, v0, friction, &q_ddot, &hold_start) || !integrate(t_s, tau_s, friction)) {
       // Out of the linkage's range (or blown up): the joints stop where they were.
       ++linkage_faults_;
       q_rad_ = q0;
@@ -397,7 +405,11 @@ void PlanarPlant::substep(double h_s) noexcept {
       pose_ = solve_linkage(parameters_.linkage, q_rad_);
       break;
     }
-    if (pass + 1 == kPasses) break;
+    if (pass + 1 == kPasses) {
+      // Out of passes (many events in one substep): the rest is integrated without events.
+      if (to_break && integrate(t_s + tau_s, rest_s - tau_s, friction)) done_s = h_s;
+      break;
+    }
 
     // The earliest event within the substep, as a fraction of it.
     double first = 1.0;
@@ -430,7 +442,9 @@ void PlanarPlant::substep(double h_s) noexcept {
     }
     Vec2 hold_end{};
     if (friction.stuck[0] || friction.stuck[1]) {
-      if (!acceleration(t_s + tau_s, q_rad_, q_dot_rad_per_s_, friction, &q_ddot, &hold_end)) hold_end = Vec2{};
+      if (!acceleration(t_s + tau_s * (1.0 - 1e-6), q_rad_, q_dot_rad_per_s_, friction, &q_ddot, &hold_end)) {
+        hold_end = Vec2{};
+      }
       for (int i = 0; i < 2; ++i) {
         const double c = parameters_.coulomb_N_m[i];
         if (!friction.stuck[i] || !(std::abs(hold_end[i]) > c)) continue;
@@ -445,8 +459,8 @@ void PlanarPlant::substep(double h_s) noexcept {
       }
     }
     if (which < 0) {
-      done_s = h_s;
-      break;
+      done_s = to_break ? done_s + tau_s : h_s;
+      continue;
     }
     q_rad_ = q0;
     q_dot_rad_per_s_ = v0;
