@@ -369,11 +369,16 @@ bool PlanarPlant::integrate(double t_s, double h_s, const Friction& friction) no
   return pose_.valid && all_finite(q_dot_rad_per_s_);
 }
 
-// One substep with Coulomb friction per joint, as the 1-D plant does on its one axis: the
-// friction directions and the stuck joints are fixed while integrating; when a moving
-// joint's velocity changes sign, or a stuck joint's holding torque passes its Coulomb level,
-// within the substep, it is redone up to the earliest such moment (located linearly), the
-// joint stops (or starts) there, and the rest of the substep follows from that state.
+// One substep, in passes that each end on the next discontinuity of the forces:
+// - the hand's force jumps (a corner of its path, a waypoint, a release): known in advance,
+//   the pass ends there;
+// - Coulomb friction per joint, as the 1-D plant does on its one axis: the friction
+//   directions and the stuck joints are fixed while integrating; when a moving joint's
+//   velocity changes sign, or a stuck joint's holding torque passes its Coulomb level, the
+//   pass is redone up to that moment (located linearly) and the joint stops (or starts);
+// - a joint passing an end stop's edge: redone up to the crossing (located on the cubic
+//   through the pass's ends).
+// The rest of the substep follows from that state.
 void PlanarPlant::substep(double h_s) noexcept {
   hand_force_N_ = hand_.force_N(t_s_, pose_.handle_m, handle_velocity_m_per_s());
   constexpr int kPasses = 10;
