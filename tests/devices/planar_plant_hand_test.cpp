@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "engine/base/errors.hpp"
@@ -79,10 +80,10 @@ TEST_CASE("planar hand: a circle runs at its speed and radius, in its direction"
     CHECK(norm(hand.reference_velocity_m_per_s(t)) == doctest::Approx(0.04));
   }
   // A quarter turn (31.4 mm) counter-clockwise: the top.
-  CHECK(near(hand.reference_m(0.25 * 2 * M_PI * 0.02 / 0.04), Vec2{{0.0, 0.12}}, 1e-12));
+  CHECK(near(hand.reference_m(0.25 * 2 * std::numbers::pi * 0.02 / 0.04), Vec2{{0.0, 0.12}}, 1e-12));
   c.circle_clockwise = true;
   const PlanarHand clockwise(c, Vec2{{0.02, 0.1}});
-  CHECK(near(clockwise.reference_m(0.25 * 2 * M_PI * 0.02 / 0.04), Vec2{{0.0, 0.08}}, 1e-12));
+  CHECK(near(clockwise.reference_m(0.25 * 2 * std::numbers::pi * 0.02 / 0.04), Vec2{{0.0, 0.08}}, 1e-12));
 }
 
 TEST_CASE("planar hand: a sweep's raster covers its box") {
