@@ -191,3 +191,55 @@ TEST_CASE("planar plant: parameters that cannot be simulated are refused with a 
     CHECK_THROWS_WITH_AS(PlanarPlant(example.parameters, zero), doctest::Contains("substeps"), InputError);
   }
 }
+
+TEST_CASE("planar plant: a coupled transmission reflects the rotors and reads the sensors through T^T") {
+  // The Haplink with its second joint coupled to the first (REFERENCE-2D: a profile
+  // parameter): joint torques = T motor torques, motor angles = T^T q.
+  PlanarPlantExample example = example_haplink_plant();
+  PlanarPlantParameters& p = example.parameters;
+  p.motor_to_joint = Matrix2{{{-13.0, 0.0}, {2.0, -13.0}}};
+  p.rotor_inertia_kg_m2 = Vec2{{2e-6, 3e-6}};  // large enough to matter
+  const PlanarMassModel model(p, example.home_q_rad);
+  const Matrix2 m = mass_at(model, example.home_q_rad);
+  for (const Vec2 qd : {Vec2{{1.0, 0.0}}, Vec2{{0.0, 1.0}}, Vec2{{2.0, -3.0}}}) {
+    const double from_model = 0.5 * (m.m[0][0] * qd[0] * qd[0] + 2 * m.m[0][1] * qd[0] * qd[1] + m.m[1][1] * qd[1] * qd[1]);
+    CHECK(from_model == doctest::Approx(kinetic_energy_by_differences(p, example.home_q_rad, qd)).epsilon(1e-6));
+  }
+  PlanarSimulationConfig config;
+  config.start_q_rad = Vec2{{0.1, -0.2}};
+  PlanarPlant plant(p, config);
+  const auto counts = plant.sensor_counts();
+  const double step = p.sensor_step_rad[0];
+  CHECK(counts[0] == static_cast<int>(std::nearbyint((-13.0 * 0.1 + 2.0 * -0.2) / step)));
+  CHECK(counts[1] == static_cast<int>(std::nearbyint((-13.0 * -0.2) / step)));
+  plant.hold_motor_torques(Vec2{{0.01, 0.005}});
+  CHECK(plant.joint_torque_N_m()[0] == doctest::Approx(-0.13));
+  CHECK(plant.joint_torque_N_m()[1] == doctest::Approx(0.02 - 0.065));
+  const Vec2 back = motor_torques_for_joint_torques(p, plant.joint_torque_N_m());
+  CHECK(back[0] == doctest::Approx(0.01));
+  CHECK(back[1] == doctest::Approx(0.005));
+}
+
+TEST_CASE("planar plant: driven toward where a five-bar cannot close, it stays finite and closed") {
+  // Short distal links (the elbows can pull apart further than they reach) and no stops:
+  // the plant either slows to the edge (its inertia grows without bound there) or, when a
+  // step would leave the closable range, stops the joints and counts a fault.
+  PlanarPlantExample example = example_haply2diy_v3_plant();
+  PlanarPlantParameters& p = example.parameters;
+  p.linkage.five_bar.distal_1_m = p.linkage.five_bar.distal_2_m = 0.06;
+  p.stop_min_rad = Vec2{{-kNoLimit, -kNoLimit}};
+  p.stop_max_rad = Vec2{{kNoLimit, kNoLimit}};
+  PlanarSimulationConfig config;
+  config.start_q_rad = example.home_q_rad;
+  PlanarPlant plant(p, config);
+  plant.hold_motor_torques(Vec2{{0.1, -0.1}});  // spread the elbows apart
+  for (int k = 0; k < 2000; ++k) {
+    plant.advance(1e-3);
+    REQUIRE(all_finite(plant.q_rad()));
+    REQUIRE(all_finite(plant.q_dot_rad_per_s()));
+    REQUIRE(plant.pose().valid);
+  }
+  MESSAGE("five-bar pushed to its edge: ", plant.linkage_faults(), " substeps refused");
+  const Vec2 gap = plant.pose().elbow_2_m - plant.pose().elbow_1_m;
+  CHECK(norm(gap) > 0.115);  // it did get to the edge (0.12 m)
+}
