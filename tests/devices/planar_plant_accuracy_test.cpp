@@ -34,3 +34,15 @@ TEST_CASE("planar plant accuracy: RK4 at 4 substeps per 1 kHz tick stays within 
     }
   }
 }
+
+TEST_CASE("planar plant accuracy: semi-implicit Euler runs too, and is the less accurate choice") {
+  const std::vector<PlanarAccuracyCase> cases{{PlanarAccuracyScenario::circle, 1000.0, PlanarIntegrator::semi_implicit_euler, 4},
+                                              {PlanarAccuracyScenario::circle, 1000.0, PlanarIntegrator::rk4, 4}};
+  PlanarAccuracyOptions options;
+  options.fine_step_s = 2e-5;
+  options.timed = false;
+  const std::vector<PlanarAccuracyResult> results = run_planar_accuracy(example_haply2diy_v3_plant(), cases, options);
+  CHECK(results[0].finite);
+  CHECK(results[0].integration_max_m < 1e-4);  // measured 19 um
+  CHECK(results[0].integration_rms_m > 100.0 * results[1].integration_rms_m);
+}
