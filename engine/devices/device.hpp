@@ -20,6 +20,11 @@ enum class PositionStatus : std::uint8_t {
   implausible,  // the latest measurement was rejected as impossible: no force
 };
 
+// Whether the device model's pose lets force be rendered (multi-joint linkages; a 1-DOF
+// device's pose is always trusted): near a singular pose force ramps out, at a pose the
+// linkage cannot take (or from a non-finite reading) it is cut.
+enum class PoseTrust : std::uint8_t { trusted, near_singular, invalid };
+
 // What a simulator knows and a real device cannot: the plant's true state, read by
 // observers (the harness recorder, `run --plot`, the soak) beside what the host measured.
 // Simulated devices implement it; for a real device Device::truth() is null.

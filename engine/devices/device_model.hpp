@@ -12,6 +12,7 @@
 // docs/n-axis.md says how models for other devices and more axes plug in here.
 #include <cstdint>
 
+#include "engine/devices/device.hpp"
 #include "engine/devices/kinematics.hpp"
 #include "engine/devices/profile.hpp"
 #include "protocol/flip_counter.hpp"
@@ -55,5 +56,10 @@ inline MotorCommand motor_command(const DeviceModel& model, const SensorState& s
   (void)sensor;
   return force_to_motor(model.kinematics, force_N);
 }
+
+// A 1-DOF capstan has no singular pose, and its one motor clamps its duty (what the
+// safety stage's force limit already bounds): the tick's checks compile to nothing.
+constexpr PoseTrust pose_trust(const DeviceModel&, const SensorState&) noexcept { return PoseTrust::trusted; }
+constexpr bool command_saturated(const MotorCommand&) noexcept { return false; }
 
 }  // namespace hapscene

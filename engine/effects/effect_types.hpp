@@ -5,6 +5,7 @@
 // variant, the scene's EffectBank, add_effect and the loader's table of "type" names
 // all follow from that entry.
 #include <tuple>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -39,9 +40,20 @@ struct EffectTypeList {
     template <typename T>
     const std::vector<T>& group() const noexcept { return std::get<std::vector<T>>(groups); }
 
+    // What a run keeps of these effects: nothing (the 1-D lab effects are fields). A list
+    // of shapes keeps their proxies here (engine/effects/planar/planar_effect_types.hpp).
+    struct RunState {};
+    RunState make_run_state() const { return {}; }
+
     // The sum of every built-in effect's force for one input, group by group in the
     // order of the list. Inlined into the tick, loops and all (as a call it cost the
     // spring scene about 12 instructions a tick).
+    [[gnu::always_inline]] Axes<N> force_N(const Input& input, RunState&) const noexcept {
+      return force_N(input);
+    }
+    // Open loop (no history): the same, as the effects keep no state.
+    Axes<N> open_loop_force_N(const Input& input) const noexcept { return force_N(input); }
+
     [[gnu::always_inline]] Axes<N> force_N(const Input& input) const noexcept {
       Axes<N> force_N{};
       (add_group_N<Types>(input, &force_N), ...);
@@ -55,6 +67,12 @@ struct EffectTypeList {
     }
   };
 };
+
+// Whether an effect variant can hold script effects (the 1-DOF list's does).
+template <typename Variant>
+inline constexpr bool kHoldsScripts = false;
+template <typename... Types>
+inline constexpr bool kHoldsScripts<std::variant<Types...>> = (std::is_same_v<Types, ScriptEffect> || ...);
 
 // The built-in effects of 1-DOF scenes, in the order the tick adds them up.
 using BuiltInEffects = EffectTypeList<1, Spring, Wall, Damper, Texture>;

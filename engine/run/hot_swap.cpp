@@ -88,6 +88,9 @@ const CrossfadeOf<N>* HotSwapOf<N>::before_tick(TickStateOf<N>* state) noexcept 
     std::swap(state->scripts, next->scripts);
     std::swap(next->scripts, fading_from_->scripts);
     fade_.from_scripts = &fading_from_->scripts;
+    std::swap(state->effect_runs, next->runs);
+    std::swap(next->runs, fading_from_->runs);
+    fade_.from_runs = &fading_from_->runs;
     scene_ = &next->scene;
     current_ = next;
     fade_.weight_to = 0.0;
@@ -112,5 +115,7 @@ const CrossfadeOf<N>* HotSwapOf<N>::before_tick(TickStateOf<N>* state) noexcept 
 // The axis counts scenes are compiled for.
 template class SceneExchangeOf<1>;
 template class HotSwapOf<1>;
+template class SceneExchangeOf<2>;
+template class HotSwapOf<2>;
 
 }  // namespace hapscene

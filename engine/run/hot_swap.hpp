@@ -24,6 +24,7 @@ template <int N>
 struct LoadedSceneOf {
   SceneOf<N> scene;
   ScriptList scripts;
+  typename SceneParts<N>::Effects::Bank::RunState runs{};  // its built-in effects' run state
 };
 
 using LoadedScene = LoadedSceneOf<1>;

@@ -183,7 +183,9 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   summary.scene_name = hot_swap.scene().name;
   std::size_t script_index = 0;
   for (const auto& effect : hot_swap.scene().effects) {
-    if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
+    const ScriptEffect* script = nullptr;
+    if constexpr (kHoldsScripts<typename SceneParts<N>::Effects::Variant>) script = std::get_if<ScriptEffect>(&effect);
+    if (script != nullptr) {
       const ScriptInstance& instance = *state.scripts[script_index++];
       summary.scripts.push_back(ScriptReport{script->program->display_name, instance.disabled(),
                                              std::string(instance.fault_message()),
@@ -216,5 +218,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
 // The axis counts scenes are compiled for.
 template RunSummaryOf<1> run_scene<1>(const SceneOf<1>&, DeviceOf<1>&, const RunOptions&,
                                       TickObserverOf<1>*);
+template RunSummaryOf<2> run_scene<2>(const SceneOf<2>&, DeviceOf<2>&, const RunOptions&,
+                                      TickObserverOf<2>*);
 
 }  // namespace hapscene

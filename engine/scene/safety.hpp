@@ -52,6 +52,9 @@ struct SafetyCounters {
   std::uint64_t clamped_ticks{};
   std::uint64_t slew_limited_ticks{};
   std::uint64_t position_hold_ticks{};  // ticks with an untrusted position (force held)
+  // Linkages (more than one axis):
+  std::uint64_t pose_hold_ticks{};      // near a singular pose, or one the linkage cannot take
+  std::uint64_t motor_saturated_ticks{}; // a motor saturated: both commands scaled alike
 };
 
 // What the loop knows of this tick's position before step(): set from the device.

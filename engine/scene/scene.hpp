@@ -8,8 +8,11 @@
 
 #include "engine/devices/device.hpp"
 #include "engine/devices/device_model.hpp"
+#include "engine/devices/planar/planar_profile.hpp"
+#include "engine/devices/planar/planar_tick.hpp"
 #include "engine/devices/profile.hpp"
 #include "engine/effects/effect_types.hpp"
+#include "engine/effects/planar/planar_effect_types.hpp"
 #include "engine/scene/safety.hpp"
 #include "engine/scene/validate_thresholds.hpp"
 #include "engine/scene/velocity.hpp"
@@ -30,6 +33,17 @@ struct SceneParts<1> {
   using Reading = DeviceIo<1>::Reading;  // the sensor's raw count
   using Command = DeviceIo<1>::Command;  // the motor driver's duty and direction
   using Effects = BuiltInEffects;
+};
+
+// Two axes: a planar linkage (the Haplink, pantographs), the 2-D effects.
+template <>
+struct SceneParts<2> {
+  using Profile = PlanarProfile;
+  using DeviceModel = PlanarTickModel;
+  using SensorState = PlanarTickSensor;
+  using Reading = DeviceIo<2>::Reading;  // each joint's counts or angle
+  using Command = DeviceIo<2>::Command;  // each motor's command
+  using Effects = PlanarBuiltInEffects;
 };
 
 template <int N>
@@ -62,11 +76,13 @@ struct SceneOf {
   std::vector<std::string> load_warnings;
 };
 
-// A 1-DOF scene (the Hapkit's).
+// A 1-DOF scene (the Hapkit's), and a planar one.
 using Scene = SceneOf<1>;
+using PlanarScene = SceneOf<2>;
 
 // Appends `effect` to the scene's list and, when it can act inside the workspace (safety
 // must be set first), to its bank (or its script count) and needs.
 void add_effect(Scene* scene, Effect effect);
+void add_effect(PlanarScene* scene, PlanarEffect effect);
 
 }  // namespace hapscene

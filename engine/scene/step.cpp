@@ -29,15 +29,30 @@ void add_effect(Scene* scene, Effect effect) {
   scene->effects.push_back(std::move(effect));
 }
 
+void add_effect(PlanarScene* scene, PlanarEffect effect) {
+  const Vec2 min_m = scene->safety.workspace_min_m;
+  const Vec2 max_m = scene->safety.workspace_max_m;
+  std::visit(
+      [&](const auto& e) {
+        if (!e.can_act_within(min_m, max_m)) return;
+        scene->bank.template group<std::decay_t<decltype(e)>>().push_back(e);
+        scene->needs |= std::decay_t<decltype(e)>::kNeeds;
+      },
+      effect);
+  scene->effects.push_back(std::move(effect));
+}
+
 template <int N>
 ScriptList make_script_instances(const SceneOf<N>& scene) {
   // One sandboxed instance per script effect, in scene order (ScriptEffect::instance_index).
   ScriptList scripts;
   scripts.reserve(scene.script_count);
-  for (const auto& effect : scene.effects) {
-    if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
-      scripts.push_back(ScriptInstance::create(*script->program));
-      scripts.back()->reset();
+  if constexpr (kHoldsScripts<typename SceneParts<N>::Effects::Variant>) {
+    for (const auto& effect : scene.effects) {
+      if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
+        scripts.push_back(ScriptInstance::create(*script->program));
+        scripts.back()->reset();
+      }
     }
   }
   return scripts;
@@ -48,6 +63,7 @@ TickStateOf<N> make_tick_state(const SceneOf<N>& scene) {
   TickStateOf<N> state;
   state.sensor = make_sensor_state(scene.device_model);
   state.scripts = make_script_instances(scene);
+  state.effect_runs = scene.bank.make_run_state();
   return state;
 }
 
@@ -62,13 +78,28 @@ double add_scripts_N(double force_N, const EffectInputOf<1>& input, ScriptList& 
   return force_N;
 }
 
+// Planar scenes hold no script effects yet (their effect list has none), so a planar
+// scene's script list is always empty.
+Vec2 add_scripts_N(const Vec2& force_N, const EffectInputOf<2>&, ScriptList&, std::uint64_t*) noexcept {
+  return force_N;
+}
+
+// A pose the device model does not trust holds the force like an untrusted position
+// (PositionHold): near a singularity it ramps out, at an impossible pose it is cut.
+void hold_for_pose(PoseTrust trust, SafetyCounters* counters, PositionHold* hold) noexcept {
+  ++counters->pose_hold_ticks;
+  const PositionHold pose_hold = trust == PoseTrust::invalid ? PositionHold::cut : PositionHold::ramp_out;
+  if (pose_hold > *hold) *hold = pose_hold;
+}
+
 // The effects stage: the built-in bank, then the scripts (when kScripts).
 template <bool kScripts, int N>
 [[gnu::always_inline]] inline Axes<N> add_effects_N(const SceneOf<N>& scene,
                                                     const EffectInputOf<N>& input,
                                                     ScriptList& scripts,
+                                                    typename SceneParts<N>::Effects::Bank::RunState& runs,
                                                     std::uint64_t* script_calls) noexcept {
-  Axes<N> force_N = scene.bank.force_N(input);
+  Axes<N> force_N = scene.bank.force_N(input, runs);
   if constexpr (kScripts) force_N = add_scripts_N(force_N, input, scripts, script_calls);
   return force_N;
 }
@@ -86,6 +117,10 @@ template <int N, bool kFading, bool kScripts>
   // converts as signed: one instruction, and runs never reach 2^63 ticks.)
   state->t_s = static_cast<double>(static_cast<std::int64_t>(state->tick)) * scene.period_s;
   state->x_m = sense_position_m(scene.device_model, reading, &state->sensor);
+  const PoseTrust trust = pose_trust(scene.device_model, state->sensor);
+  if (trust != PoseTrust::trusted) [[unlikely]] {
+    hold_for_pose(trust, &state->safety.counters, &state->safety.position_hold);
+  }
 
   // Velocity: only when some effect reads it (of either scene during a cross-fade).
   Needs needs = scene.needs;
@@ -101,10 +136,11 @@ template <int N, bool kFading, bool kScripts>
   input.v_m_per_s = state->v_m_per_s;
   input.t_s = state->t_s;
   input.dt_s = scene.period_s;
-  Axes<N> effects_N = add_effects_N<kScripts>(scene, input, state->scripts, &state->script_calls);
+  Axes<N> effects_N =
+      add_effects_N<kScripts>(scene, input, state->scripts, state->effect_runs, &state->script_calls);
   if constexpr (kFading) {
-    const Axes<N> from_N =
-        add_effects_N<kScripts>(*fade->from, input, *fade->from_scripts, &state->script_calls);
+    const Axes<N> from_N = add_effects_N<kScripts>(*fade->from, input, *fade->from_scripts,
+                                                   *fade->from_runs, &state->script_calls);
     effects_N = (1.0 - fade->weight_to) * from_N + fade->weight_to * effects_N;
   }
   state->effects_force_N = effects_N;
@@ -112,6 +148,7 @@ template <int N, bool kFading, bool kScripts>
   // Safety, then the motor command the board needs.
   state->output_N = apply_safety(scene.safety, state->x_m, effects_N, &state->safety);
   state->command = motor_command(scene.device_model, state->sensor, state->output_N);
+  if (command_saturated(state->command)) ++state->safety.counters.motor_saturated_ticks;
   ++state->tick;
 }
 
@@ -120,7 +157,9 @@ template <int N, bool kFading, bool kScripts>
 template <int N>
 Axes<N> sum_effects_N(const SceneOf<N>& scene, const EffectInputOf<N>& input,
                       ScriptList& scripts) noexcept {
-  return add_effects_N<true>(scene, input, scripts, nullptr);
+  // Open loop: the built-in effects without history (a shape's proxy at the nearest point
+  // of its boundary), then the scripts.
+  return add_scripts_N(scene.bank.open_loop_force_N(input), input, scripts, nullptr);
 }
 
 template <int N>
@@ -143,6 +182,7 @@ void step(const SceneOf<N>& scene, const typename SceneParts<N>::Reading& readin
   template void step<N>(const SceneOf<N>&, const SceneParts<N>::Reading&, TickStateOf<N>*,     \
                         const CrossfadeOf<N>*) noexcept;
 HAPSCENE_SCENE_FUNCTIONS(1)
+HAPSCENE_SCENE_FUNCTIONS(2)
 #undef HAPSCENE_SCENE_FUNCTIONS
 
 }  // namespace hapscene

@@ -15,6 +15,7 @@ template <int N>
 struct CrossfadeOf {
   const SceneOf<N>* from{};
   ScriptList* from_scripts{};
+  typename SceneParts<N>::Effects::Bank::RunState* from_runs{};
   double weight_to{};  // in [0, 1]
 };
 
@@ -27,8 +28,10 @@ template <int N>
 void step(const SceneOf<N>& scene, const typename SceneParts<N>::Reading& reading,
           TickStateOf<N>* state, const CrossfadeOf<N>* fade = nullptr) noexcept;
 
-// The effects stage alone, as the tick runs it: the sum of the compiled effects' forces
-// (the bank's, then each script's) for one input, with the scene's script instances.
+// The effects stage open loop (without history): the sum of the compiled effects' forces
+// (the bank's, each shape's proxy at the nearest point of its boundary, then each
+// script's) for one input, with the given script instances. For fields (every 1-D effect)
+// it is what the tick computes.
 template <int N>
 Axes<N> sum_effects_N(const SceneOf<N>& scene, const EffectInputOf<N>& input,
                       ScriptList& scripts) noexcept;

@@ -32,6 +32,7 @@ struct TickStateOf {
 
   // Effects stage.
   ScriptList scripts;             // the current scene's script instances, made at start
+  typename SceneParts<N>::Effects::Bank::RunState effect_runs;  // built-in effects' run state (proxies)
   Axes<N> effects_force_N{};      // sum of all effects: what the scene asks for
   std::uint64_t script_calls{};           // calls into script effects (one per script per tick)
 

@@ -1,6 +1,6 @@
 #pragma once
-// The list of 2-D built-in effect types, apart from the 1-D list (engine/effects/
-// effect_types.hpp) until the scene's tick is generic over the number of axes. A type is a
+// The list of 2-D built-in effect types (the 1-D list: engine/effects/effect_types.hpp),
+// for scenes of two axes (SceneParts<2>). A type is a
 // struct with kType, kNeeds, kUsesProxy, parse(ObjectReader&), can_act_within(min, max),
 // open_loop_force_N(input) and either force_N(input) (a field) or force_N(input, state)
 // (a shape with a proxy, kUsesProxy). The variant, the bank, its per-run proxy states and
@@ -42,6 +42,13 @@ struct PlanarEffectTypeList {
 
     std::size_t proxy_count() const noexcept {
       return (std::size_t{0} + ... + (Types::kUsesProxy ? group<Types>().size() : std::size_t{0}));
+    }
+
+    // What a run keeps of the effects: the shapes' proxies (TickStateOf<2>::effect_runs).
+    using RunState = std::vector<PlanarProxyState>;
+    RunState make_run_state() const { return RunState(proxy_count()); }
+    Vec2 force_N(const PlanarInput& input, RunState& runs) const noexcept {
+      return force_N(input, std::span<PlanarProxyState>(runs));
     }
 
     // Closed loop: the sum of every effect's force, moving the shapes' proxies.

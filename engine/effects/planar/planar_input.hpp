@@ -7,11 +7,6 @@
 
 namespace hapscene {
 
-struct PlanarInput {
-  Vec2 x_m{};          // handle position
-  Vec2 v_m_per_s{};    // estimated velocity; zero when no effect needs it
-  double t_s{};        // time since the run started
-  double dt_s{};       // tick period
-};
+using PlanarInput = EffectInputOf<2>;
 
 }  // namespace hapscene
