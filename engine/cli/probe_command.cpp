@@ -5,6 +5,10 @@
 // is computed from fresh, reset script instances at run time T (default 0), so points
 // do not depend on each other or on their order. Script faults go to stderr, each once
 // ("scripts/x.lua:3: message (first at x ...)"), after the CSV; then the exit code is 1.
+//
+// For a 2-DOF environment (its device a planar profile): `hapscene probe ENV --x
+// START:STOP:STEP --y START:STOP:STEP [--v VX,VY]`, one row per grid point (x outer, y
+// inner), each shape's proxy at the nearest point of its boundary (open loop).
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +22,7 @@
 #include "engine/cli/standard_output.hpp"
 #include "engine/harness/open_loop.hpp"
 #include "engine/load/environment.hpp"
+#include "engine/scene/step.hpp"
 
 namespace hapscene {
 namespace {
@@ -29,32 +34,46 @@ struct ProbeRange {
   long long points{};
 };
 
-ProbeRange parse_range(const Arguments& arguments, const std::string& text) {
+// --NAME START:STOP:STEP (NAME: x, or y for a planar environment).
+ProbeRange parse_range(const Arguments& arguments, const std::string& name, const std::string& text) {
+  const std::string option = "--" + name;
+  const std::string what = "hapscene probe: " + option;
   const std::size_t first = text.find(':');
   const std::size_t second = first == std::string::npos ? first : text.find(':', first + 1);
   if (second == std::string::npos || text.find(':', second + 1) != std::string::npos) {
-    arguments.fail("--x: expected START:STOP:STEP, got \"" + text + "\"");
+    arguments.fail(option + ": expected START:STOP:STEP, got \"" + text + "\"");
   }
   ProbeRange range;
-  range.start_m = parse_option_quantity(text.substr(0, first), option::probe_position, "hapscene probe: --x START");
+  range.start_m = parse_option_quantity(text.substr(0, first), option::probe_position, what + " START");
   range.stop_m = parse_option_quantity(text.substr(first + 1, second - first - 1), option::probe_position,
-                                       "hapscene probe: --x STOP");
-  range.step_m = parse_option_quantity(text.substr(second + 1), option::probe_step, "hapscene probe: --x STEP");
-  if (range.step_m == 0.0) arguments.fail("--x: STEP must not be 0");
+                                       what + " STOP");
+  range.step_m = parse_option_quantity(text.substr(second + 1), option::probe_step, what + " STEP");
+  if (range.step_m == 0.0) arguments.fail(option + ": STEP must not be 0");
   // A step far below the sensor's resolution is a typo; it would also overflow START / STEP.
   if (std::fabs(range.step_m) < option::kMinProbeStep_m) {
-    arguments.fail("--x: STEP must be at least 1 nm in size, got " + format_number(range.step_m) + " m");
+    arguments.fail(option + ": STEP must be at least 1 nm in size, got " + format_number(range.step_m) + " m");
   }
   if ((range.stop_m - range.start_m) * range.step_m < 0.0) {
-    arguments.fail("--x: STEP goes away from STOP");
+    arguments.fail(option + ": STEP goes away from STOP");
   }
   // A tolerance of a millionth of a step keeps STOP when rounding falls just short.
   const double intervals = std::floor((range.stop_m - range.start_m) / range.step_m + 1e-6);
   if (intervals + 1.0 > static_cast<double>(option::kMaxProbePoints)) {
-    arguments.fail("--x: more than " + std::to_string(option::kMaxProbePoints) + " points");
+    arguments.fail(option + ": more than " + std::to_string(option::kMaxProbePoints) + " points");
   }
   range.points = static_cast<long long>(intervals) + 1;
   return range;
+}
+
+// The positions of a range: x = (start / step + i) * step lands on round values (0.01,
+// not 0.009999999999999998) whenever start is a whole number of steps.
+std::vector<double> range_positions_m(const ProbeRange& range) {
+  const double start_in_steps = range.start_m / range.step_m;
+  std::vector<double> x_m(static_cast<std::size_t>(range.points));
+  for (std::size_t i = 0; i < x_m.size(); ++i) {
+    x_m[i] = (start_in_steps + static_cast<double>(i)) * range.step_m + 0.0;  // no "-0"
+  }
+  return x_m;
 }
 
 // The shortest text that reads back as the same double.
@@ -64,26 +83,72 @@ std::string shortest(double value) {
   return ec == std::errc() ? std::string(buffer, end) : std::string("nan");
 }
 
+// --v VX,VY for a planar environment.
+Vec2 parse_planar_velocity(const Arguments& arguments, const std::string& text) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) {
+    arguments.fail("--v: a 2-DOF environment takes VX,VY, got \"" + text + "\"");
+  }
+  return Vec2{{parse_option_quantity(text.substr(0, comma), option::probe_velocity, "hapscene probe: --v VX"),
+               parse_option_quantity(text.substr(comma + 1), option::probe_velocity, "hapscene probe: --v VY")}};
+}
+
+// A planar environment's grid: x outer, y inner. The built-in 2-D effects are evaluated
+// open loop (Scene bank, no history); planar scenes hold no scripts.
+int probe_planar(const Arguments& arguments, const std::string& file, const std::string& x_text,
+                 const std::optional<std::string>& y_text, const std::optional<std::string>& v_text, double t_s) {
+  if (!y_text) arguments.fail("--y START:STOP:STEP is required for a 2-DOF environment");
+  const ProbeRange x_range = parse_range(arguments, "x", x_text);
+  const ProbeRange y_range = parse_range(arguments, "y", *y_text);
+  if (static_cast<double>(x_range.points) * static_cast<double>(y_range.points) >
+      static_cast<double>(option::kMaxProbePoints)) {
+    arguments.fail("--x and --y: more than " + std::to_string(option::kMaxProbePoints) + " points in the grid");
+  }
+  const Vec2 v_m_per_s = v_text ? parse_planar_velocity(arguments, *v_text) : Vec2{};
+  const PlanarScene scene = load_planar_environment_file(file);
+  const std::vector<double> x_m = range_positions_m(x_range);
+  const std::vector<double> y_m = range_positions_m(y_range);
+  ScriptList no_scripts;
+  std::string out = "x_m,y_m,vx_m_per_s,vy_m_per_s,force_x_N,force_y_N,output_x_N,output_y_N\n";
+  for (const double x : x_m) {
+    for (const double y : y_m) {
+      EffectInputOf<2> input;
+      input.x_m = Vec2{{x, y}};
+      input.v_m_per_s = v_m_per_s;
+      input.t_s = t_s;
+      input.dt_s = scene.period_s;
+      const Vec2 force_N = sum_effects_N(scene, input, no_scripts);
+      SafetyCounters counters;
+      const Vec2 output_N = apply_static_safety(scene.safety, input.x_m, force_N, &counters);
+      out += shortest(x) + "," + shortest(y) + "," + shortest(v_m_per_s[0]) + "," + shortest(v_m_per_s[1]) + "," +
+             shortest(force_N[0]) + "," + shortest(force_N[1]) + "," + shortest(output_N[0]) + "," +
+             shortest(output_N[1]) + "\n";
+    }
+  }
+  write_out(out);
+  flush_out();
+  return kExitOk;
+}
+
 }  // namespace
 
 int probe_command(std::vector<std::string> args) {
   Arguments arguments(std::move(args), "hapscene probe");
   const std::optional<std::string> x_text = arguments.take_value("x");
-  const double v_m_per_s = arguments.take(option::probe_velocity).value_or(0.0);
+  const std::optional<std::string> y_text = arguments.take_value("y");
+  const std::optional<std::string> v_text = arguments.take_value("v");
   const double t_s = arguments.take(option::probe_time).value_or(0.0);
   const std::vector<std::string> files = arguments.positionals();
   if (files.size() != 1) arguments.fail("expected one environment file");
   if (!x_text) arguments.fail("--x START:STOP:STEP is required");
-  const ProbeRange range = parse_range(arguments, *x_text);
+  if (environment_axes(files[0]) == 2) return probe_planar(arguments, files[0], *x_text, y_text, v_text, t_s);
+  if (y_text) arguments.fail("--y: only for a 2-DOF environment (its device a planar profile)");
+  const double v_m_per_s =
+      v_text ? parse_option_quantity(*v_text, option::probe_velocity, "hapscene probe: --v") : 0.0;
+  const ProbeRange range = parse_range(arguments, "x", *x_text);
 
   const Scene scene = load_environment_file(files[0]);
-  // x = (start / step + i) * step lands on round values (0.01, not 0.009999999999999998)
-  // whenever start is a whole number of steps.
-  const double start_in_steps = range.start_m / range.step_m;
-  std::vector<double> x_m(static_cast<std::size_t>(range.points));
-  for (std::size_t i = 0; i < x_m.size(); ++i) {
-    x_m[i] = (start_in_steps + static_cast<double>(i)) * range.step_m + 0.0;  // no "-0"
-  }
+  const std::vector<double> x_m = range_positions_m(range);
   OpenLoop open_loop(scene, t_s);
   const OpenLoopScan scan = open_loop.scan(x_m, v_m_per_s);
   std::string out = "x_m,v_m_per_s,force_N,output_N\n";

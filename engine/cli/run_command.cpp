@@ -18,6 +18,7 @@
 #include "engine/base/format.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/cli/arguments.hpp"
+#include "engine/cli/run_planar.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
@@ -39,18 +40,6 @@ std::atomic<bool> g_stop_requested{false};
 
 extern "C" void on_interrupt(int /*signal*/) { g_stop_requested.store(true); }
 
-struct RunSettings {
-  std::string device{"sim"};
-  LinkOptions link;
-  RunOptions options;
-  SimulationConfig simulation;
-  double noise_counts{-1.0};  // < 0: the profile's
-  bool quiet{false};
-  bool reload{true};          // watch the files and hot-reload them
-  std::optional<std::string> log_path;   // --log FILE.csv: per-tick telemetry
-  std::optional<std::string> plot_path;  // --plot FILE.svg: the run's time series
-};
-
 RunSettings parse_settings(Arguments& arguments) {
   RunSettings settings;
   settings.device = arguments.take_value("device").value_or("sim");
@@ -59,18 +48,14 @@ RunSettings parse_settings(Arguments& arguments) {
   if (arguments.take_flag("sim-time")) settings.options.pacing = Pacing::simulated_time;
 
   HandConfig& hand = settings.simulation.hand;
-  if (const auto motion = arguments.take_value("hand")) {
-    const auto* found = std::find(std::begin(kHandMotionNames), std::end(kHandMotionNames), *motion);
-    if (found == std::end(kHandMotionNames) || *found == "path") {
-      arguments.fail("--hand: unknown motion \"" + *motion + "\" (use sweep, hold, release, shake or none)");
-    }
-    hand.motion = static_cast<HandMotion>(found - std::begin(kHandMotionNames));
-  }
+  // The hand's motion, hold and start points depend on the scene's axes: read after the
+  // files (parse_capstan_hand, or the planar run's own).
+  settings.hand_text = arguments.take_value("hand");
+  settings.hold_text = arguments.take_value("hold");
+  settings.start_text = arguments.take_value("start");
   hand.stiffness_N_per_m = arguments.take(option::run_hand_stiffness).value_or(hand.stiffness_N_per_m);
   hand.damping_N_s_per_m = arguments.take(option::run_hand_damping).value_or(hand.damping_N_s_per_m);
-  hand.hold_m = arguments.take(option::hold).value_or(hand.hold_m);
   hand.release_s = arguments.take(option::release).value_or(hand.release_s);
-  settings.simulation.start_x_m = arguments.take(option::run_start).value_or(0.0);
   settings.noise_counts = arguments.take(option::noise).value_or(-1.0);
   settings.simulation.noise_seed = arguments.take(option::seed).value_or(settings.simulation.noise_seed);
   settings.quiet = arguments.take_flag("quiet");
@@ -78,6 +63,22 @@ RunSettings parse_settings(Arguments& arguments) {
   settings.log_path = arguments.take_value("log");
   settings.plot_path = arguments.take_value("plot");
   return settings;
+}
+
+// The 1-DOF hand: --hand, --hold X, --start X.
+void parse_capstan_hand(const Arguments& arguments, RunSettings* settings) {
+  HandConfig& hand = settings->simulation.hand;
+  if (const auto& motion = settings->hand_text) {
+    const auto* found = std::find(std::begin(kHandMotionNames), std::end(kHandMotionNames), *motion);
+    if (found == std::end(kHandMotionNames) || *found == "path") {
+      arguments.fail("--hand: unknown motion \"" + *motion + "\" (use sweep, hold, release, shake or none)");
+    }
+    hand.motion = static_cast<HandMotion>(found - std::begin(kHandMotionNames));
+  }
+  if (settings->hold_text) hand.hold_m = parse_option_quantity(*settings->hold_text, option::hold, "hapscene run: --hold");
+  if (settings->start_text) {
+    settings->simulation.start_x_m = parse_option_quantity(*settings->start_text, option::run_start, "hapscene run: --start");
+  }
 }
 
 // Prints script log lines as they come, and "x, force, loop rate" on one terminal line
@@ -235,6 +236,13 @@ int run_command(std::vector<std::string> args) {
   if ((settings.log_path || settings.plot_path) && files.size() != 1) {
     arguments.fail("--log and --plot take one environment file");
   }
+  // A 2-DOF environment runs alone, on its own path (run_planar.cpp).
+  for (const std::string& file : files) {
+    if (environment_axes(file) != 2) continue;
+    if (files.size() != 1) arguments.fail(file + ": a 2-DOF environment runs alone (one file per run)");
+    return run_planar(arguments, settings, file);
+  }
+  parse_capstan_hand(arguments, &settings);
 
   // Output files that would overwrite an input or each other, or cannot be written where
   // they are asked for, are refused before anything runs.

@@ -147,6 +147,22 @@ std::string profile_kind_of(std::string_view json_text) noexcept {
   }
 }
 
+bool names_planar_profile(const std::string& name_or_path, const std::string& base_dir) noexcept {
+  try {
+    if (looks_like_path(name_or_path)) {
+      std::filesystem::path path(name_or_path);
+      if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
+      return profile_kind_of(read_text_file(path.lexically_normal().string(), kMaxJsonFileBytes)) == "planar";
+    }
+    for (const BuiltinProfile& builtin : builtin_profiles()) {
+      if (builtin.name == name_or_path) return profile_kind_of(builtin.json_text) == "planar";
+    }
+  } catch (...) {
+    // Unreadable: the loader that reads it reports why.
+  }
+  return false;
+}
+
 DeviceProfile load_device_profile(const std::string& name_or_path, const std::string& base_dir) {
   if (looks_like_path(name_or_path)) {
     std::filesystem::path path(name_or_path);

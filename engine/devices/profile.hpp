@@ -96,6 +96,10 @@ class UnknownProfileError : public InputError {
 // "/" or ends in ".json"; relative paths are taken from `base_dir`). Throws InputError.
 DeviceProfile load_device_profile(const std::string& name_or_path, const std::string& base_dir);
 
+// True when `name_or_path` (as load_device_profile takes it) is a readable planar (2-DOF)
+// profile ("kind": "planar"); false otherwise, errors included (the loader reports them).
+bool names_planar_profile(const std::string& name_or_path, const std::string& base_dir) noexcept;
+
 // Parses a profile from JSON text; `display_name` names it in messages. Throws InputError.
 // A 2-DOF profile ("kind": "planar", engine/devices/planar/planar_profile.hpp) is refused
 // with a message that says so.

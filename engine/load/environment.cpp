@@ -13,6 +13,9 @@
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/base/physical_ranges.hpp"
+#include "engine/devices/planar/planar_profile.hpp"
+#include "engine/effects/planar/planar_effect_types.hpp"
+#include "engine/effects/planar/planar_reader.hpp"
 #include "engine/load/effect_warnings.hpp"
 #include "engine/load/validate_block.hpp"
 
@@ -130,35 +133,65 @@ VelocityEstimatorConfig parse_velocity(ObjectReader& reader) {
   return config;
 }
 
-Scene compile(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
-  ObjectReader reader(root, "", file);
-  Scene scene;
-  scene.source_path = file;
+// What every scene reads first, whatever its axes: name, rate, the device profile (by
+// name, shipped, or by path relative to the file, loaded by `load_profile`).
+template <int N, typename LoadProfile>
+void compile_header(ObjectReader& reader, const std::string& file, const std::string& base_dir,
+                    LoadProfile load_profile, SceneOf<N>* scene) {
+  scene->source_path = file;
   // Printed by every command and in reports: printable (engine/base/format.hpp), so a
   // name holding "\n" or "\r" cannot forge an output line.
-  scene.name = printable(reader.string_or("name", std::filesystem::path(file).stem().string()));
+  scene->name = printable(reader.string_or("name", std::filesystem::path(file).stem().string()));
   reader.string_or("description", "");  // for people: checked to be text, not kept
 
   // Tick rate.
-  scene.rate_hz = reader.quantity_or("rate_hz", Quantity::frequency_Hz, 1000.0, Bound::positive);
-  if (scene.rate_hz < kMinRate_Hz || scene.rate_hz > kMaxRate_Hz) {
+  scene->rate_hz = reader.quantity_or("rate_hz", Quantity::frequency_Hz, 1000.0, Bound::positive);
+  if (scene->rate_hz < kMinRate_Hz || scene->rate_hz > kMaxRate_Hz) {
     reader.fail("rate_hz", "must be between 10 Hz and 100 kHz");
   }
-  scene.period_s = 1.0 / scene.rate_hz;
+  scene->period_s = 1.0 / scene->rate_hz;
 
-  // Device profile: by name (shipped) or by path relative to this file.
   const std::string device_name = reader.string_or("device", "hapkit3");
   try {
-    scene.device = load_device_profile(device_name, base_dir);
+    scene->device = load_profile(device_name, base_dir);
   } catch (const InputError& error) {
     // "env.json: /device: profile.json:3:7: ...": the referring place, then the profile's own.
     reader.fail("device", error.what());
   }
-
   const bool device_is_path = device_name.find('/') != std::string::npos || device_name.ends_with(".json");
-  scene.device_file = device_is_path && std::filesystem::path(device_name).is_relative()
-                          ? (std::filesystem::path(base_dir) / device_name).lexically_normal().string()
-                          : device_name;
+  scene->device_file = device_is_path && std::filesystem::path(device_name).is_relative()
+                           ? (std::filesystem::path(base_dir) / device_name).lexically_normal().string()
+                           : device_name;
+}
+
+// The "velocity" block (optional), and the low-pass factor for the scene's period.
+template <int N>
+void compile_velocity(ObjectReader& reader, SceneOf<N>* scene) {
+  if (const nlohmann::json* velocity = reader.get("velocity")) {
+    ObjectReader velocity_reader(*velocity, reader.pointer_to("velocity"), reader.file());
+    scene->velocity = parse_velocity(velocity_reader);
+  }
+  scene->velocity.lowpass_alpha = lowpass_alpha_for(scene->velocity.cutoff_Hz, scene->period_s);
+}
+
+// The "effects" array: present, an array, within the count limit.
+const nlohmann::json& effects_array(ObjectReader& reader) {
+  const nlohmann::json* effects = reader.get("effects");
+  if (effects == nullptr) reader.fail("", "missing required key \"effects\"");
+  if (!effects->is_array()) {
+    reader.fail("effects", "expected an array of effects, got " + json_type_name(*effects));
+  }
+  if (effects->size() > kMaxEffects) {
+    reader.fail("effects", "has " + std::to_string(effects->size()) + " effects; one environment may have at most " +
+                               std::to_string(kMaxEffects));
+  }
+  return *effects;
+}
+
+Scene compile(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
+  ObjectReader reader(root, "", file);
+  Scene scene;
+  compile_header(reader, file, base_dir, load_device_profile, &scene);
   scene.device_model = compile_device_model(scene.device);
 
   // Safety: the device's limits, lowered by the environment's.
@@ -172,23 +205,10 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
   }
   finalise_safety(scene.period_s, &scene.safety);
 
-  // Velocity estimator.
-  if (const nlohmann::json* velocity = reader.get("velocity")) {
-    ObjectReader velocity_reader(*velocity, reader.pointer_to("velocity"), file);
-    scene.velocity = parse_velocity(velocity_reader);
-  }
-  scene.velocity.lowpass_alpha = lowpass_alpha_for(scene.velocity.cutoff_Hz, scene.period_s);
+  compile_velocity(reader, &scene);
 
   // Effects, and what they need.
-  const nlohmann::json* effects = reader.get("effects");
-  if (effects == nullptr) reader.fail("", "missing required key \"effects\"");
-  if (!effects->is_array()) {
-    reader.fail("effects", "expected an array of effects, got " + json_type_name(*effects));
-  }
-  if (effects->size() > kMaxEffects) {
-    reader.fail("effects", "has " + std::to_string(effects->size()) + " effects; one environment may have at most " +
-                               std::to_string(kMaxEffects));
-  }
+  const nlohmann::json* effects = &effects_array(reader);
   ScriptLoadBudget script_budget = plan_script_loads(*effects, file, reader.pointer_to("effects"));
   for (std::size_t i = 0; i < effects->size(); ++i) {
     Effect effect;
@@ -209,6 +229,109 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
   return scene;
 }
 
+// A planar scene's "safety" block: force and slew limits, soft start, and the workspace
+// as a box ({"min": [x, y], "max": [x, y]}) inside the device's; each only safer than the
+// device's.
+void parse_planar_safety(ObjectReader& reader, const PlanarLimits& device, SafetyConfigOf<2>* safety) {
+  const auto lower_or_equal = [&](std::string_view key, double value, double device_value, const char* unit) {
+    if (value > device_value) {
+      reader.fail(key, "must not exceed the device's " + format_number(device_value) + " " + unit);
+    }
+    return value;
+  };
+  safety->max_force_N = lower_or_equal(
+      "max_force", reader.quantity_or("max_force", Quantity::force_N, device.max_force_N, Bound::positive),
+      device.max_force_N, "N");
+  safety->slew_limit_N_per_s = lower_or_equal(
+      "slew_limit",
+      reader.quantity_or("slew_limit", Quantity::force_rate_N_per_s, device.slew_limit_N_per_s, Bound::positive),
+      device.slew_limit_N_per_s, "N/s");
+  safety->soft_start_s = reader.quantity_or("soft_start", Quantity::time_s, device.soft_start_s, ranges::kDuration_s);
+  if (safety->soft_start_s < device.soft_start_s) {
+    reader.fail("soft_start", "must not be shorter than the device's " + format_number(device.soft_start_s) + " s");
+  }
+  if (const nlohmann::json* workspace = reader.get("workspace")) {
+    ObjectReader box(*workspace, reader.pointer_to("workspace"), reader.file());
+    const Vec2 min_m = read_vector(box, "min", Quantity::length_m, ranges::kPosition_m);
+    const Vec2 max_m = read_vector(box, "max", Quantity::length_m, ranges::kPosition_m);
+    box.finish();
+    if (!(min_m[0] < max_m[0] && min_m[1] < max_m[1])) {
+      reader.fail("workspace", "min must be below max on both axes");
+    }
+    if (!workspace_contains(device.workspace, min_m) || !workspace_contains(device.workspace, max_m) ||
+        !workspace_contains(device.workspace, Vec2{{min_m[0], max_m[1]}}) ||
+        !workspace_contains(device.workspace, Vec2{{max_m[0], min_m[1]}})) {
+      reader.fail("workspace", "must lie within the device's workspace");
+    }
+    safety->workspace_min_m = min_m;
+    safety->workspace_max_m = max_m;
+    safety->workspace_polygon_m.clear();
+  }
+  reader.finish();
+}
+
+// The device's workspace as the tick tests it: its bounding box, and the polygon if any.
+void set_planar_workspace(const PlanarWorkspace& workspace, SafetyConfigOf<2>* safety) {
+  if (workspace.is_box) {
+    safety->workspace_min_m = workspace.box_min_m;
+    safety->workspace_max_m = workspace.box_max_m;
+    return;
+  }
+  Vec2 low = workspace.polygon_m.front();
+  Vec2 high = low;
+  for (const Vec2& p : workspace.polygon_m) {
+    for (int i = 0; i < 2; ++i) {
+      low[i] = std::min(low[i], p[i]);
+      high[i] = std::max(high[i], p[i]);
+    }
+  }
+  safety->workspace_min_m = low;
+  safety->workspace_max_m = high;
+  safety->workspace_polygon_m = workspace.polygon_m;
+}
+
+PlanarScene compile_planar(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
+  ObjectReader reader(root, "", file);
+  PlanarScene scene;
+  compile_header(reader, file, base_dir, load_planar_profile, &scene);
+  scene.device_model = compile_planar_tick_model(scene.device);
+
+  // Safety: the device's limits, lowered by the environment's.
+  const PlanarLimits& limits = scene.device.limits;
+  scene.safety.max_force_N = limits.max_force_N;
+  scene.safety.slew_limit_N_per_s = limits.slew_limit_N_per_s;
+  scene.safety.soft_start_s = limits.soft_start_s;
+  scene.safety.soft_start_threshold_N = limits.soft_start_threshold_N;
+  set_planar_workspace(limits.workspace, &scene.safety);
+  if (const nlohmann::json* safety = reader.get("safety")) {
+    ObjectReader safety_reader(*safety, reader.pointer_to("safety"), file);
+    parse_planar_safety(safety_reader, limits, &scene.safety);
+  }
+  finalise_safety(scene.period_s, &scene.safety);
+  compile_velocity(reader, &scene);
+
+  const nlohmann::json& effects = effects_array(reader);
+  for (std::size_t i = 0; i < effects.size(); ++i) {
+    PlanarEffect effect;
+    const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
+    if (parse_planar_effect(effects[i], pointer, file, &effect)) add_effect(&scene, std::move(effect));
+  }
+  if (reader.has("validate")) {
+    reader.fail("validate", "2-DOF scenes have no validate thresholds yet (hapscene validate runs 1-DOF scenes)");
+  }
+  reader.finish();
+  return scene;
+}
+
+// The "device" an environment's JSON names (default "hapkit3"), without checking more.
+std::string device_named(const nlohmann::json& root) {
+  if (root.is_object()) {
+    const auto device = root.find("device");
+    if (device != root.end() && device->is_string()) return device->get<std::string>();
+  }
+  return "hapkit3";
+}
+
 }  // namespace
 
 Scene load_environment_text(std::string_view json_text, const std::string& display_name,
@@ -226,6 +349,25 @@ Scene print_warnings(Scene scene) {
 }
 
 }  // namespace
+
+int environment_axes(const std::string& path) {
+  const std::filesystem::path file(path);
+  if (file.extension() == ".lua") return 1;  // a script alone: the Hapkit
+  const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
+  const nlohmann::json root = parse_json_text(read_text_file(path, kMaxJsonFileBytes), path);
+  return names_planar_profile(device_named(root), base_dir) ? 2 : 1;
+}
+
+PlanarScene load_planar_environment_text(std::string_view json_text, const std::string& display_name,
+                                         const std::string& base_dir) {
+  return compile_planar(parse_json_text(json_text, display_name), display_name, base_dir);
+}
+
+PlanarScene load_planar_environment_file(const std::string& path) {
+  const std::filesystem::path file(path);
+  const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
+  return load_planar_environment_text(read_text_file(path, kMaxJsonFileBytes), path, base_dir);
+}
 
 Scene load_environment_file(const std::string& path) {
   const std::filesystem::path file(path);

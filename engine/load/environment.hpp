@@ -18,4 +18,14 @@ Scene load_environment_file(const std::string& path);
 Scene load_environment_text(std::string_view json_text, const std::string& display_name,
                             const std::string& base_dir = ".");
 
+// The number of axes of the scene an environment file makes: 2 when its "device" is a
+// planar profile, else 1. Throws InputError when the file cannot be read or parsed.
+int environment_axes(const std::string& path);
+
+// A planar (2-DOF) environment: the same format with vectors (README "2-DOF devices").
+// Throws InputError naming the file and the place.
+PlanarScene load_planar_environment_file(const std::string& path);
+PlanarScene load_planar_environment_text(std::string_view json_text, const std::string& display_name,
+                                         const std::string& base_dir = ".");
+
 }  // namespace hapscene

@@ -16,44 +16,71 @@ void append_number(double value, std::string* out) {
   out->append(buffer, ec == std::errc() ? end : buffer);
 }
 
+// Each axis's value, then a comma.
+void append_axes(double value, std::string* out) {
+  append_number(value + 0.0, out);  // + 0.0: no "-0"
+  *out += ',';
+}
+void append_axes(const Vec2& value, std::string* out) {
+  append_axes(value[0], out);
+  append_axes(value[1], out);
+}
+
+// Each motor's duty and direction.
+void append_command(const MotorCommand& command, std::string* out) {
+  append_axes(command.duty, out);
+  *out += command.direction_high ? '1' : '0';
+}
+void append_command(const PlanarMotorCommand& command, std::string* out) {
+  append_command(command.motor[0], out);
+  *out += ',';
+  append_command(command.motor[1], out);
+}
+
+const char* csv_header(int axes) { return axes == 1 ? kTelemetryCsvHeader : kPlanarTelemetryCsvHeader; }
+
 }  // namespace
 
-std::string telemetry_csv_line(const TelemetrySample& s) {
+template <int N>
+std::string telemetry_csv_line(const TelemetrySampleOf<N>& s) {
   std::string line;
-  for (const double value : {s.t_s, s.x_m, s.v_m_per_s, s.force_N, s.output_N, s.duty}) {
-    append_number(value + 0.0, &line);  // + 0.0: no "-0"
-    line += ',';
-  }
-  line += s.direction_high ? "1\n" : "0\n";
+  append_axes(s.t_s, &line);
+  for (const Axes<N>& value : {s.x_m, s.v_m_per_s, s.force_N, s.output_N}) append_axes(value, &line);
+  append_command(s.command, &line);
+  line += '\n';
   return line;
 }
 
-TelemetryLog::TelemetryLog(const std::string& path, std::size_t capacity) : ring_(capacity), path_(path) {
+template <int N>
+TelemetryLogOf<N>::TelemetryLogOf(const std::string& path, std::size_t capacity) : ring_(capacity), path_(path) {
   file_ = std::fopen(path.c_str(), "wb");
   if (file_ == nullptr) throw InputError(path + ": cannot write file");
   errno = 0;
-  if (std::fputs(kTelemetryCsvHeader, file_) < 0 || std::fputc('\n', file_) == EOF) note_write_error(errno);
+  if (std::fputs(csv_header(N), file_) < 0 || std::fputc('\n', file_) == EOF) note_write_error(errno);
   writer_ = std::thread([this] { drain_loop(); });
 }
 
-void TelemetryLog::note_write_error(int error_number) {
+template <int N>
+void TelemetryLogOf<N>::note_write_error(int error_number) {
   if (error_.empty()) {
     error_ = path_ + ": write failed: " + (error_number != 0 ? std::strerror(error_number) : "unknown error");
   }
 }
 
-TelemetryLog::~TelemetryLog() { finish(); }
+template <int N>
+TelemetryLogOf<N>::~TelemetryLogOf() { finish(); }
 
-void TelemetryLog::on_tick(const TickState& state) noexcept {
-  const TelemetrySample sample{state.t_s,      state.x_m,          state.v_m_per_s,
-                               state.effects_force_N, state.output_N, state.command.duty,
-                               state.command.direction_high};
+template <int N>
+void TelemetryLogOf<N>::on_tick(const TickStateOf<N>& state) noexcept {
+  const TelemetrySampleOf<N> sample{state.t_s,      state.x_m,          state.v_m_per_s,
+                                    state.effects_force_N, state.output_N, state.command};
   if (!ring_.try_push(sample)) dropped_.fetch_add(1, std::memory_order_relaxed);
 }
 
 // Drain whatever is there, then nap briefly; after stop, drain the rest and return.
-void TelemetryLog::drain_loop() {
-  TelemetrySample sample;
+template <int N>
+void TelemetryLogOf<N>::drain_loop() {
+  TelemetrySampleOf<N> sample;
   for (;;) {
     const bool stopping = stop_.load(std::memory_order_acquire);
     bool any = false;
@@ -74,7 +101,8 @@ void TelemetryLog::drain_loop() {
   }
 }
 
-void TelemetryLog::finish() {
+template <int N>
+void TelemetryLogOf<N>::finish() {
   if (writer_.joinable()) {
     stop_.store(true, std::memory_order_release);
     writer_.join();
@@ -88,5 +116,11 @@ void TelemetryLog::finish() {
     file_ = nullptr;
   }
 }
+
+// The axis counts scenes are compiled for.
+template std::string telemetry_csv_line<1>(const TelemetrySampleOf<1>&);
+template std::string telemetry_csv_line<2>(const TelemetrySampleOf<2>&);
+template class TelemetryLogOf<1>;
+template class TelemetryLogOf<2>;
 
 }  // namespace hapscene

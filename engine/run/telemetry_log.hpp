@@ -9,6 +9,8 @@
 // velocity (0 when the scene needs none); force_N what the effects asked for; output_N
 // what the device was commanded after safety; duty the PWM duty in [0, 1]; direction the
 // direction pin (1 high, 0 low). Numbers in their shortest exact form.
+// A 2-DOF scene's log has a column per axis and per motor (the header line, exactly):
+//   t_s,x_m,y_m,vx_m_per_s,vy_m_per_s,force_x_N,force_y_N,output_x_N,output_y_N,duty_1,direction_1,duty_2,direction_2
 #include <atomic>
 #include <cstdint>
 #include <cstdio>
@@ -21,29 +23,36 @@
 namespace hapscene {
 
 inline constexpr const char* kTelemetryCsvHeader = "t_s,x_m,v_m_per_s,force_N,output_N,duty,direction";
+inline constexpr const char* kPlanarTelemetryCsvHeader =
+    "t_s,x_m,y_m,vx_m_per_s,vy_m_per_s,force_x_N,force_y_N,output_x_N,output_y_N,duty_1,direction_1,duty_2,direction_2";
 inline constexpr std::size_t kDefaultTelemetryCapacity = 1u << 16;  // 65 s at 1 kHz
 
-struct TelemetrySample {
+// One tick of a scene with N axes.
+template <int N>
+struct TelemetrySampleOf {
   double t_s{};
-  double x_m{};
-  double v_m_per_s{};
-  double force_N{};
-  double output_N{};
-  double duty{};
-  bool direction_high{};
+  Axes<N> x_m{};
+  Axes<N> v_m_per_s{};
+  Axes<N> force_N{};
+  Axes<N> output_N{};
+  typename SceneParts<N>::Command command{};  // per motor: duty and direction
 };
 
-// One CSV line (with the newline) for a sample.
-std::string telemetry_csv_line(const TelemetrySample& sample);
+using TelemetrySample = TelemetrySampleOf<1>;
 
-class TelemetryLog final : public TickObserver {
+// One CSV line (with the newline) for a sample.
+template <int N>
+std::string telemetry_csv_line(const TelemetrySampleOf<N>& sample);
+
+template <int N>
+class TelemetryLogOf final : public TickObserverOf<N> {
  public:
   // Opens the file (InputError when it cannot) and starts the writer thread.
-  TelemetryLog(const std::string& path, std::size_t capacity = kDefaultTelemetryCapacity);
-  ~TelemetryLog() override;
+  TelemetryLogOf(const std::string& path, std::size_t capacity = kDefaultTelemetryCapacity);
+  ~TelemetryLogOf() override;
 
   // The loop's side: push, or count a drop. Never blocks, never allocates.
-  void on_tick(const TickState& state) noexcept override;
+  void on_tick(const TickStateOf<N>& state) noexcept override;
 
   // Stops the writer after it has drained the ring, flushes and closes the file.
   // Idempotent. A write, flush or close that failed is kept for error().
@@ -60,7 +69,7 @@ class TelemetryLog final : public TickObserver {
   void drain_loop();
   void note_write_error(int error_number);
 
-  SpscRing<TelemetrySample> ring_;
+  SpscRing<TelemetrySampleOf<N>> ring_;
   std::string path_;
   std::FILE* file_{nullptr};
   std::string error_;  // written by the writer thread until joined, then by finish()
@@ -69,5 +78,7 @@ class TelemetryLog final : public TickObserver {
   std::atomic<std::uint64_t> dropped_{0};
   std::thread writer_;
 };
+
+using TelemetryLog = TelemetryLogOf<1>;
 
 }  // namespace hapscene

@@ -26,6 +26,20 @@ Axes<N> apply_ramp(const SafetyConfigOf<N>& config, Axes<N> output_N, SafetyStat
   return output_N;
 }
 
+bool inside_polygon(const std::vector<Vec2>& polygon_m, const Vec2& p_m) noexcept {
+  bool inside = false;
+  const std::size_t n = polygon_m.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2& a = polygon_m[i];
+    const Vec2& b = polygon_m[j];
+    if ((a[1] > p_m[1]) != (b[1] > p_m[1]) &&
+        p_m[0] < (b[0] - a[0]) * (p_m[1] - a[1]) / (b[1] - a[1]) + a[0]) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
 // The scenes' axis counts.
 template double apply_ramp<1>(const SafetyConfigOf<1>&, double, SafetyStateOf<1>*) noexcept;
 template Vec2 apply_ramp<2>(const SafetyConfigOf<2>&, Vec2, SafetyStateOf<2>*) noexcept;

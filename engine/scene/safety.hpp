@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
+#include <vector>
 
 #include "engine/base/axes.hpp"
 
@@ -22,6 +24,8 @@ namespace hapscene {
 // The limits for a scene with N axes. With more than one axis the force limit and the
 // slew limit act on the force vector's magnitude (keeping its direction) and the workspace
 // is a box in task space.
+struct NoPolygon {};
+
 template <int N>
 struct SafetyConfigOf {
   double max_force_N{};
@@ -33,6 +37,10 @@ struct SafetyConfigOf {
   // Derived from the above and the tick period by finalise_safety().
   double max_step_N{};         // slew_limit_N_per_s * T
   double ramp_step_per_tick{}; // T / soft_start_s (1 when soft_start_s is 0)
+  // More than one axis: when not empty, the workspace is this simple polygon (its
+  // bounding box is workspace_min_m/max_m, tested first).
+  [[no_unique_address]] std::conditional_t<(N > 1), std::vector<AxisVector<(N > 1 ? N : 2)>>, NoPolygon>
+      workspace_polygon_m{};
 };
 
 using SafetyConfig = SafetyConfigOf<1>;
@@ -75,17 +83,20 @@ struct SafetyStateOf {
 
 using SafetyState = SafetyStateOf<1>;
 
-// The workspace test: inside the interval, or the box (every axis within its limits).
-inline bool within_workspace(double x_m, double min_m, double max_m) noexcept {
-  return x_m >= min_m && x_m <= max_m;
+// True when p is inside the simple polygon (crossing number; on an edge may go either way).
+bool inside_polygon(const std::vector<Vec2>& polygon_m, const Vec2& p_m) noexcept;
+
+// The workspace test: inside the interval, or the box (every axis within its limits) and,
+// when the workspace is a polygon, inside it.
+inline bool within_workspace(const SafetyConfigOf<1>& config, double x_m) noexcept {
+  return x_m >= config.workspace_min_m && x_m <= config.workspace_max_m;
 }
 template <int N>
-inline bool within_workspace(const AxisVector<N>& x_m, const AxisVector<N>& min_m,
-                             const AxisVector<N>& max_m) noexcept {
+inline bool within_workspace(const SafetyConfigOf<N>& config, const AxisVector<N>& x_m) noexcept {
   for (int i = 0; i < N; ++i) {
-    if (!(x_m[i] >= min_m[i] && x_m[i] <= max_m[i])) return false;
+    if (!(x_m[i] >= config.workspace_min_m[i] && x_m[i] <= config.workspace_max_m[i])) return false;
   }
-  return true;
+  return config.workspace_polygon_m.empty() || inside_polygon(config.workspace_polygon_m, x_m);
 }
 
 // `value` with its magnitude limited to `limit` (> 0), keeping its sign or direction.
@@ -102,7 +113,7 @@ inline Axes<N> apply_static_safety(const SafetyConfigOf<N>& config, const Axes<N
                                    const Axes<N>& force_N, SafetyCounters* counters) noexcept {
   // The common case in three comparisons (per axis): a force within the limit (so finite:
   // NaN and infinities fail it) inside the workspace passes unchanged.
-  const bool inside = within_workspace(x_m, config.workspace_min_m, config.workspace_max_m);
+  const bool inside = within_workspace(config, x_m);
   if (norm(force_N) <= config.max_force_N && inside) [[likely]] {
     return force_N;
   }

@@ -261,8 +261,8 @@ PlanarLinkMass parse_link_mass(ObjectReader& reader) {
   return link;
 }
 
-PlanarPlant parse_plant(ObjectReader& reader, LinkageFamily family) {
-  PlanarPlant plant;
+PlanarPlantEstimates parse_plant(ObjectReader& reader, LinkageFamily family) {
+  PlanarPlantEstimates plant;
   plant.link_count = family == LinkageFamily::serial_2r ? 2 : 4;
   const char* links_expected = family == LinkageFamily::serial_2r
                                    ? "an array of two links (link a, link b) for a serial_2r arm"

@@ -110,7 +110,7 @@ struct PlanarLinkMass {
 
 // Physical estimates for a simulated 2-DOF device (not used with real hardware).
 // links: serial_2r: [link a, link b]; five_bar: [proximal 1, proximal 2, distal 1, distal 2].
-struct PlanarPlant {
+struct PlanarPlantEstimates {
   std::array<PlanarLinkMass, 4> links{};
   int link_count{};
   double handle_mass_kg{};
@@ -139,7 +139,7 @@ struct PlanarProfile {
   double coupling{};
   Vec2 home_m{};                   // the handle at rest / reference pose, task frame
   PlanarLimits limits;
-  PlanarPlant plant;
+  PlanarPlantEstimates plant;
 };
 
 // Loads a planar profile by name ("haplink": shipped and compiled in) or by path (contains

@@ -1,0 +1,150 @@
+#include "engine/cli/run_planar.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
+#include "engine/cli/commands.hpp"
+#include "engine/cli/option_definitions.hpp"
+#include "engine/cli/standard_output.hpp"
+#include "engine/devices/planar/planar_hand.hpp"
+#include "engine/devices/planar/simulated_planar.hpp"
+#include "engine/load/environment.hpp"
+#include "engine/run/telemetry_log.hpp"
+
+namespace hapscene {
+namespace {
+
+// "X,Y" as two lengths, each in the option's range.
+Vec2 parse_point(const Arguments& arguments, const std::string& name, const std::string& text,
+                 const QuantityOption& option) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) {
+    arguments.fail("--" + name + ": a 2-DOF environment takes X,Y, got \"" + text + "\"");
+  }
+  const std::string what = arguments.command() + ": --" + name;
+  return Vec2{{parse_option_quantity(text.substr(0, comma), option, what + " X"),
+               parse_option_quantity(text.substr(comma + 1), option, what + " Y")}};
+}
+
+// The hand of a planar run: its motion over the scene's workspace box (a sweep covers the
+// middle 80 % of it; a line crosses it; a circle of a quarter of its smaller side turns
+// round its middle), holding or releasing at --hold (default the start).
+PlanarHandConfig planar_hand(const Arguments& arguments, const RunSettings& settings, const PlanarScene& scene,
+                             const Vec2& start_m) {
+  PlanarHandConfig hand;
+  hand.motion = PlanarHandMotion::sweep;
+  if (const auto& motion = settings.hand_text) {
+    const auto* found = std::find(std::begin(kPlanarHandMotionNames), std::end(kPlanarHandMotionNames), *motion);
+    if (found == std::end(kPlanarHandMotionNames) || *found == "path") {
+      arguments.fail("--hand: unknown motion \"" + *motion +
+                     "\" (a 2-DOF run takes sweep, line, circle, hold, release, shake or none)");
+    }
+    hand.motion = static_cast<PlanarHandMotion>(found - std::begin(kPlanarHandMotionNames));
+  }
+  hand.stiffness_N_per_m = settings.simulation.hand.stiffness_N_per_m;
+  hand.damping_N_s_per_m = settings.simulation.hand.damping_N_s_per_m;
+  hand.release_s = settings.simulation.hand.release_s;
+  hand.hold_m = settings.hold_text ? parse_point(arguments, "hold", *settings.hold_text, option::hold) : start_m;
+  const Vec2 low = scene.safety.workspace_min_m;
+  const Vec2 high = scene.safety.workspace_max_m;
+  const Vec2 middle = (low + high) * 0.5;
+  const Vec2 margin = (high - low) * 0.1;
+  hand.sweep_min_m = low + margin;
+  hand.sweep_max_m = high - margin;
+  hand.line_from_m = Vec2{{low[0] + margin[0], middle[1]}};
+  hand.line_to_m = Vec2{{high[0] - margin[0], middle[1]}};
+  hand.line_back_and_forth = true;
+  hand.circle_center_m = middle;
+  hand.circle_radius_m = 0.25 * std::min(high[0] - low[0], high[1] - low[1]);
+  return hand;
+}
+
+void print_planar_summary(const PlanarScene& scene, const RunSettings& settings, const PlanarHandConfig& hand,
+                          const RunSummaryOf<2>& summary, const SimulatedPlanar& device) {
+  const bool real_time = settings.options.pacing == Pacing::real_time;
+  print_out("%s (%s) on %s:%s, %g Hz, %s, hand %s\n", scene.name.c_str(), printable(scene.source_path).c_str(),
+            printable(settings.device).c_str(), printable(scene.device.name).c_str(), scene.rate_hz,
+            real_time ? "real time" : "simulated time",
+            std::string(kPlanarHandMotionNames[static_cast<int>(hand.motion)]).c_str());
+  print_out("  ticks            %llu in %.3f s of device time, loop rate %.1f Hz\n",
+            static_cast<unsigned long long>(summary.ticks), summary.device_time_s, summary.achieved_rate_hz);
+  print_out("  max force        asked %.3f N, commanded %.3f N (limit %g N, magnitudes)\n",
+            summary.max_abs_requested_N, summary.max_abs_output_N, summary.limits_at_end.max_force_N);
+  const SafetyCounters& safety = summary.safety;
+  const auto ticks = [](std::uint64_t n) { return static_cast<unsigned long long>(n); };
+  print_out("  time clamped     %.3f s (%llu ticks); slew-limited %llu, soft start %llu, "
+            "outside workspace %llu ticks\n",
+            static_cast<double>(safety.clamped_ticks) * scene.period_s, ticks(safety.clamped_ticks),
+            ticks(safety.slew_limited_ticks), ticks(safety.soft_start_ticks), ticks(safety.outside_workspace_ticks));
+  print_out("  linkage          %llu ticks near a singular pose or unreachable (force held), "
+            "%llu with a saturated motor (both scaled)\n",
+            ticks(safety.pose_hold_ticks), ticks(safety.motor_saturated_ticks));
+  print_out("  faults           %llu non-finite forces\n", ticks(safety.nonfinite_faults));
+  print_out("  tick compute     p50 %.2f us  p99 %.2f us  max %.2f us\n",
+            static_cast<double>(summary.compute_ns.percentile_ns(0.50)) * 1e-3,
+            static_cast<double>(summary.compute_ns.percentile_ns(0.99)) * 1e-3,
+            static_cast<double>(summary.compute_ns.max_ns()) * 1e-3);
+  print_out("  plant            %llu linkage faults (the five-bar at the edge of closing)\n",
+            ticks(device.plant().linkage_faults()));
+}
+
+}  // namespace
+
+int run_planar(const Arguments& arguments, const RunSettings& settings, const std::string& file) {
+  if (settings.device != "sim") {
+    arguments.fail("--device " + settings.device +
+                   ": a 2-DOF environment runs on the simulated device only (--device sim) so far");
+  }
+  if (settings.plot_path) arguments.fail("--plot: not yet for a 2-DOF environment (use --log)");
+  if (settings.noise_counts >= 0.0) arguments.fail("--noise: not yet for a 2-DOF environment");
+  const PlanarScene scene = load_planar_environment_file(file);
+
+  // Where the handle starts: --start, else the profile's home.
+  const Vec2 start_m =
+      settings.start_text ? parse_point(arguments, "start", *settings.start_text, option::run_start) : scene.device.home_m;
+  PlanarSimulationConfig simulation;
+  simulation.hand = planar_hand(arguments, settings, scene, start_m);
+  simulation.noise_seed = settings.simulation.noise_seed;
+  std::unique_ptr<SimulatedPlanar> device;
+  try {
+    simulation.start_q_rad = planar_joint_angles_at(scene.device, start_m);
+    device = std::make_unique<SimulatedPlanar>(scene.device, simulation);
+  } catch (const InputError& error) {
+    arguments.fail(std::string("--start: ") + error.what());
+  }
+
+  std::unique_ptr<TelemetryLogOf<2>> log;
+  if (settings.log_path) {
+    const auto run_ticks = static_cast<std::size_t>(std::llround(settings.options.duration_s * scene.rate_hz));
+    const std::size_t capacity = settings.options.pacing == Pacing::simulated_time
+                                     ? std::clamp<std::size_t>(run_ticks + 1, kDefaultTelemetryCapacity, 1u << 21)
+                                     : kDefaultTelemetryCapacity;
+    log = std::make_unique<TelemetryLogOf<2>>(*settings.log_path, capacity);
+  }
+  RunOptions options = settings.options;
+  options.reload = nullptr;  // hot reload: 1-DOF scenes only, so far
+  const RunSummaryOf<2> summary = run_scene(scene, *device, options, log.get());
+  print_planar_summary(scene, settings, simulation.hand, summary, *device);
+  bool write_failed = false;
+  if (log) {
+    log->finish();
+    if (!log->error().empty()) {
+      print_out("  telemetry        FAILED: %s\n", printable(log->error()).c_str());
+      std::fprintf(stderr, "hapscene run: %s\n", printable(log->error()).c_str());
+      write_failed = true;
+    } else {
+      print_out("  telemetry        %llu samples written to %s, %llu dropped (ring full)\n",
+                static_cast<unsigned long long>(log->written()), printable(*settings.log_path).c_str(),
+                static_cast<unsigned long long>(log->dropped()));
+    }
+  }
+  flush_out();
+  const bool faulted = summary.overrun_fault || summary.safety.nonfinite_faults > 0;
+  return faulted || write_failed ? kExitFailure : kExitOk;
+}
+
+}  // namespace hapscene
