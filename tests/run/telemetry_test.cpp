@@ -139,8 +139,8 @@ TEST_CASE("telemetry log: the CSV of a simulated run equals the traced ticks exa
     CHECK(values[2] == s.v_m_per_s);
     CHECK(values[3] == s.force_N);
     CHECK(values[4] == s.output_N);
-    CHECK(values[5] == s.duty);
-    CHECK(values[6] == (s.direction_high ? 1.0 : 0.0));
+    CHECK(values[5] == s.command.duty);
+    CHECK(values[6] == (s.command.direction_high ? 1.0 : 0.0));
     ++row;
   }
   CHECK(row == 1000);

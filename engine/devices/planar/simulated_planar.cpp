@@ -1,5 +1,6 @@
 #include "engine/devices/planar/simulated_planar.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -36,9 +37,16 @@ PlanarPlantParameters planar_plant_parameters(const PlanarProfile& profile) {
   p.rotor_inertia_kg_m2 = plant.rotor_inertia_kg_m2;
   p.viscous_N_m_s_per_rad = plant.viscous_N_m_s_per_rad;
   p.coulomb_N_m = plant.coulomb_N_m;
+  // The profile's stops are of the sensed angles; the plant's of the linkage's joints.
+  // With a coupling (q2 = sensed 2 + c q1) joint 2's stops widen by the most c q1 adds,
+  // so a pose within the sensed stops never starts in contact.
+  const double coupling_margin_rad =
+      std::fabs(profile.coupling) *
+      std::max(std::fabs(plant.end_stops_rad[0][0]), std::fabs(plant.end_stops_rad[0][1]));
   for (int i = 0; i < 2; ++i) {
-    p.stop_min_rad[i] = plant.end_stops_rad[static_cast<std::size_t>(i)][0];
-    p.stop_max_rad[i] = plant.end_stops_rad[static_cast<std::size_t>(i)][1];
+    const double margin_rad = i == 1 ? coupling_margin_rad : 0.0;
+    p.stop_min_rad[i] = plant.end_stops_rad[static_cast<std::size_t>(i)][0] - margin_rad;
+    p.stop_max_rad[i] = plant.end_stops_rad[static_cast<std::size_t>(i)][1] + margin_rad;
     p.stop_stiffness_N_m_per_rad[i] = plant.end_stop_stiffness_N_m_per_rad;
     // Critically damped against the joint's own inertia would need the pose; a small
     // fixed fraction keeps contacts from ringing.
@@ -51,14 +59,18 @@ PlanarPlantParameters planar_plant_parameters(const PlanarProfile& profile) {
 }
 
 Vec2 planar_joint_angles_at(const PlanarProfile& profile, const Vec2& handle_m) {
-  // Coarse search: the pose on a 36 x 36 grid of joint angles nearest the target.
-  constexpr int kSteps = 36;
+  // Coarse search: the pose nearest the target on a grid of joint angles within the
+  // joints' end stops (of the sensed angles, before the coupling), so that of the
+  // linkage's assembly branches the one the device is built in is found.
+  constexpr int kSteps = 48;
+  const auto& stops = profile.plant.end_stops_rad;
   Vec2 best_q{};
   double best_m = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < kSteps; ++i) {
-    for (int j = 0; j < kSteps; ++j) {
-      const Vec2 q{{-std::numbers::pi + 2.0 * std::numbers::pi * i / kSteps,
-                    -std::numbers::pi + 2.0 * std::numbers::pi * j / kSteps}};
+  for (int i = 0; i <= kSteps; ++i) {
+    for (int j = 0; j <= kSteps; ++j) {
+      const double q1 = stops[0][0] + (stops[0][1] - stops[0][0]) * i / kSteps;
+      const double sensed_2 = stops[1][0] + (stops[1][1] - stops[1][0]) * j / kSteps;
+      const Vec2 q{{q1, sensed_2 + profile.coupling * q1}};
       const LinkagePose pose = solve_linkage(profile.linkage, q);
       if (!pose.valid) continue;
       const double distance_m = norm(pose.handle_m - handle_m);

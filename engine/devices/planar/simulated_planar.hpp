@@ -14,13 +14,14 @@ namespace hapscene {
 
 // The plant's parameters from a profile: link bodies, handle mass, rotor inertia (as the
 // profile gives it, reflected to the joint), joint friction and end stops (of the joints
-// as the linkage takes them; with a coupling, the profile's stops of the sensed angle are
-// used as they are, a small error at the coupling's 0.08). Motor torques are mapped to
+// as the linkage takes them; with a coupling, joint 2's widened by what the coupling can
+// add, as the plant knows no sensed angles). Motor torques are mapped to
 // joint torques by the device (the drive's ratios and coupling), not the plant.
 PlanarPlantParameters planar_plant_parameters(const PlanarProfile& profile);
 
 // Joint angles that put the handle at `handle_m` (the profile's home when not given):
-// a coarse search of the joint space for a pose near it, refined by Newton's method.
+// a coarse search of the joint space within the end stops (so the branch the device is
+// built in) for a pose near it, refined by Newton's method.
 // Throws InputError when the linkage cannot reach it.
 Vec2 planar_joint_angles_at(const PlanarProfile& profile, const Vec2& handle_m);
 
