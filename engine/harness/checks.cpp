@@ -23,9 +23,8 @@ const char* verdict_text(const CheckResult& check) {
   return check.pass ? "pass" : "FAIL";
 }
 
-std::vector<CheckResult> judge_scenario(const Scene& scene, const ForceField& field,
-                                        const ScenarioMetrics& m) {
-  const ValidateThresholds& t = scene.validate;
+std::vector<CheckResult> judge_scenario(const Scene& scene, const ValidateThresholds& t,
+                                        const ForceField& field, const ScenarioMetrics& m) {
   std::vector<CheckResult> checks;
 
   // Force: how large, how long at the limit, how fast it changes, how rough.

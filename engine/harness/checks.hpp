@@ -1,11 +1,12 @@
 #pragma once
-// Verdicts: each measurement of a scenario against its threshold (the scene's
+// Verdicts: each measurement of a scenario against its threshold (the environment's
 // "validate" block or the defaults).
 #include <string>
 #include <vector>
 
 #include "engine/harness/metrics.hpp"
 #include "engine/harness/scenario.hpp"
+#include "engine/load/validate_thresholds.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace hapscene {
@@ -30,7 +31,7 @@ inline constexpr const char* kCheckNames[] = {
 // "pass", "FAIL" or "not judged".
 const char* verdict_text(const CheckResult& check);
 
-std::vector<CheckResult> judge_scenario(const Scene& scene, const ForceField& field,
-                                        const ScenarioMetrics& metrics);
+std::vector<CheckResult> judge_scenario(const Scene& scene, const ValidateThresholds& thresholds,
+                                        const ForceField& field, const ScenarioMetrics& metrics);
 
 }  // namespace hapscene

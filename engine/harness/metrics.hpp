@@ -8,6 +8,7 @@
 
 #include "engine/harness/force_field.hpp"
 #include "engine/harness/recorder.hpp"
+#include "engine/load/validate_thresholds.hpp"
 #include "engine/run/runner.hpp"
 #include "engine/scene/scene.hpp"
 
@@ -83,8 +84,9 @@ struct ScenarioMetrics {
   SafetyCounters safety;
 };
 
-// Measures one run; `final_x_m` is the true position after the last tick.
-ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
+// Measures one run; `final_x_m` is the true position after the last tick. Of the
+// thresholds, only min_judged_energy_J is read (whether growing energy counts).
+ScenarioMetrics measure_run(const Scene& scene, const ValidateThresholds& thresholds, const ForceField& field,
                             const std::vector<TickRecord>& records, double final_x_m,
                             const RunSummary& summary, std::optional<double> watch_from_s);
 

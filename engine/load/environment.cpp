@@ -130,9 +130,10 @@ VelocityEstimatorConfig parse_velocity(ObjectReader& reader) {
   return config;
 }
 
-Scene compile(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
+Environment compile(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
   ObjectReader reader(root, "", file);
-  Scene scene;
+  Environment environment;
+  Scene& scene = environment.scene;
   scene.source_path = file;
   // Printed by every command and in reports: printable (engine/base/format.hpp), so a
   // name holding "\n" or "\r" cannot forge an output line.
@@ -200,19 +201,19 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
     }
   }
 
-  // Thresholds for the harness (hapscene validate).
+  // Thresholds for the harness (hapscene validate): not part of the scene.
   if (const nlohmann::json* validate = reader.get("validate")) {
     ObjectReader validate_reader(*validate, reader.pointer_to("validate"), file);
-    parse_validate_block(validate_reader, &scene.validate);
+    parse_validate_block(validate_reader, &environment.validate);
   }
   reader.finish();
-  return scene;
+  return environment;
 }
 
 }  // namespace
 
-Scene load_environment_text(std::string_view json_text, const std::string& display_name,
-                            const std::string& base_dir) {
+Environment compile_environment(std::string_view json_text, const std::string& display_name,
+                                const std::string& base_dir) {
   return compile(parse_json_text(json_text, display_name), display_name, base_dir);
 }
 
@@ -220,14 +221,16 @@ namespace {
 
 // A user's file: its warnings go to stderr at every load, whatever the command (scenes a
 // command builds from its own text, such as the bench's, keep theirs in the scene).
-Scene print_warnings(Scene scene) {
-  for (const std::string& warning : scene.load_warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
-  return scene;
+Environment print_warnings(Environment environment) {
+  for (const std::string& warning : environment.scene.load_warnings) {
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  }
+  return environment;
 }
 
 }  // namespace
 
-Scene load_environment_file(const std::string& path) {
+Environment load_environment(const std::string& path) {
   const std::filesystem::path file(path);
   const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
   // A .lua file is a one-effect environment with the script's default parameters.
@@ -238,7 +241,14 @@ Scene load_environment_file(const std::string& path) {
         {{"name", file.stem().string()}, {"effects", nlohmann::json::array({script})}});
     return print_warnings(compile(root, path, base_dir));
   }
-  return print_warnings(load_environment_text(read_text_file(path, kMaxJsonFileBytes), path, base_dir));
+  return print_warnings(compile_environment(read_text_file(path, kMaxJsonFileBytes), path, base_dir));
+}
+
+Scene load_environment_file(const std::string& path) { return load_environment(path).scene; }
+
+Scene load_environment_text(std::string_view json_text, const std::string& display_name,
+                            const std::string& base_dir) {
+  return compile_environment(json_text, display_name, base_dir).scene;
 }
 
 }  // namespace hapscene

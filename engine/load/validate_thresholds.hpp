@@ -1,8 +1,9 @@
 #pragma once
-// What `hapscene validate` judges a scene by. Part of the compiled scene, so an
-// environment carries its own thresholds in its optional "validate" block; the defaults
-// suit a Hapkit lab environment. A negative value means "derive from the scene" (see
-// the comment of each field).
+// What `hapscene validate` judges a scene by. An environment carries its own thresholds
+// in its optional "validate" block, which the loader reads beside the scene (Environment,
+// environment.hpp) and the harness takes through HarnessOptions::thresholds; the tick
+// never reads them. The defaults suit a Hapkit lab environment. A negative value means
+// "derive from the scene" (see the comment of each field).
 #include <cstdint>
 
 namespace hapscene {
