@@ -36,8 +36,11 @@ struct EffectType {
 template <typename T>
 EffectType effect_type() {
   return EffectType{T::kType, [](ObjectReader& reader, ScriptLoadBudget* budget) {
-                      if constexpr (std::is_same_v<T, ScriptEffect>) return Effect{T::parse(reader, budget)};
-                      return Effect{T::parse(reader)};
+                      if constexpr (std::is_same_v<T, ScriptEffect>) {
+                        return Effect{T::parse(reader, *budget)};
+                      } else {
+                        return Effect{T::parse(reader)};
+                      }
                     }};
 }
 
