@@ -59,10 +59,10 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const ValidateThresh
              p.dissipated_J * 1e3, p.net_J * 1e3, p.grows ? ", growing" : ""));
   // Too little energy created to weigh (a negative ratio: the rendering absorbed energy):
   // not judged, which does not fail, and says so.
-  passivity.judged = p.created_J > t.min_judged_energy_J;
+  passivity.judged = p.created_J > kMinJudgedEnergy_J;
   passivity.pass = !passivity.judged || (p.ratio <= t.max_passivity_ratio && !p.grows);
   if (!passivity.judged) {
-    passivity.detail += printf_string("; not judged: created at most %g mJ", t.min_judged_energy_J * 1e3);
+    passivity.detail += printf_string("; not judged: created at most %g mJ", kMinJudgedEnergy_J * 1e3);
   }
   if (!field.behaviour.static_field()) {
     passivity.detail += "; stored energy from the field at rest (" + field.behaviour.note + ")";

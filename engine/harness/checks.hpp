@@ -18,7 +18,7 @@ struct CheckResult {
   std::string unit;        // "N", "N/s", "m", "s", "" (ratio), "ticks"
   bool pass{};
   std::string detail;      // where/when, and the numbers behind the value
-  // false: the measurement was too small to judge (passivity below min_judged_energy):
+  // false: the measurement was too small to judge (passivity below kMinJudgedEnergy_J):
   // shown as "not judged"; it does not fail the run (pass stays true).
   bool judged{true};
 };

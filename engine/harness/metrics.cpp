@@ -9,7 +9,7 @@
 namespace hapscene {
 namespace {
 
-PassivityMetrics measure_passivity(const Scene& scene, double min_judged_energy_J, const ForceField& field,
+PassivityMetrics measure_passivity(const Scene& scene, const ForceField& field,
                                    const std::vector<TickRecord>& records, double final_x_m) {
   PassivityMetrics p;
   const double b_N_s_per_m = scene.device.plant.viscous_N_s_per_m;
@@ -33,7 +33,7 @@ PassivityMetrics measure_passivity(const Scene& scene, double min_judged_energy_
   p.created_J = p.motor_work_J + p.stored_J;
   p.net_J = p.created_J - p.dissipated_J;
   p.ratio = p.dissipated_J > 0.0 ? p.created_J / p.dissipated_J : 0.0;
-  p.grows = p.net_J > min_judged_energy_J && p.net_J > net_at_half_J;
+  p.grows = p.net_J > kMinJudgedEnergy_J && p.net_J > net_at_half_J;
   return p;
 }
 
@@ -88,7 +88,7 @@ OscillationMetrics measure_oscillation(const std::vector<TickRecord>& records, d
   return o;
 }
 
-ScenarioMetrics measure_run(const Scene& scene, const ValidateThresholds& thresholds, const ForceField& field,
+ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
                             const std::vector<TickRecord>& records, double final_x_m,
                             const RunSummary& summary, std::optional<double> watch_from_s) {
   ScenarioMetrics m;
@@ -152,7 +152,7 @@ ScenarioMetrics measure_run(const Scene& scene, const ValidateThresholds& thresh
   if (records.size() > 2) m.force_jitter_N = std::sqrt(jitter_sum_N2 / static_cast<double>(records.size() - 2));
 
   // Energy and oscillation.
-  m.passivity = measure_passivity(scene, thresholds.min_judged_energy_J, field, records, final_x_m);
+  m.passivity = measure_passivity(scene, field, records, final_x_m);
   if (watch_from_s) {
     const double per_count_m =
         std::abs(counts_to_position_m(scene.device, 0.0) - counts_to_position_m(scene.device, 1.0));

@@ -8,7 +8,6 @@
 
 #include "engine/harness/force_field.hpp"
 #include "engine/harness/recorder.hpp"
-#include "engine/load/validate_thresholds.hpp"
 #include "engine/run/runner.hpp"
 #include "engine/scene/scene.hpp"
 
@@ -84,9 +83,12 @@ struct ScenarioMetrics {
   SafetyCounters safety;
 };
 
-// Measures one run; `final_x_m` is the true position after the last tick. Of the
-// thresholds, only min_judged_energy_J is read (whether growing energy counts).
-ScenarioMetrics measure_run(const Scene& scene, const ValidateThresholds& thresholds, const ForceField& field,
+// At most this much energy created (0.01 mJ), the passivity check does not judge a
+// scenario, and growing net energy does not count. No environment key sets it.
+inline constexpr double kMinJudgedEnergy_J = 1e-5;
+
+// Measures one run; `final_x_m` is the true position after the last tick.
+ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
                             const std::vector<TickRecord>& records, double final_x_m,
                             const RunSummary& summary, std::optional<double> watch_from_s);
 

@@ -72,7 +72,7 @@ ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const S
 
   // Measure and judge (a run stopped for its pace is judged on that alone).
   result.records = recorder.take();
-  result.metrics = measure_run(scene, options.thresholds, field, result.records, device.x_m(), summary, scenario.watch_from_s);
+  result.metrics = measure_run(scene, field, result.records, device.x_m(), summary, scenario.watch_from_s);
   if (pace.too_slow()) {
     result.checks = {pace.check(scene)};
   } else {
