@@ -15,6 +15,11 @@ inline Scene scene_from(const std::string& json_text) {
   return load_environment_text(json_text, "test.json", HAPSCENE_SOURCE_DIR "/environments");
 }
 
+// The same, with the harness's thresholds (the "validate" block) beside the scene.
+inline Environment environment_from(const std::string& json_text) {
+  return compile_environment(json_text, "test.json", HAPSCENE_SOURCE_DIR "/environments");
+}
+
 // The message of the InputError `call` throws, or "(no error)".
 inline std::string input_error_of(const std::function<void()>& call) {
   try {

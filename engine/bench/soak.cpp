@@ -7,6 +7,7 @@
 
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/harness/force_field.hpp"
+#include "engine/load/validate_thresholds.hpp"
 #include "engine/run/runner.hpp"
 
 namespace hapscene {
@@ -96,7 +97,9 @@ SoakResult run_soak(const Scene& scene, std::uint64_t ticks) {
   config.hand.motion = HandMotion::sweep;
   SimulatedHapkit device(scene.device, config);
   const double period_s = 2.0 * (config.hand.sweep_max_m - config.hand.sweep_min_m) / config.hand.speed_m_per_s;
-  const ForceField field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);
+  // Only the field's potential is read (its stiff regions are not), so the default
+  // threshold serves every environment.
+  const ForceField field = probe_force_field(scene, ValidateThresholds{}.stiff_threshold_N_per_m);
   SoakWatch watch(device, field, scene.device.plant.mass_kg,
                   static_cast<std::uint64_t>(std::llround(period_s * scene.rate_hz)));
 

@@ -20,7 +20,7 @@ namespace hapscene {
 
 int plot_command(std::vector<std::string> args) {
   Arguments arguments(std::move(args), "hapscene plot");
-  const HarnessOptions options = take_harness_options(arguments);
+  HarnessOptions options = take_harness_options(arguments);
   const std::vector<ScenarioKind> kinds = take_scenarios(arguments);
   const std::optional<std::string> out_path = arguments.take_value("output");
   const std::vector<std::string> files = arguments.positionals();
@@ -31,8 +31,10 @@ int plot_command(std::vector<std::string> args) {
     if (!problem.empty()) arguments.fail(problem);
   }
 
-  const Scene scene = load_environment_file(files[0]);
-  const ForceField field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);
+  const Environment environment = load_environment(files[0]);
+  const Scene& scene = environment.scene;
+  options.thresholds = environment.validate;
+  const ForceField field = probe_force_field(scene, options.thresholds.stiff_threshold_N_per_m);
   const ScenarioKind kind = kinds.empty() ? ScenarioKind::sweep : kinds[0];
   const ScenarioResult result = run_scenario(scene, field, build_scenario(kind, scene, field, options), options);
   // Script faults: the field scan's, the curve's and the run's, each once.

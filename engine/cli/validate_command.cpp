@@ -50,8 +50,11 @@ int validate_command(std::vector<std::string> args) {
   int exit_code = kExitOk;
   for (std::size_t i = 0; i < files.size(); ++i) {
     const int file_code = run_for_file([&] {
-      const Scene scene = load_environment_file(files[i]);
-      const ValidationReport report = validate_scene(scene, kinds, options);
+      const Environment environment = load_environment(files[i]);
+      const Scene& scene = environment.scene;
+      HarnessOptions file_options = options;
+      file_options.thresholds = environment.validate;
+      const ValidationReport report = validate_scene(scene, kinds, file_options);
       // The printed forms name the file in printable form (the JSON report escapes it).
       ValidationReport shown = report;
       shown.source_path = printable(report.source_path);

@@ -84,7 +84,7 @@ ScriptLoadBudget plan_script_loads(const nlohmann::json& effects, const std::str
   return budget;
 }
 
-ScriptEffect ScriptEffect::parse(ObjectReader& reader, ScriptLoadBudget* budget) {
+ScriptEffect ScriptEffect::parse(ObjectReader& reader, ScriptLoadBudget& budget) {
   // Where the script is: a file relative to the environment, or inline source.
   const bool has_file = reader.has("file");
   const bool has_source = reader.has("source");
@@ -125,22 +125,19 @@ ScriptEffect ScriptEffect::parse(ObjectReader& reader, ScriptLoadBudget* budget)
 
   // The load may take its own load_time, or what is left of the environment's budget.
   ScriptLimits load_limits = limits;
-  double left_s = load_limits.load_time_s;
   const auto shared_budget = [&] {
-    return "the script effects of this environment share " + format_number(budget->total_s) +
+    return "the script effects of this environment share " + format_number(budget.total_s) +
            " s to load (the larger of " + format_number(kScriptLoadBudget_s) + " s and their largest load_time)";
   };
-  if (budget != nullptr) {
-    left_s = budget->total_s - budget->used_s;
-    if (left_s <= 0.0) reader.fail("", shared_budget() + ", and the scripts before this one used it all");
-    load_limits.load_time_s = std::min(load_limits.load_time_s, left_s);
-  }
+  const double left_s = budget.total_s - budget.used_s;
+  if (left_s <= 0.0) reader.fail("", shared_budget() + ", and the scripts before this one used it all");
+  load_limits.load_time_s = std::min(load_limits.load_time_s, left_s);
   ScriptEffect effect;
   if (has_file) effect.file = raw_path;
   const auto started = std::chrono::steady_clock::now();
   const auto charge = [&] {
     const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    if (budget != nullptr) budget->used_s += took_s;
+    budget.used_s += took_s;
     return took_s;
   };
   try {
@@ -153,7 +150,7 @@ ScriptEffect ScriptEffect::parse(ObjectReader& reader, ScriptLoadBudget* budget)
     const double took_s = charge();
     const std::string message = error.what();
     // Stopped by the shared budget rather than by its own load_time.
-    if (budget != nullptr && left_s < limits.load_time_s && took_s >= left_s) {
+    if (left_s < limits.load_time_s && took_s >= left_s) {
       reader.fail("", shared_budget() + ", and this one was stopped when it ran out: " + message);
     }
     // An error inside a referenced script file: "env.json: /effects/0/file: s.lua:12: ...".

@@ -40,8 +40,8 @@ struct ScriptEffect {
   Needs needs;                   // what the script declared it reads
 
   // Reads and compiles one script effect; its load takes no longer than what is left of
-  // `budget` (when given), and what it took is added to it.
-  static ScriptEffect parse(ObjectReader& reader, ScriptLoadBudget* budget = nullptr);
+  // the environment's `budget`, and what it took is added to it.
+  static ScriptEffect parse(ObjectReader& reader, ScriptLoadBudget& budget);
 };
 
 // Checks the bounds on an environment's script effects together before any is loaded,

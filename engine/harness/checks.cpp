@@ -23,9 +23,8 @@ const char* verdict_text(const CheckResult& check) {
   return check.pass ? "pass" : "FAIL";
 }
 
-std::vector<CheckResult> judge_scenario(const Scene& scene, const ForceField& field,
-                                        const ScenarioMetrics& m) {
-  const ValidateThresholds& t = scene.validate;
+std::vector<CheckResult> judge_scenario(const Scene& scene, const ValidateThresholds& t,
+                                        const ForceField& field, const ScenarioMetrics& m) {
   std::vector<CheckResult> checks;
 
   // Force: how large, how long at the limit, how fast it changes, how rough.
@@ -60,10 +59,10 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const ForceField& fi
              p.dissipated_J * 1e3, p.net_J * 1e3, p.grows ? ", growing" : ""));
   // Too little energy created to weigh (a negative ratio: the rendering absorbed energy):
   // not judged, which does not fail, and says so.
-  passivity.judged = p.created_J > t.min_judged_energy_J;
+  passivity.judged = p.created_J > kMinJudgedEnergy_J;
   passivity.pass = !passivity.judged || (p.ratio <= t.max_passivity_ratio && !p.grows);
   if (!passivity.judged) {
-    passivity.detail += printf_string("; not judged: created at most %g mJ", t.min_judged_energy_J * 1e3);
+    passivity.detail += printf_string("; not judged: created at most %g mJ", kMinJudgedEnergy_J * 1e3);
   }
   if (!field.behaviour.static_field()) {
     passivity.detail += "; stored energy from the field at rest (" + field.behaviour.note + ")";

@@ -1,11 +1,12 @@
 #pragma once
-// Verdicts: each measurement of a scenario against its threshold (the scene's
+// Verdicts: each measurement of a scenario against its threshold (the environment's
 // "validate" block or the defaults).
 #include <string>
 #include <vector>
 
 #include "engine/harness/metrics.hpp"
 #include "engine/harness/scenario.hpp"
+#include "engine/load/validate_thresholds.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace hapscene {
@@ -17,7 +18,7 @@ struct CheckResult {
   std::string unit;        // "N", "N/s", "m", "s", "" (ratio), "ticks"
   bool pass{};
   std::string detail;      // where/when, and the numbers behind the value
-  // false: the measurement was too small to judge (passivity below min_judged_energy):
+  // false: the measurement was too small to judge (passivity below kMinJudgedEnergy_J):
   // shown as "not judged"; it does not fail the run (pass stays true).
   bool judged{true};
 };
@@ -30,7 +31,7 @@ inline constexpr const char* kCheckNames[] = {
 // "pass", "FAIL" or "not judged".
 const char* verdict_text(const CheckResult& check);
 
-std::vector<CheckResult> judge_scenario(const Scene& scene, const ForceField& field,
-                                        const ScenarioMetrics& metrics);
+std::vector<CheckResult> judge_scenario(const Scene& scene, const ValidateThresholds& thresholds,
+                                        const ForceField& field, const ScenarioMetrics& metrics);
 
 }  // namespace hapscene

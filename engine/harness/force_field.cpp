@@ -32,7 +32,8 @@ double ForceField::penetration_m(double x_m) const noexcept {
   return depth_m;
 }
 
-void require_sampleable_workspace(const Scene& scene, double step_m) {
+void require_sampleable_workspace(const Scene& scene) {
+  constexpr double step_m = kFieldStep_m;
   const double span_m = scene.safety.workspace_max_m - scene.safety.workspace_min_m;
   const double max_span_m = static_cast<double>(kMaxFieldPoints - 1) * step_m;
   if (std::isfinite(span_m) && span_m <= max_span_m * (1.0 + 1e-9)) return;
@@ -43,8 +44,9 @@ void require_sampleable_workspace(const Scene& scene, double step_m) {
       scene.safety.workspace_max_m, span_m, step_m * 1e6, max_span_m));
 }
 
-ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m, double step_m) {
-  require_sampleable_workspace(scene, step_m);
+ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m) {
+  constexpr double step_m = kFieldStep_m;
+  require_sampleable_workspace(scene);
   ForceField field;
   field.min_m = scene.safety.workspace_min_m;
   field.step_m = step_m;

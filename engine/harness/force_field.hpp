@@ -41,17 +41,18 @@ struct ForceField {
   double penetration_m(double x_m) const noexcept;
 };
 
-// At most this many grid points: a workspace wider than kMaxFieldPoints * step_m is
-// refused (InputError naming the device profile), so memory and time stay bounded.
+// The probe's grid step (ForceField::step_m), and at most this many grid points: a
+// workspace wider than (kMaxFieldPoints - 1) * kFieldStep_m is refused (InputError
+// naming the device profile), so memory and time stay bounded.
+inline constexpr double kFieldStep_m = 20e-6;
 inline constexpr std::size_t kMaxFieldPoints = 50'001;
 
-// Throws InputError when the scene's workspace needs more than kMaxFieldPoints at step_m.
-void require_sampleable_workspace(const Scene& scene, double step_m = 20e-6);
+// Throws InputError when the scene's workspace needs more than kMaxFieldPoints.
+void require_sampleable_workspace(const Scene& scene);
 
-// Probes the scene over its safety workspace every step_m, each point from fresh
+// Probes the scene over its safety workspace every kFieldStep_m, each point from fresh
 // script instances (see open_loop.hpp). Scripts too slow for the loop are not probed
 // (ForceField::too_slow): thousands of points of them would take hours.
-ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m,
-                             double step_m = 20e-6);
+ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m);
 
 }  // namespace hapscene

@@ -33,7 +33,7 @@ PassivityMetrics measure_passivity(const Scene& scene, const ForceField& field,
   p.created_J = p.motor_work_J + p.stored_J;
   p.net_J = p.created_J - p.dissipated_J;
   p.ratio = p.dissipated_J > 0.0 ? p.created_J / p.dissipated_J : 0.0;
-  p.grows = p.net_J > scene.validate.min_judged_energy_J && p.net_J > net_at_half_J;
+  p.grows = p.net_J > kMinJudgedEnergy_J && p.net_J > net_at_half_J;
   return p;
 }
 

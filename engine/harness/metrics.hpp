@@ -83,6 +83,10 @@ struct ScenarioMetrics {
   SafetyCounters safety;
 };
 
+// At most this much energy created (0.01 mJ), the passivity check does not judge a
+// scenario, and growing net energy does not count. No environment key sets it.
+inline constexpr double kMinJudgedEnergy_J = 1e-5;
+
 // Measures one run; `final_x_m` is the true position after the last tick.
 ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
                             const std::vector<TickRecord>& records, double final_x_m,

@@ -93,7 +93,7 @@ Scenario build_scenario(ScenarioKind kind, const Scene& scene, const ForceField&
   const double low_m = scene.safety.workspace_min_m + kWorkspaceMargin_m;
   const double high_m = scene.safety.workspace_max_m - kWorkspaceMargin_m;
   const auto inside = [&](double x_m) { return std::clamp(x_m, low_m, high_m); };
-  const ValidateThresholds& limits = scene.validate;
+  const ValidateThresholds& limits = options.thresholds;
   PathBuilder path(0.0);
 
   switch (kind) {

@@ -16,6 +16,7 @@
 
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/harness/force_field.hpp"
+#include "engine/load/validate_thresholds.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace hapscene {
@@ -25,7 +26,8 @@ enum class ScenarioKind { sweep, press, release, hold, shake, free };
 inline constexpr std::string_view kScenarioNames[] = {"sweep", "press", "release",
                                                       "hold",  "shake", "free"};
 
-// Options shared by every scenario (the command line's --hand-*, --noise, --seed, --start).
+// Options shared by every scenario (the command line's --hand-*, --noise, --seed, --start),
+// and the thresholds of the environment's "validate" block (Environment::validate).
 struct HarnessOptions {
   double hand_stiffness_N_per_m{200.0};  // a relaxed grip on the paddle
   double hand_damping_N_s_per_m{2.0};
@@ -33,6 +35,7 @@ struct HarnessOptions {
   double noise_counts{-1.0};             // sensor noise; < 0: the profile's
   std::uint64_t seed{1};
   double free_start_m{0.004};            // free: where the handle starts (home period)
+  ValidateThresholds thresholds;         // how scenarios are built and judged
 };
 
 struct Scenario {

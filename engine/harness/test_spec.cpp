@@ -175,18 +175,21 @@ SpecResult run_test_spec(const std::string& spec_path) {
   // The environment, and everything its content can make invalid, named from the spec's
   // "/environment" (the message itself names the environment file and the place).
   const std::string referrer = spec_path + ": /environment: ";
-  std::optional<Scene> loaded;
+  std::optional<Environment> loaded;
   try {
-    loaded.emplace(load_environment_file(spec.environment_path));
-    require_sampleable_workspace(*loaded);
+    loaded.emplace(load_environment(spec.environment_path));
+    require_sampleable_workspace(loaded->scene);
   } catch (const InputError& error) {
     throw InputError(referrer + error.what());
   }
-  const Scene& scene = *loaded;
+  const Scene& scene = loaded->scene;
+  // The spec's options, judged by the environment's own thresholds.
+  HarnessOptions options = spec.options;
+  options.thresholds = loaded->validate;
   // The free scenario's start: where this environment's device can start counting.
   const bool needs_runs = spec.never_exceeds_N || spec.passes_validate || !spec.scenarios.empty();
   if (!spec.start_pointer.empty() || needs_runs) {
-    const std::string problem = free_start_problem(scene, spec.options);
+    const std::string problem = free_start_problem(scene, options);
     if (!problem.empty() && !spec.start_pointer.empty()) {
       throw InputError(located_message(spec_path, spec.start_pointer, problem));
     }
@@ -265,13 +268,13 @@ SpecResult run_test_spec(const std::string& spec_path) {
     add_faults(scan_faults_in_motion(scene, grid_m));
   };
   if (!needs_runs) {
-    if (scene.script_count > 0) add_faults(probe_force_field(scene, scene.validate.stiff_threshold_N_per_m).faults);
+    if (scene.script_count > 0) add_faults(probe_force_field(scene, options.thresholds.stiff_threshold_N_per_m).faults);
     add_motion_faults();
     return result;
   }
   std::optional<ValidationReport> validated;
   try {
-    validated.emplace(validate_scene(scene, {}, spec.options));
+    validated.emplace(validate_scene(scene, {}, options));
   } catch (const InputError& error) {
     throw InputError(referrer + error.what());
   }

@@ -76,7 +76,7 @@ ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const S
   if (pace.too_slow()) {
     result.checks = {pace.check(scene)};
   } else {
-    result.checks = judge_scenario(scene, field, result.metrics);
+    result.checks = judge_scenario(scene, options.thresholds, field, result.metrics);
   }
   result.pass = std::all_of(result.checks.begin(), result.checks.end(),
                             [](const CheckResult& c) { return c.pass; });
@@ -100,7 +100,7 @@ ValidationReport validate_scene(const Scene& scene, const std::vector<ScenarioKi
     report.pass = false;
     return report;
   }
-  report.field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);
+  report.field = probe_force_field(scene, options.thresholds.stiff_threshold_N_per_m);
   for (const StiffRegion& region : report.field.regions) {
     report.stiffest_region_N_per_m = std::max(report.stiffest_region_N_per_m, region.stiffness_N_per_m);
   }
@@ -118,7 +118,7 @@ ValidationReport validate_scene(const Scene& scene, const std::vector<ScenarioKi
     std::string detail = "in the force-field scan: " + faults[0];
     for (std::size_t i = 1; i < faults.size(); ++i) detail += "; " + faults[i];
     const auto count = static_cast<double>(faults.size());
-    const auto allowed = static_cast<double>(scene.validate.max_script_faults);
+    const auto allowed = static_cast<double>(options.thresholds.max_script_faults);
     report.scene_checks.push_back(CheckResult{"script", count, allowed, "faults", count <= allowed, detail});
   }
   for (const CheckResult& check : report.scene_checks) report.pass = report.pass && check.pass;

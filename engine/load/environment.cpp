@@ -39,8 +39,11 @@ struct EffectType {
 template <typename T>
 EffectType effect_type() {
   return EffectType{T::kType, [](ObjectReader& reader, ScriptLoadBudget* budget) {
-                      if constexpr (std::is_same_v<T, ScriptEffect>) return Effect{T::parse(reader, budget)};
-                      return Effect{T::parse(reader)};
+                      if constexpr (std::is_same_v<T, ScriptEffect>) {
+                        return Effect{T::parse(reader, *budget)};
+                      } else {
+                        return Effect{T::parse(reader)};
+                      }
                     }};
 }
 
@@ -188,9 +191,10 @@ const nlohmann::json& effects_array(ObjectReader& reader) {
   return *effects;
 }
 
-Scene compile(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
+Environment compile(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
   ObjectReader reader(root, "", file);
-  Scene scene;
+  Environment environment;
+  Scene& scene = environment.scene;
   compile_header(reader, file, base_dir, load_device_profile, &scene);
   scene.device_model = compile_device_model(scene.device);
 
@@ -220,13 +224,13 @@ Scene compile(const nlohmann::json& root, const std::string& file, const std::st
     }
   }
 
-  // Thresholds for the harness (hapscene validate).
+  // Thresholds for the harness (hapscene validate): not part of the scene.
   if (const nlohmann::json* validate = reader.get("validate")) {
     ObjectReader validate_reader(*validate, reader.pointer_to("validate"), file);
-    parse_validate_block(validate_reader, &scene.validate);
+    parse_validate_block(validate_reader, &environment.validate);
   }
   reader.finish();
-  return scene;
+  return environment;
 }
 
 // A planar scene's "safety" block: force and slew limits, soft start, and the workspace
@@ -334,8 +338,8 @@ std::string device_named(const nlohmann::json& root) {
 
 }  // namespace
 
-Scene load_environment_text(std::string_view json_text, const std::string& display_name,
-                            const std::string& base_dir) {
+Environment compile_environment(std::string_view json_text, const std::string& display_name,
+                                const std::string& base_dir) {
   return compile(parse_json_text(json_text, display_name), display_name, base_dir);
 }
 
@@ -343,9 +347,11 @@ namespace {
 
 // A user's file: its warnings go to stderr at every load, whatever the command (scenes a
 // command builds from its own text, such as the bench's, keep theirs in the scene).
-Scene print_warnings(Scene scene) {
-  for (const std::string& warning : scene.load_warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
-  return scene;
+Environment print_warnings(Environment environment) {
+  for (const std::string& warning : environment.scene.load_warnings) {
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  }
+  return environment;
 }
 
 }  // namespace
@@ -369,7 +375,7 @@ PlanarScene load_planar_environment_file(const std::string& path) {
   return load_planar_environment_text(read_text_file(path, kMaxJsonFileBytes), path, base_dir);
 }
 
-Scene load_environment_file(const std::string& path) {
+Environment load_environment(const std::string& path) {
   const std::filesystem::path file(path);
   const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
   // A .lua file is a one-effect environment with the script's default parameters.
@@ -380,7 +386,14 @@ Scene load_environment_file(const std::string& path) {
         {{"name", file.stem().string()}, {"effects", nlohmann::json::array({script})}});
     return print_warnings(compile(root, path, base_dir));
   }
-  return print_warnings(load_environment_text(read_text_file(path, kMaxJsonFileBytes), path, base_dir));
+  return print_warnings(compile_environment(read_text_file(path, kMaxJsonFileBytes), path, base_dir));
+}
+
+Scene load_environment_file(const std::string& path) { return load_environment(path).scene; }
+
+Scene load_environment_text(std::string_view json_text, const std::string& display_name,
+                            const std::string& base_dir) {
+  return compile_environment(json_text, display_name, base_dir).scene;
 }
 
 }  // namespace hapscene

@@ -1,20 +1,35 @@
 #pragma once
 // Loading an environment file into a compiled Scene: parse, check every value with a
 // located error, then compile (device profile, safety limits, what the effects need).
+// The file's harness settings (its "validate" block) are checked at every load too, and
+// come back beside the scene (Environment) for the commands that run the harness.
 #include <string>
 #include <string_view>
 
+#include "engine/load/validate_thresholds.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace hapscene {
 
+// An environment file as loaded: the scene the tick runs, and what the harness judges it
+// by (the "validate" block over the defaults).
+struct Environment {
+  Scene scene;
+  ValidateThresholds validate;
+};
+
 // Loads an environment file. Throws InputError naming the file and the place. Its load
 // warnings (Scene::load_warnings) are also printed to stderr.
-Scene load_environment_file(const std::string& path);
+Environment load_environment(const std::string& path);
 
 // Compiles environment JSON text; `display_name` names it in messages and relative
 // paths in it (a device profile) are taken from `base_dir`. Throws InputError. Load
 // warnings stay in the scene, unprinted.
+Environment compile_environment(std::string_view json_text, const std::string& display_name,
+                                const std::string& base_dir = ".");
+
+// The same, for the commands that need only the scene (the validate block is still checked).
+Scene load_environment_file(const std::string& path);
 Scene load_environment_text(std::string_view json_text, const std::string& display_name,
                             const std::string& base_dir = ".");
 

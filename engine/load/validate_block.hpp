@@ -1,7 +1,7 @@
 #pragma once
 // The environment's optional "validate" block: thresholds for `hapscene validate`.
 #include "engine/base/object_reader.hpp"
-#include "engine/scene/validate_thresholds.hpp"
+#include "engine/load/validate_thresholds.hpp"
 
 namespace hapscene {
 

@@ -10,9 +10,10 @@
 
 namespace hapscene {
 
-RealtimeGuard::RealtimeGuard(bool enabled, int priority) : enabled_(enabled) {
+RealtimeGuard::RealtimeGuard(bool enabled) : enabled_(enabled) {
+  constexpr int priority = kPriority;
   if (!enabled) {
-    note_ = "off (simulated time or not asked for)";
+    note_ = "off (simulated time)";
     return;
   }
   // SCHED_FIFO for this thread, remembering what it had.

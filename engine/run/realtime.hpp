@@ -10,14 +10,17 @@ namespace hapscene {
 
 class RealtimeGuard {
  public:
-  // `priority` for SCHED_FIFO (1..99). Does nothing when `enabled` is false.
-  RealtimeGuard(bool enabled, int priority = 80);
+  // SCHED_FIFO at kPriority. Does nothing when `enabled` is false.
+  explicit RealtimeGuard(bool enabled);
   ~RealtimeGuard();
   RealtimeGuard(const RealtimeGuard&) = delete;
   RealtimeGuard& operator=(const RealtimeGuard&) = delete;
 
   // One line for the summary: what was obtained, or why not.
   const std::string& note() const noexcept { return note_; }
+
+  // Above ordinary processes and most kernel threads, below the watchdogs (1..99).
+  static constexpr int kPriority = 80;
 
  private:
   bool enabled_{};

@@ -98,9 +98,10 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   const bool real_time = options.pacing == Pacing::real_time;
 
   // Wake-ups exactly when asked: the default 50 us timer slack would eat the spin margin.
-  // Real-time scheduling and locked memory when permitted, for the length of the run.
+  // Real-time scheduling and locked memory when permitted, for the length of a real-time
+  // run (see RealtimeGuard).
   if (real_time) prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
-  const RealtimeGuard realtime(real_time && options.realtime_scheduling);
+  const RealtimeGuard realtime(real_time);
   summary.realtime_note = realtime.note();
   std::uint32_t miss_streak = 0;
   MissWindow miss_window(options.overrun_window_deadlines);

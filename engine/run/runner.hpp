@@ -31,8 +31,6 @@ struct RunOptions {
   const std::atomic<bool>* stop_requested{nullptr};
   // Hot reload: scenes offered here replace the running one at a tick boundary.
   SceneExchange* reload{nullptr};  // (1-DOF scenes)
-  // Real time: SCHED_FIFO and locked memory when permitted (see RealtimeGuard).
-  bool realtime_scheduling{true};
   // Sustained overruns: this many deadline misses in a row (a single stall of k periods
   // counts k) is a warning, this many a fault: the device is commanded zero force and
   // the run ends.
@@ -90,8 +88,8 @@ struct RunSummaryOf {
   bool overrun_fault{};                 // the run ended on sustained or frequent overruns
   OverrunFault overrun_fault_kind{OverrunFault::none};  // which criterion ended it
   double overrun_fault_s{};             // device time of the fault
-  std::uint32_t most_misses_in_window{};
-  bool device_lost{};                   // the run ended because the device was lost (Device::lost)  // most misses within any overrun window seen
+  std::uint32_t most_misses_in_window{};  // most misses within any overrun window seen
+  bool device_lost{};                   // the run ended because the device was lost (Device::lost)
   // The safety limits at the start and at the end of the run (a hot reload may tighten
   // them, never loosen them): what the summary reports as in force.
   SafetyConfigOf<N> limits_at_start;

@@ -14,7 +14,6 @@
 #include "engine/effects/effect_types.hpp"
 #include "engine/effects/planar/planar_effect_types.hpp"
 #include "engine/scene/safety.hpp"
-#include "engine/scene/validate_thresholds.hpp"
 #include "engine/scene/velocity.hpp"
 
 namespace hapscene {
@@ -68,8 +67,6 @@ struct SceneOf {
 
   std::vector<typename Parts::Effects::Variant> effects;  // as written in the file
   std::size_t script_count{};       // ScriptEffects among them (instance_index 0..n-1)
-
-  ValidateThresholds validate;      // the optional "validate" block (the harness only)
 
   // Warnings found at load (printed to stderr by the loader; `validate` fails a check on
   // them): "environments/x.json: /effects/1 (wall): ... never acts ...".

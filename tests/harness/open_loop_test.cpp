@@ -105,19 +105,19 @@ TEST_CASE("force field: no walls are inferred from a script with state, nor from
   // One instance swept across the workspace lags (the mass follows), which a scan without
   // fresh instances reads as a stiff region everywhere.
   const Scene mass = scene_from(script_scene(kMass));
-  const ForceField field = probe_force_field(mass, mass.validate.stiff_threshold_N_per_m);
+  const ForceField field = probe_force_field(mass, ValidateThresholds{}.stiff_threshold_N_per_m);
   CHECK(field.regions.empty());
   CHECK(field.behaviour.stateful);
   CHECK(field.behaviour.note == "test.json#/effects/0/source keeps state between calls: not a fixed force field");
   const Scene buzz = scene_from(script_scene(
       "function force(s) if s.x > 0.01 then return -5000 * (s.x - 0.01) * math.cos(s.t * 50) end return 0 end"));
-  const ForceField buzz_field = probe_force_field(buzz, buzz.validate.stiff_threshold_N_per_m);
+  const ForceField buzz_field = probe_force_field(buzz, ValidateThresholds{}.stiff_threshold_N_per_m);
   CHECK(buzz_field.behaviour.time_varying);
   CHECK(buzz_field.regions.empty());
   // The same wall without time is a wall.
   const Scene wall = scene_from(script_scene(
       "needs = {time = false}\nfunction force(s) if s.x > 0.01 then return -5000 * (s.x - 0.01) end return 0 end"));
-  CHECK(probe_force_field(wall, wall.validate.stiff_threshold_N_per_m).regions.size() == 1);
+  CHECK(probe_force_field(wall, ValidateThresholds{}.stiff_threshold_N_per_m).regions.size() == 1);
 }
 
 TEST_CASE("force field: a workspace too wide to sample is refused, naming the file") {

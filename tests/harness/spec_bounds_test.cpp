@@ -209,7 +209,7 @@ TEST_CASE("pace: the force field and the force-displacement curve of a slow scri
   const test::ScratchFolder folder("slow_field");
   const Scene scene = load_environment_file(slow_environment(folder, kSlowScript));
   const auto start = std::chrono::steady_clock::now();
-  const ForceField field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);
+  const ForceField field = probe_force_field(scene, ValidateThresholds{}.stiff_threshold_N_per_m);
   CHECK(field.too_slow.starts_with("too slow for the 1000 Hz loop: "));
   CHECK(field.force_N.empty());
   const PlotPanel panel = force_displacement_panel(scene);

@@ -14,11 +14,14 @@ using hapscene::test::scene_from;
 
 namespace {
 
-// Runs one scenario of `scene` with the default hand (and optional sensor noise).
-ScenarioResult run(const Scene& scene, ScenarioKind kind, double noise_counts = -1.0) {
+// Runs one scenario of `scene` with the default hand (and optional sensor noise), judged
+// by `thresholds` (an environment's validate block).
+ScenarioResult run(const Scene& scene, ScenarioKind kind, double noise_counts = -1.0,
+                   const ValidateThresholds& thresholds = {}) {
   HarnessOptions options;
   options.noise_counts = noise_counts;
-  const ForceField field = probe_force_field(scene, scene.validate.stiff_threshold_N_per_m);
+  options.thresholds = thresholds;
+  const ForceField field = probe_force_field(scene, thresholds.stiff_threshold_N_per_m);
   return run_scenario(scene, field, build_scenario(kind, scene, field, options), options);
 }
 
@@ -145,9 +148,9 @@ TEST_CASE("validate: force limit, time at the limit and penetration, both ways")
   CHECK(check(stiff, "max_force").pass);  // never above the limit: the clamp holds
 
   // A lower max_force in the validate block fails the same run.
-  const Scene strict = scene_from(R"({"validate": {"max_force": "3 N", "max_penetration": "5 mm"},
+  const Environment strict = test::environment_from(R"({"validate": {"max_force": "3 N", "max_penetration": "5 mm"},
       "effects": [{"type": "wall", "position": "10 mm", "stiffness": 500, "solid": "above"}]})");
-  const ScenarioResult sweep = run(strict, ScenarioKind::sweep);
+  const ScenarioResult sweep = run(strict.scene, ScenarioKind::sweep, -1.0, strict.validate);
   CHECK_FALSE(check(sweep, "max_force").pass);
   CHECK(check(sweep, "max_force").threshold == 3.0);
   CHECK_FALSE(check(sweep, "penetration").pass);
@@ -168,8 +171,8 @@ TEST_CASE("validate: script faults and tick compute time have thresholds") {
   CHECK(compute.value > 0.0);
   CHECK(compute.pass);
   // A threshold no computer meets fails.
-  const ScenarioResult strict =
-      run(scene_from(R"({"validate": {"max_tick_compute": "1e-12 s"}, "effects": []})"), ScenarioKind::hold);
+  const Environment slow = test::environment_from(R"({"validate": {"max_tick_compute": "1e-12 s"}, "effects": []})");
+  const ScenarioResult strict = run(slow.scene, ScenarioKind::hold, -1.0, slow.validate);
   CHECK_FALSE(check(strict, "tick_compute").pass);
 }
 

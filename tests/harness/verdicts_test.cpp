@@ -45,10 +45,11 @@ TEST_CASE("verdicts: passivity below the judged energy is 'not judged', neither 
 
 TEST_CASE("verdicts: failing slip and jitter checks say where and when") {
   // 4 N switched on and off every 50 ms from 0.125 s: steps above the 2 N slip step.
-  const Scene scene = scene_from(R"({"effects": [{"type": "script", "source":
+  const Environment environment = test::environment_from(R"({"effects": [{"type": "script", "source":
     "function force(s) if s.t > 0.125 and math.floor(s.t / 0.05) % 2 == 1 then return 4 end return 0 end"}],
     "validate": {"max_force_jitter": "0.01 N"}})");
-  const ValidationReport report = validate_scene(scene, {ScenarioKind::hold}, {});
+  const ValidationReport report =
+      validate_scene(environment.scene, {ScenarioKind::hold}, {.thresholds = environment.validate});
   const CheckResult& slip = check(report.scenarios[0], "slip");
   REQUIRE_FALSE(slip.pass);
   CHECK(slip.detail.find("; first at ") != std::string::npos);

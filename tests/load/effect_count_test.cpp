@@ -86,7 +86,7 @@ TEST_CASE("effect count: a script load stops when the environment's shared budge
   ObjectReader reader(slow, "/effects/3", "test.json");
   ScriptLoadBudget budget{10.0, 9.7};
   const auto started = std::chrono::steady_clock::now();
-  const std::string message = test::input_error_of([&] { ScriptEffect::parse(reader, &budget); });
+  const std::string message = test::input_error_of([&] { ScriptEffect::parse(reader, budget); });
   const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   MESSAGE("stopped after " << took_s << " s");
   CHECK(message.starts_with("test.json: /effects/3: the script effects of this environment share 10 s to load (the "
@@ -98,7 +98,7 @@ TEST_CASE("effect count: a script load stops when the environment's shared budge
   // Nothing left: the next script is refused before it starts.
   const nlohmann::json quick = nlohmann::json::parse(kScript);
   ObjectReader next(quick, "/effects/4", "test.json");
-  CHECK(test::input_error_of([&] { ScriptEffect::parse(next, &budget); }) ==
+  CHECK(test::input_error_of([&] { ScriptEffect::parse(next, budget); }) ==
         "test.json: /effects/4: the script effects of this environment share 10 s to load (the larger of 10 s and "
         "their largest load_time), and the scripts before this one used it all");
 }
@@ -107,7 +107,7 @@ TEST_CASE("effect count: a script loaded on what is left of the budget keeps its
   const nlohmann::json quick = nlohmann::json::parse(kScript);
   ObjectReader reader(quick, "/effects/0", "test.json");
   ScriptLoadBudget budget{10.0, 9.0};
-  const ScriptEffect effect = ScriptEffect::parse(reader, &budget);
+  const ScriptEffect effect = ScriptEffect::parse(reader, budget);
   CHECK(effect.program->limits.load_time_s == 5.0);
   CHECK(budget.used_s > 9.0);
   CHECK(budget.used_s < 9.5);

@@ -165,15 +165,15 @@ TEST_CASE("environment: files that are missing, too large or too deep") {
 }
 
 TEST_CASE("environment: the validate block sets the harness's thresholds") {
-  const Scene defaults = scene_from(R"({"effects": []})");
+  const Environment defaults = test::environment_from(R"({"effects": []})");
   CHECK(defaults.validate.max_force_N < 0.0);  // derived from the safety limit
   CHECK(defaults.validate.max_passivity_ratio == 1.0);
-  const Scene scene = scene_from(R"({"validate": {"max_force": "3 N", "max_time_at_limit": 0.2,
+  const Environment environment = test::environment_from(R"({"validate": {"max_force": "3 N", "max_time_at_limit": 0.2,
       "max_slew": "1 N/ms", "max_slip_ticks": 5, "max_passivity_ratio": 0.8,
       "max_residual_amplitude": "0.1 mm", "max_amplitude_growth": 0.5, "max_penetration": "8 mm",
       "max_force_jitter": "0.05 N", "max_tick_compute": "100 us", "max_script_faults": 2,
       "stiff_threshold": "300 N/m", "press_force": "2 N", "release_from": "-15 mm"}, "effects": []})");
-  const ValidateThresholds& t = scene.validate;
+  const ValidateThresholds& t = environment.validate;
   CHECK(t.max_force_N == 3.0);
   CHECK(t.max_time_at_limit_fraction == 0.2);
   CHECK(t.max_slew_N_per_s == doctest::Approx(1000.0));

@@ -1,11 +1,9 @@
 #include "engine/devices/hil/simulated_board.hpp"
 
 #include <fcntl.h>
-#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/socket.h>
-#include <sys/uio.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -17,6 +15,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
+#include "engine/devices/hil/channel_io.hpp"
 #include "engine/devices/hil/firmware_image.hpp"
 
 extern char** environ;
@@ -25,6 +24,8 @@ namespace hapscene {
 namespace {
 
 using namespace board_protocol;
+using board_channel::read_exactly;
+using board_channel::write_exactly;
 
 // The board process loads and trial-boots within 10 s of its own clock (then it ends
 // itself with SIGALRM); this bounds the wait for its first reply from this side.
@@ -44,50 +45,6 @@ std::string board_executable() {
 #endif
   throw std::runtime_error("--device hil: the board simulator hapscene-board was not found next to " +
                            (error ? std::string("hapscene") : self.string()) + " (build it with cmake)");
-}
-
-// Non-blocking reads tried before sleeping in poll (about 100 us of this VM's time).
-constexpr int kSpinReads = 200;
-
-// Reads exactly `size` bytes before `deadline_ms` (monotonic); false on a timeout, an end
-// of file or an error (*timed_out says which).
-bool read_exactly(int fd, void* data, std::size_t size, int timeout_ms, bool* timed_out) noexcept {
-  auto* at = static_cast<std::uint8_t*>(data);
-  timespec start{};
-  clock_gettime(CLOCK_MONOTONIC, &start);
-  // The board answers a substep in tens of microseconds: wait for it spinning first,
-  // which spares two context switches per round trip when it is running on the other core.
-  for (int spin = 0; spin < kSpinReads && size > 0; ++spin) {
-    const ssize_t n = recv(fd, at, size, MSG_DONTWAIT);
-    if (n == 0) return false;
-    if (n > 0) {
-      at += n;
-      size -= static_cast<std::size_t>(n);
-    }
-  }
-  while (size > 0) {
-    timespec now{};
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    const long elapsed_ms = (now.tv_sec - start.tv_sec) * 1000 + (now.tv_nsec - start.tv_nsec) / 1'000'000;
-    if (elapsed_ms >= timeout_ms) {
-      *timed_out = true;
-      return false;
-    }
-    pollfd waiting{fd, POLLIN, 0};
-    const int ready = poll(&waiting, 1, static_cast<int>(timeout_ms - elapsed_ms));
-    if (ready < 0 && errno == EINTR) continue;
-    if (ready == 0) {
-      *timed_out = true;
-      return false;
-    }
-    if (ready < 0) return false;
-    const ssize_t n = read(fd, at, size);
-    if (n < 0 && (errno == EINTR || errno == EAGAIN)) continue;
-    if (n <= 0) return false;
-    at += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
 }
 
 }  // namespace
@@ -190,7 +147,7 @@ void SimulatedBoard::reset() noexcept { exchange(Op::reset, 0); }
 
 bool SimulatedBoard::send_byte(std::uint8_t byte) noexcept {
   if (to_board_count_ + to_board_pending_ >= kQueueBytes) return false;
-  to_board_[to_board_count_++] = byte;
+  request_message_[kRequestHeaderBytes + to_board_count_++] = byte;
   return true;
 }
 
@@ -206,38 +163,16 @@ std::size_t SimulatedBoard::take_bytes(std::uint8_t* out, std::size_t capacity) 
 
 bool SimulatedBoard::exchange(Op op, std::uint64_t cycle) noexcept {
   if (lost_) return false;
-  // The request: sensor, host bytes, what to do.
+  // The request: sensor, host bytes, what to do, as one message.
   Request request;
   request.op = op;
   request.byte_count = static_cast<std::uint16_t>(to_board_count_);
   request.sensor_counts = sensor_counts_;
   request.cycle = cycle;
-  iovec parts[2] = {{&request, sizeof request}, {to_board_.data(), to_board_count_}};
-  msghdr message{};
-  message.msg_iov = parts;
-  message.msg_iovlen = to_board_count_ > 0 ? 2 : 1;
-  std::size_t unsent = sizeof request + to_board_count_;
-  while (unsent > 0) {
-    const ssize_t n = sendmsg(channel_, &message, MSG_NOSIGNAL);  // no SIGPIPE from a dead process
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      lose(Loss::channel);
-      return false;
-    }
-    unsent -= static_cast<std::size_t>(n);
-    // A partial send: skip what went out.
-    std::size_t skip = static_cast<std::size_t>(n);
-    while (skip > 0 && message.msg_iovlen > 0) {
-      iovec& first = message.msg_iov[0];
-      const std::size_t used = std::min(skip, first.iov_len);
-      first.iov_base = static_cast<std::uint8_t*>(first.iov_base) + used;
-      first.iov_len -= used;
-      skip -= used;
-      if (first.iov_len == 0) {
-        ++message.msg_iov;
-        --message.msg_iovlen;
-      }
-    }
+  std::memcpy(request_message_.data(), &request, kRequestHeaderBytes);
+  if (!write_exactly(channel_, request_message_.data(), kRequestHeaderBytes + to_board_count_)) {
+    lose(Loss::channel);
+    return false;
   }
   to_board_count_ = 0;
 

@@ -84,8 +84,10 @@ class SimulatedBoard {
   std::size_t to_board_pending_{};  // host bytes queued in the process
   std::int32_t sensor_counts_{board_protocol::kNoSensor};
 
-  // Host -> board bytes for the next request; board -> host bytes not yet taken.
-  std::array<std::uint8_t, board_protocol::kQueueBytes> to_board_{};
+  // The next request as it is sent: its header, then the host -> board bytes queued for
+  // it (to_board_count_ of them); board -> host bytes not yet taken.
+  static constexpr std::size_t kRequestHeaderBytes = sizeof(board_protocol::Request);
+  std::array<std::uint8_t, kRequestHeaderBytes + board_protocol::kQueueBytes> request_message_{};
   std::size_t to_board_count_{};
   std::array<std::uint8_t, board_protocol::kQueueBytes> to_host_{};
   std::size_t to_host_head_{}, to_host_count_{};

@@ -7,10 +7,8 @@
 // has no ATmega328P core, 5 the channel broke. Test hook: HAPSCENE_BOARD_ABORT_AT_CYCLE=N
 // makes the process abort when the board reaches cycle N.
 #include <signal.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -19,6 +17,7 @@
 
 #include "engine/base/whole_number.hpp"
 #include "engine/devices/hil/board/simavr_board.hpp"
+#include "engine/devices/hil/channel_io.hpp"
 #include "engine/devices/hil/board_protocol.hpp"
 
 namespace {
@@ -28,41 +27,12 @@ using namespace hapscene::board_protocol;
 
 constexpr unsigned kLoadSeconds = 10;  // wall-clock bound on loading and the trial boot
 
-// Non-blocking reads tried before blocking: hapscene sends the next request within
-// microseconds during a run, and spinning spares two context switches per round trip.
-constexpr int kSpinReads = 200;
-
+// hapscene's next request: no time limit (hapscene may pause between runs; it closes
+// the channel when it is done).
 bool read_exactly(void* data, std::size_t size) {
-  auto* at = static_cast<std::uint8_t*>(data);
-  for (int spin = 0; spin < kSpinReads && size > 0; ++spin) {
-    const ssize_t n = recv(kChannelFd, at, size, MSG_DONTWAIT);
-    if (n == 0) return false;
-    if (n > 0) {
-      at += n;
-      size -= static_cast<std::size_t>(n);
-    }
-  }
-  while (size > 0) {
-    const ssize_t n = read(kChannelFd, at, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    at += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
+  return board_channel::read_exactly(kChannelFd, data, size, /*timeout_ms=*/-1);
 }
 
-bool write_exactly(const void* data, std::size_t size) {
-  const auto* at = static_cast<const std::uint8_t*>(data);
-  while (size > 0) {
-    const ssize_t n = write(kChannelFd, at, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    at += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
-}
 
 // The pins, the cycle and the bytes the firmware sent since the last reply.
 bool send_reply(SimavrBoard& board) {
@@ -76,7 +46,7 @@ bool send_reply(SimavrBoard& board) {
   static std::uint8_t message[sizeof(Reply) + kQueueBytes];
   std::memcpy(message, &reply, sizeof reply);
   std::memcpy(message + sizeof reply, bytes, reply.byte_count);
-  return write_exactly(message, sizeof reply + reply.byte_count);
+  return board_channel::write_exactly(kChannelFd, message, sizeof reply + reply.byte_count);
 }
 
 }  // namespace

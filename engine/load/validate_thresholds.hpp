@@ -1,8 +1,9 @@
 #pragma once
-// What `hapscene validate` judges a scene by. Part of the compiled scene, so an
-// environment carries its own thresholds in its optional "validate" block; the defaults
-// suit a Hapkit lab environment. A negative value means "derive from the scene" (see
-// the comment of each field).
+// What `hapscene validate` judges a scene by. An environment carries its own thresholds
+// in its optional "validate" block, which the loader reads beside the scene (Environment,
+// environment.hpp) and the harness takes through HarnessOptions::thresholds; the tick
+// never reads them. The defaults suit a Hapkit lab environment. A negative value means
+// "derive from the scene" (see the comment of each field).
 #include <cstdint>
 
 namespace hapscene {
@@ -14,7 +15,6 @@ struct ValidateThresholds {
   double max_slew_N_per_s{-1.0};           // < 0: the scene's slew limit (reaching it fails)
   std::uint64_t max_slip_ticks{0};         // ticks above the profile's slip force or step
   double max_passivity_ratio{1.0};         // energy created / device's own dissipation
-  double min_judged_energy_J{1e-5};        // below this created energy, passivity passes
   double max_residual_amplitude_m{2e-4};   // oscillation left at the end of a watch window
   double max_amplitude_growth{1.0};        // late / early oscillation amplitude
   double max_penetration_m{0.015};         // into any stiff region the harness found
