@@ -195,7 +195,15 @@ Environment compile(const nlohmann::json& root, const std::string& file, const s
   ObjectReader reader(root, "", file);
   Environment environment;
   Scene& scene = environment.scene;
-  compile_header(reader, file, base_dir, load_device_profile, &scene);
+  // A planar profile here is a 2-DOF scene given to a command that takes 1-DOF ones.
+  const auto load_capstan_profile = [](const std::string& name, const std::string& dir) {
+    if (names_planar_profile(name, dir)) {
+      throw InputError("\"" + name + "\" is a 2-DOF (planar) profile: this command takes 1-DOF scenes only so far "
+                       "(2-DOF scenes: probe and run)");
+    }
+    return load_device_profile(name, dir);
+  };
+  compile_header(reader, file, base_dir, load_capstan_profile, &scene);
   scene.device_model = compile_device_model(scene.device);
 
   // Safety: the device's limits, lowered by the environment's.
