@@ -235,8 +235,12 @@ TEST_CASE("planar profile: a polygon workspace") {
 
 TEST_CASE("planar profile: a 1-DOF environment naming a planar device is refused, saying why") {
   CHECK(test::load_error(R"({"device": "haplink", "effects": []})") ==
-        "test.json: /device: environments/devices/haplink.json: /kind: a 2-DOF (planar) profile: a 1-DOF device "
-        "needs a 1-DOF profile such as \"hapkit3\"");
+        "test.json: /device: \"haplink\" is a 2-DOF (planar) profile: this command takes 1-DOF scenes only so far "
+        "(2-DOF scenes: probe and run)");
+  // The 1-DOF profile loader itself says what kind of profile it needs.
+  CHECK_THROWS_WITH(load_device_profile("haplink", "."),
+                    "environments/devices/haplink.json: /kind: a 2-DOF (planar) profile: a 1-DOF device needs a "
+                    "1-DOF profile such as \"hapkit3\"");
   // 1-DOF names are still suggested for a misspelt 1-DOF name.
   CHECK(test::load_error(R"({"device": "hapkit2", "effects": []})") ==
         "test.json: /device: unknown device profile \"hapkit2\" (did you mean \"hapkit3\"?)");
