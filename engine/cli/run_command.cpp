@@ -18,7 +18,7 @@
 #include "engine/base/format.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/cli/arguments.hpp"
-#include "engine/cli/run_planar.hpp"
+#include "engine/cli/run_settings.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
@@ -283,16 +283,7 @@ int run_command(std::vector<std::string> args) {
     LiveStatus status;
     ObserverList observers;
     observers.add(&status);
-    std::unique_ptr<TelemetryLog> log;
-    // In simulated time the loop outruns any disk: size the ring for the whole run
-    // (up to 2^21 samples) so nothing is dropped; in real time 2^16 samples (65 s at 1 kHz).
-    if (settings.log_path) {
-      const auto ticks = static_cast<std::size_t>(std::llround(settings.options.duration_s * scene.rate_hz));
-      const std::size_t capacity = settings.options.pacing == Pacing::simulated_time
-                                       ? std::clamp<std::size_t>(ticks + 1, kDefaultTelemetryCapacity, 1u << 21)
-                                       : kDefaultTelemetryCapacity;
-      log = std::make_unique<TelemetryLog>(*settings.log_path, capacity);
-    }
+    const std::unique_ptr<TelemetryLog> log = open_telemetry_log<1>(settings, scene.rate_hz);
     observers.add(log.get());
     // The figure's trace: a fixed number of records, decimated for long runs.
     std::unique_ptr<RunTrace> trace;
@@ -328,19 +319,7 @@ int run_command(std::vector<std::string> args) {
     if (exchange.swaps() > 0) {
       print_out("  reloads          %llu\n", static_cast<unsigned long long>(exchange.swaps()));
     }
-    if (log) {
-      log->finish();
-      if (!log->error().empty()) {
-        // Never claim samples reached a file that refused them: say so, and exit 1.
-        print_out("  telemetry        FAILED: %s\n", printable(log->error()).c_str());
-        std::fprintf(stderr, "hapscene run: %s\n", printable(log->error()).c_str());
-        write_failed = true;
-      } else {
-        print_out("  telemetry        %llu samples written to %s, %llu dropped (ring full)\n",
-                  static_cast<unsigned long long>(log->written()), printable(*settings.log_path).c_str(),
-                  static_cast<unsigned long long>(log->dropped()));
-      }
-    }
+    if (log && !finish_telemetry_log(*log, *settings.log_path)) write_failed = true;
     if (trace) {
       std::string what = "run, hand " +
           std::string(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]);

@@ -1,4 +1,4 @@
-#include "engine/cli/run_planar.hpp"
+#include "engine/cli/run_settings.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -117,31 +117,12 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
     arguments.fail(std::string("--start: ") + error.what());
   }
 
-  std::unique_ptr<TelemetryLogOf<2>> log;
-  if (settings.log_path) {
-    const auto run_ticks = static_cast<std::size_t>(std::llround(settings.options.duration_s * scene.rate_hz));
-    const std::size_t capacity = settings.options.pacing == Pacing::simulated_time
-                                     ? std::clamp<std::size_t>(run_ticks + 1, kDefaultTelemetryCapacity, 1u << 21)
-                                     : kDefaultTelemetryCapacity;
-    log = std::make_unique<TelemetryLogOf<2>>(*settings.log_path, capacity);
-  }
+  const std::unique_ptr<TelemetryLogOf<2>> log = open_telemetry_log<2>(settings, scene.rate_hz);
   RunOptions options = settings.options;
   options.reload = nullptr;  // hot reload: 1-DOF scenes only, so far
   const RunSummaryOf<2> summary = run_scene(scene, *device, options, log.get());
   print_planar_summary(scene, settings, simulation.hand, summary, *device);
-  bool write_failed = false;
-  if (log) {
-    log->finish();
-    if (!log->error().empty()) {
-      print_out("  telemetry        FAILED: %s\n", printable(log->error()).c_str());
-      std::fprintf(stderr, "hapscene run: %s\n", printable(log->error()).c_str());
-      write_failed = true;
-    } else {
-      print_out("  telemetry        %llu samples written to %s, %llu dropped (ring full)\n",
-                static_cast<unsigned long long>(log->written()), printable(*settings.log_path).c_str(),
-                static_cast<unsigned long long>(log->dropped()));
-    }
-  }
+  const bool write_failed = log && !finish_telemetry_log(*log, *settings.log_path);
   flush_out();
   const bool faulted = summary.overrun_fault || summary.safety.nonfinite_faults > 0;
   return faulted || write_failed ? kExitFailure : kExitOk;

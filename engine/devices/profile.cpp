@@ -163,25 +163,30 @@ bool names_planar_profile(const std::string& name_or_path, const std::string& ba
   return false;
 }
 
-DeviceProfile load_device_profile(const std::string& name_or_path, const std::string& base_dir) {
+ProfileText find_profile_text(const std::string& name_or_path, const std::string& base_dir, bool planar) {
   if (looks_like_path(name_or_path)) {
     std::filesystem::path path(name_or_path);
     if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
     const std::string shown = path.lexically_normal().string();
-    return parse_device_profile(read_text_file(shown, kMaxJsonFileBytes), shown);
+    return ProfileText{read_text_file(shown, kMaxJsonFileBytes), shown};
   }
   std::vector<std::string_view> names;
   for (const BuiltinProfile& builtin : builtin_profiles()) {
     if (builtin.name == name_or_path) {
-      return parse_device_profile(builtin.json_text,
-                                  "environments/devices/" + std::string(builtin.name) + ".json");
+      return ProfileText{std::string(builtin.json_text), "environments/devices/" + std::string(builtin.name) + ".json"};
     }
-    if (profile_kind_of(builtin.json_text) != "planar") names.push_back(builtin.name);
+    if ((profile_kind_of(builtin.json_text) == "planar") == planar) names.push_back(builtin.name);
   }
-  std::string message = "unknown device profile \"" + name_or_path + "\"";
+  std::string message = std::string(planar ? "unknown planar device profile" : "unknown device profile") + " \"" +
+                        name_or_path + "\"";
   const std::string suggestion = nearest_name(name_or_path, names);
   if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
   throw UnknownProfileError(message);
+}
+
+DeviceProfile load_device_profile(const std::string& name_or_path, const std::string& base_dir) {
+  const ProfileText profile = find_profile_text(name_or_path, base_dir, /*planar=*/false);
+  return parse_device_profile(profile.json_text, profile.display_name);
 }
 
 }  // namespace hapscene

@@ -96,6 +96,16 @@ class UnknownProfileError : public InputError {
 // "/" or ends in ".json"; relative paths are taken from `base_dir`). Throws InputError.
 DeviceProfile load_device_profile(const std::string& name_or_path, const std::string& base_dir);
 
+// A profile's text and the name messages give it ("environments/devices/hapkit3.json" for
+// a shipped one), found by name (shipped) or by path (relative to `base_dir`). A name
+// that is not shipped is an UnknownProfileError suggesting the nearest shipped name of
+// the same kind (planar or not).
+struct ProfileText {
+  std::string json_text;
+  std::string display_name;
+};
+ProfileText find_profile_text(const std::string& name_or_path, const std::string& base_dir, bool planar);
+
 // True when `name_or_path` (as load_device_profile takes it) is a readable planar (2-DOF)
 // profile ("kind": "planar"); false otherwise, errors included (the loader reports them).
 bool names_planar_profile(const std::string& name_or_path, const std::string& base_dir) noexcept;

@@ -83,8 +83,11 @@ bool parse_effect(const nlohmann::json& value, const std::string& pointer, const
   return true;
 }
 
-// The environment's "safety" block: each limit may only be made safer than the device's.
-void parse_safety(ObjectReader& reader, const DeviceLimits& device, SafetyConfig* safety) {
+// The limits every "safety" block has, whatever the scene's axes: the force limit, the
+// slew limit and the soft start, each only safer than the device's (`device` a profile's
+// DeviceLimits or PlanarLimits).
+template <int N, typename Limits>
+void parse_common_safety(ObjectReader& reader, const Limits& device, SafetyConfigOf<N>* safety) {
   const auto lower_or_equal = [&](std::string_view key, double value, double device_value,
                                   const char* unit) {
     if (value > device_value) {
@@ -106,6 +109,11 @@ void parse_safety(ObjectReader& reader, const DeviceLimits& device, SafetyConfig
     reader.fail("soft_start", "must not be shorter than the device's " +
                                   format_number(device.soft_start_s) + " s");
   }
+}
+
+// The environment's "safety" block: each limit may only be made safer than the device's.
+void parse_safety(ObjectReader& reader, const DeviceLimits& device, SafetyConfig* safety) {
+  parse_common_safety(reader, device, safety);
   if (reader.has("workspace")) {
     const auto [low_m, high_m] = reader.range("workspace", Quantity::length_m);
     if (low_m < device.workspace_min_m || high_m > device.workspace_max_m) {
@@ -245,23 +253,7 @@ Environment compile(const nlohmann::json& root, const std::string& file, const s
 // as a box ({"min": [x, y], "max": [x, y]}) inside the device's; each only safer than the
 // device's.
 void parse_planar_safety(ObjectReader& reader, const PlanarLimits& device, SafetyConfigOf<2>* safety) {
-  const auto lower_or_equal = [&](std::string_view key, double value, double device_value, const char* unit) {
-    if (value > device_value) {
-      reader.fail(key, "must not exceed the device's " + format_number(device_value) + " " + unit);
-    }
-    return value;
-  };
-  safety->max_force_N = lower_or_equal(
-      "max_force", reader.quantity_or("max_force", Quantity::force_N, device.max_force_N, Bound::positive),
-      device.max_force_N, "N");
-  safety->slew_limit_N_per_s = lower_or_equal(
-      "slew_limit",
-      reader.quantity_or("slew_limit", Quantity::force_rate_N_per_s, device.slew_limit_N_per_s, Bound::positive),
-      device.slew_limit_N_per_s, "N/s");
-  safety->soft_start_s = reader.quantity_or("soft_start", Quantity::time_s, device.soft_start_s, ranges::kDuration_s);
-  if (safety->soft_start_s < device.soft_start_s) {
-    reader.fail("soft_start", "must not be shorter than the device's " + format_number(device.soft_start_s) + " s");
-  }
+  parse_common_safety(reader, device, safety);
   if (const nlohmann::json* workspace = reader.get("workspace")) {
     ObjectReader box(*workspace, reader.pointer_to("workspace"), reader.file());
     const Vec2 min_m = read_vector(box, "min", Quantity::length_m, ranges::kPosition_m);

@@ -1,14 +1,12 @@
 #include "engine/devices/planar/planar_profile.hpp"
 
 #include <cmath>
-#include <filesystem>
 #include <numbers>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/base/physical_ranges.hpp"
-#include "engine/devices/builtin_profiles.hpp"
 
 namespace hapscene {
 namespace {
@@ -303,11 +301,6 @@ PlanarFrame parse_frame(ObjectReader& reader) {
   return frame;
 }
 
-bool looks_like_path(const std::string& name_or_path) {
-  return name_or_path.find('/') != std::string::npos ||
-         (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
-}
-
 }  // namespace
 
 bool workspace_contains(const PlanarWorkspace& workspace, const Vec2& p_m) noexcept {
@@ -363,23 +356,8 @@ PlanarProfile parse_planar_profile(std::string_view json_text, const std::string
 }
 
 PlanarProfile load_planar_profile(const std::string& name_or_path, const std::string& base_dir) {
-  if (looks_like_path(name_or_path)) {
-    std::filesystem::path path(name_or_path);
-    if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
-    const std::string shown = path.lexically_normal().string();
-    return parse_planar_profile(read_text_file(shown, kMaxJsonFileBytes), shown);
-  }
-  std::vector<std::string_view> names;
-  for (const BuiltinProfile& builtin : builtin_profiles()) {
-    if (builtin.name == name_or_path) {
-      return parse_planar_profile(builtin.json_text, "environments/devices/" + std::string(builtin.name) + ".json");
-    }
-    if (profile_kind_of(builtin.json_text) == kPlanarProfileKind) names.push_back(builtin.name);
-  }
-  std::string message = "unknown planar device profile \"" + name_or_path + "\"";
-  const std::string suggestion = nearest_name(name_or_path, names);
-  if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
-  throw UnknownProfileError(message);
+  const ProfileText profile = find_profile_text(name_or_path, base_dir, /*planar=*/true);
+  return parse_planar_profile(profile.json_text, profile.display_name);
 }
 
 }  // namespace hapscene
