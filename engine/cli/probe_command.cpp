@@ -15,6 +15,7 @@
 #include <string>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
@@ -108,7 +109,11 @@ int probe_planar(const Arguments& arguments, const std::string& file, const std:
   const PlanarScene scene = load_planar_environment_file(file);
   const std::vector<double> x_m = range_positions_m(x_range);
   const std::vector<double> y_m = range_positions_m(y_range);
-  ScriptList no_scripts;
+  // Scripts: every point from fresh, reset instances at run time t (as the 1-D probe's
+  // OpenLoop does), so a point never depends on the ones before; each fault once, with
+  // the first point (in the order of the output) that met it.
+  ScriptFaultLog faults;
+  double point_index = 0.0;
   std::string out = "x_m,y_m,vx_m_per_s,vy_m_per_s,force_x_N,force_y_N,output_x_N,output_y_N\n";
   for (const double x : x_m) {
     for (const double y : y_m) {
@@ -117,7 +122,13 @@ int probe_planar(const Arguments& arguments, const std::string& file, const std:
       input.v_m_per_s = v_m_per_s;
       input.t_s = t_s;
       input.dt_s = scene.period_s;
-      const Vec2 force_N = sum_effects_N(scene, input, no_scripts);
+      ScriptList scripts = make_script_instances(scene);
+      const Vec2 force_N = sum_effects_N(scene, input, scripts);
+      faults.collect(scripts,
+                     printf_string("x %.2f mm, y %.2f mm, v (%g, %g) m/s, t %g s", x * 1e3, y * 1e3,
+                                   v_m_per_s[0], v_m_per_s[1], t_s),
+                     point_index);
+      point_index += 1.0;
       SafetyCounters counters;
       const Vec2 output_N = apply_static_safety(scene.safety, input.x_m, force_N, &counters);
       out += shortest(x) + "," + shortest(y) + "," + shortest(v_m_per_s[0]) + "," + shortest(v_m_per_s[1]) + "," +
@@ -127,7 +138,12 @@ int probe_planar(const Arguments& arguments, const std::string& file, const std:
   }
   write_out(out);
   flush_out();
-  return kExitOk;
+  for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
+  if (faults.omitted()) {
+    std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the grid are shown)\n",
+                 ScriptFaultLog::kMaxMessages);
+  }
+  return faults.empty() ? kExitOk : kExitFailure;
 }
 
 }  // namespace

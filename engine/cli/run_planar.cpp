@@ -84,6 +84,14 @@ void print_planar_summary(const PlanarScene& scene, const RunSettings& settings,
             "%llu with a saturated motor (both scaled)\n",
             ticks(safety.pose_hold_ticks), ticks(safety.motor_saturated_ticks));
   print_out("  faults           %llu non-finite forces\n", ticks(safety.nonfinite_faults));
+  for (const ScriptReport& script : summary.scripts) {
+    if (script.disabled) {
+      print_out("  script disabled  %s (at t = %.3f s; 0 N for the remaining %llu ticks)\n",
+                printable(script.fault).c_str(), script.fault_time_s, ticks(script.skipped_calls));
+    } else {
+      print_out("  script ok        %s\n", printable(script.name).c_str());
+    }
+  }
   print_out("  tick compute     p50 %.2f us  p99 %.2f us  max %.2f us\n",
             static_cast<double>(summary.compute_ns.percentile_ns(0.50)) * 1e-3,
             static_cast<double>(summary.compute_ns.percentile_ns(0.99)) * 1e-3,
@@ -124,7 +132,10 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
   print_planar_summary(scene, settings, simulation.hand, summary, *device);
   const bool write_failed = log && !finish_telemetry_log(*log, *settings.log_path);
   flush_out();
-  const bool faulted = summary.overrun_fault || summary.safety.nonfinite_faults > 0;
+  // A script disabled by a fault is a fault the run saw (exit 1), as in 1-D.
+  const bool script_faulted = std::any_of(summary.scripts.begin(), summary.scripts.end(),
+                                          [](const ScriptReport& script) { return script.disabled; });
+  const bool faulted = summary.overrun_fault || summary.safety.nonfinite_faults > 0 || script_faulted;
   return faulted || write_failed ? kExitFailure : kExitOk;
 }
 

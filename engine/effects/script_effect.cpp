@@ -84,7 +84,7 @@ ScriptLoadBudget plan_script_loads(const nlohmann::json& effects, const std::str
   return budget;
 }
 
-ScriptEffect ScriptEffect::parse(ObjectReader& reader, ScriptLoadBudget& budget) {
+ScriptEffect ScriptEffect::parse(ObjectReader& reader, ScriptLoadBudget& budget, int axes) {
   // Where the script is: a file relative to the environment, or inline source.
   const bool has_file = reader.has("file");
   const bool has_source = reader.has("source");
@@ -142,7 +142,7 @@ ScriptEffect ScriptEffect::parse(ObjectReader& reader, ScriptLoadBudget& budget)
   };
   try {
     ScriptProgram program = compile_script(display_name, std::move(source), params, reader.file(),
-                                           reader.pointer_to("params"), load_limits);
+                                           reader.pointer_to("params"), load_limits, axes);
     program.limits = limits;  // each run's instance has the script's own load_time
     effect.program = std::make_shared<const ScriptProgram>(std::move(program));
     charge();

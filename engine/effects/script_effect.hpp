@@ -39,9 +39,10 @@ struct ScriptEffect {
   std::size_t instance_index{};  // its instance in TickState::scripts, in scene order
   Needs needs;                   // what the script declared it reads
 
-  // Reads and compiles one script effect; its load takes no longer than what is left of
-  // the environment's `budget`, and what it took is added to it.
-  static ScriptEffect parse(ObjectReader& reader, ScriptLoadBudget& budget);
+  // Reads and compiles one script effect for a scene of `axes` axes (1 or 2: the check
+  // call at load refuses a script of the other dimension); its load takes no longer than
+  // what is left of the environment's `budget`, and what it took is added to it.
+  static ScriptEffect parse(ObjectReader& reader, ScriptLoadBudget& budget, int axes = 1);
 };
 
 // Checks the bounds on an environment's script effects together before any is loaded,

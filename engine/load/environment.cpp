@@ -314,11 +314,15 @@ PlanarScene compile_planar(const nlohmann::json& root, const std::string& file, 
   finalise_safety(scene.period_s, &scene.safety);
   compile_velocity(reader, &scene);
 
+  // Effects; script effects share one load budget, as in compile().
   const nlohmann::json& effects = effects_array(reader);
+  ScriptLoadBudget script_budget = plan_script_loads(effects, file, reader.pointer_to("effects"));
   for (std::size_t i = 0; i < effects.size(); ++i) {
     PlanarEffect effect;
     const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
-    if (parse_planar_effect(effects[i], pointer, file, &effect)) add_effect(&scene, std::move(effect));
+    if (parse_planar_effect(effects[i], pointer, file, &effect, base_dir, &script_budget)) {
+      add_effect(&scene, std::move(effect));
+    }
   }
   if (reader.has("validate")) {
     reader.fail("validate", "2-DOF scenes have no validate thresholds yet (hapscene validate runs 1-DOF scenes)");

@@ -312,6 +312,19 @@ int state_index(lua_State* L) {
   if (!vm->needs_time && std::strcmp(name, "t") == 0) {
     return luaL_error(L, "s.t is not available: the script declares needs.time = false");
   }
+  // The other dimension's fields: the script was written for a scene of the other kind.
+  const bool planar_field = std::strcmp(name, "y") == 0 || std::strcmp(name, "vx") == 0 || std::strcmp(name, "vy") == 0;
+  if (vm->axes == 1 && planar_field) {
+    return luaL_error(L, "s.%s is only in 2-D scenes, and this is a 1-D scene (s has x, v, t, dt): "
+                         "a 2-D script cannot run here", name);
+  }
+  if (vm->axes == 2 && std::strcmp(name, "v") == 0) {
+    return luaL_error(L, "s.v is only in 1-D scenes, and this is a 2-D scene (s has x, y, vx, vy, t, dt): "
+                         "a 1-D script cannot run here");
+  }
+  if (vm->axes == 2 && !vm->needs_velocity && planar_field && name[0] == 'v') {
+    return luaL_error(L, "s.%s is not available: the script declares needs.velocity = false", name);
+  }
   return raise_lookup_error(L, PendingSuggestion::Kind::state, "", "s has no field '%s'", name);
 }
 
@@ -323,12 +336,21 @@ int state_newindex(lua_State* L) {
 // empty, so every read goes to the data table (whose keys the script cannot reach or
 // remove), and every write to the proxy is an error.
 void push_state_tables(lua_State* L, const ScriptVm* vm) {
-  lua_createtable(L, 0, 4);  // data
+  lua_createtable(L, 0, vm->axes == 2 ? 6 : 4);  // data
   lua_pushnumber(L, 0.0);
   lua_setfield(L, -2, "x");
-  if (vm->needs_velocity) {
+  if (vm->axes == 2) {
     lua_pushnumber(L, 0.0);
-    lua_setfield(L, -2, "v");
+    lua_setfield(L, -2, "y");
+  }
+  if (vm->needs_velocity) {
+    static constexpr const char* kVelocity1[] = {"v"};
+    static constexpr const char* kVelocity2[] = {"vx", "vy"};
+    const int count = vm->axes == 2 ? 2 : 1;
+    for (int i = 0; i < count; ++i) {
+      lua_pushnumber(L, 0.0);
+      lua_setfield(L, -2, vm->axes == 2 ? kVelocity2[i] : kVelocity1[i]);
+    }
   }
   if (vm->needs_time) {
     lua_pushnumber(L, 0.0);
@@ -440,7 +462,7 @@ void suggestion_for(ScriptVm* vm, lua_State* L, const char* message, char* out, 
       if (found) {
         std::snprintf(out, size, " (did you mean 's.%s'?)", nearest);
       } else {
-        std::snprintf(out, size, " (s has x, v, t, dt)");
+        std::snprintf(out, size, vm->axes == 2 ? " (s has x, y, vx, vy, t, dt)" : " (s has x, v, t, dt)");
       }
       break;
     case PendingSuggestion::Kind::library:
@@ -514,12 +536,15 @@ int finish_load(lua_State* L) {
   lua_getinfo(L, ">S", &ar);
   vm->force_line = ar.linedefined;
 
-  // Results, in slot order: force, reset, s, data, "x", "v", "t", "dt".
+  // Results, in slot order: force, reset, s, data, "x", "v", "t", "dt", "y", "vx", "vy".
   push_state_tables(L, vm);
   lua_pushliteral(L, "x");
   lua_pushliteral(L, "v");
   lua_pushliteral(L, "t");
   lua_pushliteral(L, "dt");
+  lua_pushliteral(L, "y");
+  lua_pushliteral(L, "vx");
+  lua_pushliteral(L, "vy");
   return kSlotCount;
 }
 

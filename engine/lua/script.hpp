@@ -86,13 +86,29 @@ enum class ScriptFault {
   memory_limit,        // memory_bytes, allocation_bytes_per_call or string_bytes
 };
 
-// The state handed to force(s), in SI units. 2-DOF devices will add y_m and vy_m_per_s
-// (s.y, s.vy) and accept a second return value fy; a 1-D script keeps working unchanged.
+// The state handed to force(s) in a 1-D scene, in SI units.
 struct ScriptInput {
   double x_m{};        // s.x, handle position
   double v_m_per_s{};  // s.v, absent when the script declares needs.velocity = false
   double t_s{};        // s.t, run time; absent when the script declares needs.time = false
   double dt_s{};       // s.dt, tick period
+};
+
+// The state handed to force(s) in a 2-D (planar) scene, in SI units; force(s) returns
+// two numbers there, fx and fy in N.
+struct PlanarScriptInput {
+  double x_m{};         // s.x, s.y: handle position
+  double y_m{};
+  double vx_m_per_s{};  // s.vx, s.vy; absent when the script declares needs.velocity = false
+  double vy_m_per_s{};
+  double t_s{};         // s.t; absent when the script declares needs.time = false
+  double dt_s{};        // s.dt
+};
+
+// What a 2-D script returned.
+struct PlanarScriptForce {
+  double x_N{};
+  double y_N{};
 };
 
 // One script parameter after defaults and JSON overrides are applied, in SI.
@@ -119,6 +135,9 @@ struct ScriptProgram {
   std::string error_context;   // e.g. the JSON file, "environments/lab.json"
   std::string pointer_prefix;  // e.g. "/effects/2/params"
   ScriptLimits limits;
+  // The dimension of the scene the script was checked for: 1 (force(s) returns fx; s has
+  // x, v, t, dt) or 2 (returns fx, fy; s has x, y, vx, vy, t, dt). Set by compile_script.
+  int axes{1};
   bool needs_velocity{true};  // false: the engine may skip the velocity estimator
   bool needs_time{true};
   std::vector<ScriptParam> params;  // sorted by name
@@ -128,13 +147,17 @@ struct ScriptProgram {
 // (text chunks only), top-level code within its budget, params and their overrides,
 // needs, that force is a function; then calls reset() and force(s) once at
 // x = 0, v = 0, t = 0, dt = 1 ms so typos inside force() are load errors too.
+// `axes` is the dimension of the scene (1 or 2): the check call also counts what force
+// returns, so a script written for the other dimension (one number in a 2-D scene, two
+// in a 1-D one, or a field of the other kind such as s.y or s.v) is a load error that
+// says so.
 // Throws InputError:
 //   syntax/runtime: "scripts/bumps.lua:12: message"
 //   overrides:      "<error_context>: <pointer_prefix>/height: message"
 //   limits:         "<error_context>: script limits: memory_bytes must be at least ..."
 ScriptProgram compile_script(std::string display_name, std::string source,
                              const nlohmann::json& params_override, std::string error_context,
-                             std::string pointer_prefix, ScriptLimits limits = {});
+                             std::string pointer_prefix, ScriptLimits limits = {}, int axes = 1);
 
 // Per run: owns one lua_State. create() and destruction allocate; force_N() and reset()
 // never allocate on the C++ side, never throw and never block.
@@ -151,6 +174,10 @@ class ScriptInstance {
   // overrun, or return value that is not a finite number disables the script and records
   // fault_message(); later calls do not run the script.
   double force_N(const ScriptInput& input) noexcept;
+  // The same for a program compiled for 2 axes: force(s) must return two finite numbers
+  // (fx, fy); anything else (one value, three, nil, nan) disables the script and gives
+  // {0, 0}. Each instance is called with the input of its program's dimension only.
+  PlanarScriptForce planar_force_N(const PlanarScriptInput& input) noexcept;
   // Calls the script's reset() if it defines one (same limits as force). The host calls
   // it when a run starts or restarts; create() does not. Does not re-enable a disabled
   // script: its state may be half-updated; a new instance (a new run or a reload) starts
@@ -192,7 +219,10 @@ class ScriptInstance {
 
  private:
   friend ScriptProgram compile_script(std::string, std::string, const nlohmann::json&, std::string,
-                                      std::string, ScriptLimits);
+                                      std::string, ScriptLimits, int);
+  // The load check: one call of force(s) at rest that counts what it returns (-1 when the
+  // call failed: then the instance is disabled with its message).
+  int check_force_results() noexcept;
   explicit ScriptInstance(std::unique_ptr<detail::ScriptVm> vm);
   std::unique_ptr<detail::ScriptVm> vm_;
 };

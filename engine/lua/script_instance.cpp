@@ -110,6 +110,7 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   vm->display_name = program.display_name;
   vm->short_source = short_source_of(program.display_name);
   vm->limits = program.limits;
+  vm->axes = program.axes;
   vm->backstop_s = call_time_backstop_s(program.limits);
   vm->source = &program.source;
   vm->params_override = program.params_override.get();
@@ -209,6 +210,110 @@ double ScriptInstance::force_N(const ScriptInput& input) noexcept {
   lua_settop(L, detail::kSlotCount);
   disable(vm);
   return 0.0;
+}
+
+namespace {
+
+// "nan", "-inf", or the number as %g, for messages about a return value.
+void describe_number(double value, char* out, std::size_t size) {
+  if (std::isnan(value)) {
+    std::snprintf(out, size, "nan");
+  } else if (std::isinf(value)) {
+    std::snprintf(out, size, "%s", value > 0 ? "inf" : "-inf");
+  } else {
+    std::snprintf(out, size, "%.17g", value);
+  }
+}
+
+}  // namespace
+
+PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input) noexcept {
+  ScriptVm* vm = vm_.get();
+  if (vm->disabled) {
+    ++vm->skipped_calls;
+    return {};
+  }
+  lua_State* L = vm->L;
+  vm->now_s = input.t_s;
+  detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
+                     vm->force_straight_line);
+
+  // s, then force(s) in protected mode, keeping every result to count them.
+  set_state(L, detail::kSlotKeyX, input.x_m);
+  set_state(L, detail::kSlotKeyY, input.y_m);
+  if (vm->needs_velocity) {
+    set_state(L, detail::kSlotKeyVx, input.vx_m_per_s);
+    set_state(L, detail::kSlotKeyVy, input.vy_m_per_s);
+  }
+  if (vm->needs_time) set_state(L, detail::kSlotKeyT, input.t_s);
+  if (input.dt_s != vm->last_dt_s) {
+    set_state(L, detail::kSlotKeyDt, input.dt_s);
+    vm->last_dt_s = input.dt_s;
+  }
+  lua_pushvalue(L, detail::kSlotForce);
+  lua_pushvalue(L, detail::kSlotState);
+  const int status = lua_pcall(L, 1, LUA_MULTRET, 0);
+  detail::end_call(vm);
+
+  // Exactly two finite numbers; a tripped limit fails the call even if the script caught it.
+  if (status == LUA_OK && !vm->tripped) {
+    const int results = lua_gettop(L) - detail::kSlotCount;
+    const char* name = vm->short_source.c_str();
+    if (results == 2 && lua_type(L, -2) == LUA_TNUMBER && lua_type(L, -1) == LUA_TNUMBER) {
+      const PlanarScriptForce force{lua_tonumber(L, -2), lua_tonumber(L, -1)};
+      lua_settop(L, detail::kSlotCount);
+      if (std::isfinite(force.x_N) && std::isfinite(force.y_N)) return force;
+      char fx[32];
+      char fy[32];
+      describe_number(force.x_N, fx, sizeof fx);
+      describe_number(force.y_N, fy, sizeof fy);
+      detail::record_fault(vm, ScriptFault::bad_return,
+                           "%s:%d: force(s) returned %s, %s, expected two finite numbers fx, fy (N)", name,
+                           vm->force_line, fx, fy);
+    } else if (results == 2) {
+      detail::record_fault(vm, ScriptFault::bad_return,
+                           "%s:%d: force(s) returned a %s and a %s, expected two finite numbers fx, fy (N)", name,
+                           vm->force_line, luaL_typename(L, -2), luaL_typename(L, -1));
+    } else if (results == 1 && lua_type(L, -1) == LUA_TNUMBER) {
+      detail::record_fault(vm, ScriptFault::bad_return,
+                           "%s:%d: force(s) returned one number, expected two, fx, fy (N): this is a 2-D scene, "
+                           "and a 1-D script returns one (scripts/README.md, \"Scripts in 2-D\")",
+                           name, vm->force_line);
+    } else {
+      detail::record_fault(vm, ScriptFault::bad_return,
+                           "%s:%d: force(s) returned %d value%s, expected two finite numbers fx, fy (N)", name,
+                           vm->force_line, results, results == 1 ? "" : "s");
+    }
+  } else {
+    record_call_failure(vm, status, "force(s)");
+  }
+  lua_settop(L, detail::kSlotCount);
+  disable(vm);
+  return {};
+}
+
+int ScriptInstance::check_force_results() noexcept {
+  ScriptVm* vm = vm_.get();
+  if (vm->disabled) return -1;
+  lua_State* L = vm->L;
+  vm->now_s = 0.0;
+  detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
+                     vm->force_straight_line);
+  set_state(L, detail::kSlotKeyX, 0.0);
+  if (vm->axes == 2) set_state(L, detail::kSlotKeyY, 0.0);
+  lua_pushvalue(L, detail::kSlotForce);
+  lua_pushvalue(L, detail::kSlotState);
+  const int status = lua_pcall(L, 1, LUA_MULTRET, 0);
+  detail::end_call(vm);
+  if (status != LUA_OK || vm->tripped) {
+    record_call_failure(vm, status, "force(s)");
+    lua_settop(L, detail::kSlotCount);
+    disable(vm);
+    return -1;
+  }
+  const int results = lua_gettop(L) - detail::kSlotCount;
+  lua_settop(L, detail::kSlotCount);
+  return results;
 }
 
 void ScriptInstance::reset() noexcept {

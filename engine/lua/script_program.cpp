@@ -96,8 +96,9 @@ std::size_t count_number_literals(const std::string& source) {
 
 ScriptProgram compile_script(std::string display_name, std::string source,
                              const nlohmann::json& params_override, std::string error_context,
-                             std::string pointer_prefix, ScriptLimits limits) {
+                             std::string pointer_prefix, ScriptLimits limits, int axes) {
   check_limits(limits, error_context, display_name);
+  if (axes != 1 && axes != 2) throw InputError(display_name + ": scripts run in scenes of 1 or 2 axes");
   if (const std::size_t numbers = count_number_literals(source); numbers > kMaxNumberLiterals) {
     throw InputError(display_name + ": " + std::to_string(numbers) +
                      " number literals; a script may have at most " +
@@ -111,6 +112,7 @@ ScriptProgram compile_script(std::string display_name, std::string source,
   program.error_context = std::move(error_context);
   program.pointer_prefix = std::move(pointer_prefix);
   program.limits = limits;
+  program.axes = axes;
 
   // One throwaway instance loads and checks the script; what it found becomes the program.
   std::unique_ptr<ScriptInstance> instance = ScriptInstance::create(program);
@@ -125,12 +127,37 @@ ScriptProgram compile_script(std::string display_name, std::string source,
   if (instance->disabled()) {
     throw InputError(std::string(instance->fault_message()) + " (while checking reset() at load)");
   }
-  ScriptInput probe;
-  probe.dt_s = 0.001;
-  instance->force_N(probe);
-  if (instance->disabled()) {
-    throw InputError(std::string(instance->fault_message()) +
-                     " (while checking force(s) at x = 0 m, v = 0 m/s, t = 0 s)");
+  if (axes == 1) {
+    ScriptInput probe;
+    probe.dt_s = 0.001;
+    instance->force_N(probe);
+    if (instance->disabled()) {
+      throw InputError(std::string(instance->fault_message()) +
+                       " (while checking force(s) at x = 0 m, v = 0 m/s, t = 0 s)");
+    }
+    // force_N keeps the first result only: a script that returns two (fx, fy) was
+    // written for a 2-D scene.
+    const int results = instance->check_force_results();
+    if (instance->disabled()) {
+      throw InputError(std::string(instance->fault_message()) +
+                       " (while checking force(s) at x = 0 m, v = 0 m/s, t = 0 s)");
+    }
+    if (results != 1) {
+      const std::string where = instance->vm_->short_source + ":" + std::to_string(instance->vm_->force_line);
+      throw InputError(where + ": force(s) returned " + std::to_string(results) + " values, expected one number (N)" +
+                       (results == 2 ? ": this is a 1-D scene, and a 2-D script returns two, fx, fy "
+                                       "(scripts/README.md, \"Scripts in 2-D\")"
+                                     : "") +
+                       " (while checking force(s) at x = 0 m, v = 0 m/s, t = 0 s)");
+    }
+  } else {
+    PlanarScriptInput probe;
+    probe.dt_s = 0.001;
+    instance->planar_force_N(probe);
+    if (instance->disabled()) {
+      throw InputError(std::string(instance->fault_message()) +
+                       " (while checking force(s) at x = 0 m, y = 0 m, vx = 0 m/s, vy = 0 m/s, t = 0 s)");
+    }
   }
   return program;
 }

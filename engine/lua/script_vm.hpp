@@ -30,7 +30,10 @@ inline constexpr int kSlotKeyX = 5;   // "x", "v", "t", "dt" as Lua strings
 inline constexpr int kSlotKeyV = 6;
 inline constexpr int kSlotKeyT = 7;
 inline constexpr int kSlotKeyDt = 8;
-inline constexpr int kSlotCount = 8;
+inline constexpr int kSlotKeyY = 9;   // "y", "vx", "vy": written in 2-D scenes only
+inline constexpr int kSlotKeyVx = 10;
+inline constexpr int kSlotKeyVy = 11;
+inline constexpr int kSlotCount = 11;
 
 // The hook fires every this many instructions (fewer when the budget is smaller).
 inline constexpr std::int64_t kHookPeriod = 128;
@@ -58,6 +61,7 @@ struct ScriptVm {
   Phase phase{Phase::loading};
   bool needs_velocity{true};
   bool needs_time{true};
+  int axes{1};       // of the scene: 1 (s.x, s.v; one result) or 2 (s.x, s.y, s.vx, s.vy; two)
   int force_line{};  // line where force is defined, for messages about its return value
   std::int64_t force_straight_line{};  // force's length when it cannot loop, else 0
 

@@ -33,10 +33,16 @@ void add_effect(PlanarScene* scene, PlanarEffect effect) {
   const Vec2 min_m = scene->safety.workspace_min_m;
   const Vec2 max_m = scene->safety.workspace_max_m;
   std::visit(
-      [&](const auto& e) {
-        if (!e.can_act_within(min_m, max_m)) return;
-        scene->bank.template group<std::decay_t<decltype(e)>>().push_back(e);
-        scene->needs |= std::decay_t<decltype(e)>::kNeeds;
+      [&](auto& e) {
+        using Type = std::decay_t<decltype(e)>;
+        if constexpr (std::is_same_v<Type, ScriptEffect>) {
+          e.instance_index = scene->script_count++;
+          scene->needs |= e.needs;
+        } else {
+          if (!e.can_act_within(min_m, max_m)) return;
+          scene->bank.template group<Type>().push_back(e);
+          scene->needs |= Type::kNeeds;
+        }
       },
       effect);
   scene->effects.push_back(std::move(effect));
@@ -78,9 +84,16 @@ double add_scripts_N(double force_N, const EffectInputOf<1>& input, ScriptList& 
   return force_N;
 }
 
-// Planar scenes hold no script effects yet (their effect list has none), so a planar
-// scene's script list is always empty.
-Vec2 add_scripts_N(const Vec2& force_N, const EffectInputOf<2>&, ScriptList&, std::uint64_t*) noexcept {
+// 2-D scripts: each returns (fx, fy).
+Vec2 add_scripts_N(Vec2 force_N, const EffectInputOf<2>& input, ScriptList& scripts,
+                   std::uint64_t* script_calls) noexcept {
+  const PlanarScriptInput script_input{input.x_m[0], input.x_m[1], input.v_m_per_s[0], input.v_m_per_s[1],
+                                       input.t_s,    input.dt_s};
+  for (const auto& script : scripts) {
+    const PlanarScriptForce f = script->planar_force_N(script_input);
+    force_N += Vec2{{f.x_N, f.y_N}};
+  }
+  if (script_calls != nullptr) *script_calls += scripts.size();
   return force_N;
 }
 

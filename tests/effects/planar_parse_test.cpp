@@ -120,7 +120,8 @@ TEST_CASE("planar parse: located errors") {
 TEST_CASE("planar effect types: the table, the bank and its proxies") {
   std::vector<std::string_view> names;
   for (const PlanarEffectType& type : planar_effect_types()) names.push_back(type.name);
-  CHECK(names == std::vector<std::string_view>{"spring", "wall", "box", "circle", "polygon", "damper", "texture"});
+  CHECK(names ==
+        std::vector<std::string_view>{"spring", "wall", "box", "circle", "polygon", "damper", "texture", "script"});
 
   PlanarEffectBank bank;
   PlanarBuiltInEffects::add(bank, parse_effect(R"({"type": "spring", "stiffness": 100, "center": [0, 0.12]})"));

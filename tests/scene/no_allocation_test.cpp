@@ -2,11 +2,14 @@
 #include <doctest/doctest.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <new>
 #include <vector>
 
+#include "engine/devices/planar/planar_model.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
+#include "engine/load/environment.hpp"
 #include "engine/run/runner.hpp"
 #include "engine/scene/step.hpp"
 #include "tests/support.hpp"
@@ -70,4 +73,27 @@ TEST_CASE("run: the simulated-time runner allocates nothing per tick") {
   };
   // Set-up may allocate; a run ten times longer must not allocate more.
   CHECK(allocations_for(10.0) == allocations_for(1.0));
+}
+
+TEST_CASE("step: a planar scene's 2-D script effects allocate nothing per tick") {
+  const PlanarScene scene = load_planar_environment_text(R"({"device": "haplink", "effects": [
+    {"type": "box", "min": ["-40 mm", "110 mm"], "max": ["0 mm", "135 mm"], "stiffness": 200, "solid": "inside"},
+    {"type": "script", "file": "scripts/planar/mass_spring.lua"},
+    {"type": "script", "file": "scripts/planar/bumps.lua"}]})",
+                                                         "env.json", test::source_path(""));
+  TickStateOf<2> state = make_tick_state(scene);
+  const PlanarModel& model = scene.device_model.model;
+  const auto run_ticks = [&](int ticks) {
+    for (int i = 0; i < ticks; ++i) {
+      const double phase = 0.002 * static_cast<double>(state.tick);
+      step(scene, planar_reading_for(model, Vec2{{0.3 * std::sin(phase), 0.2 * std::cos(phase)}}), &state);
+    }
+  };
+  run_ticks(1000);  // warm-up: Lua's call-info list grows once
+  const long before = g_allocations.load();
+  run_ticks(10000);
+  CHECK(g_allocations.load() - before == 0);
+  CHECK(state.script_calls == 2 * 11000);
+  CHECK_FALSE(state.scripts[0]->disabled());
+  CHECK_FALSE(state.scripts[1]->disabled());
 }

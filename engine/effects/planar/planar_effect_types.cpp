@@ -11,7 +11,13 @@ namespace {
 
 template <typename T>
 constexpr PlanarEffectType planar_effect_type() {
-  return PlanarEffectType{T::kType, [](ObjectReader& reader) { return PlanarEffect{T::parse(reader)}; }};
+  return PlanarEffectType{T::kType, [](ObjectReader& reader, ScriptLoadBudget* budget) {
+                            if constexpr (std::is_same_v<T, ScriptEffect>) {
+                              return PlanarEffect{T::parse(reader, *budget, 2)};
+                            } else {
+                              return PlanarEffect{T::parse(reader)};
+                            }
+                          }};
 }
 
 template <std::size_t... I>
@@ -26,8 +32,8 @@ constexpr auto kPlanarEffectTypes = make_table(std::make_index_sequence<std::var
 std::span<const PlanarEffectType> planar_effect_types() { return kPlanarEffectTypes; }
 
 bool parse_planar_effect(const nlohmann::json& value, const std::string& pointer, const std::string& file,
-                         PlanarEffect* effect) {
-  ObjectReader reader(value, pointer, file);
+                         PlanarEffect* effect, const std::string& base_dir, ScriptLoadBudget* budget) {
+  ObjectReader reader(value, pointer, file, base_dir);
   const std::string type_name = reader.string("type");
   const auto types = planar_effect_types();
   const auto type = std::find_if(types.begin(), types.end(), [&](const PlanarEffectType& t) { return t.name == type_name; });
@@ -43,7 +49,8 @@ bool parse_planar_effect(const nlohmann::json& value, const std::string& pointer
     if (!flag->is_boolean()) reader.fail("enabled", "expected a boolean, got " + json_type_name(*flag));
     if (!flag->get<bool>()) return false;
   }
-  *effect = type->parse(reader);
+  ScriptLoadBudget own_budget{kScriptLoadBudget_s, 0.0};
+  *effect = type->parse(reader, budget != nullptr ? budget : &own_budget);
   reader.finish();
   return true;
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 #include <tuple>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "engine/effects/planar/planar_input.hpp"
 #include "engine/effects/planar/planar_shapes.hpp"
 #include "engine/effects/planar/proxy_state.hpp"
+#include "engine/effects/script_effect.hpp"
 
 namespace hapscene {
 
@@ -26,7 +28,9 @@ class ObjectReader;
 
 template <typename... Types>
 struct PlanarEffectTypeList {
-  using Variant = std::variant<Types...>;
+  // One effect of any of the types, plus 2-D scripts (which run in the Lua layer, not
+  // in the bank: the tick adds them after it, as in 1-D).
+  using Variant = std::variant<Types..., ScriptEffect>;
 
   // A scene's 2-D effects grouped by type (in the order of the list; within a group in
   // the order of the file). The shapes' proxies live outside, in the run: one
@@ -86,10 +90,14 @@ struct PlanarEffectTypeList {
     }
   };
 
-  // Adds one effect to its group.
+  // Adds one built-in effect to its group (a script effect is not in the bank).
   static void add(Bank& bank, Variant effect) {
-    std::visit([&](auto&& e) { bank.template group<std::decay_t<decltype(e)>>().push_back(std::move(e)); },
-               std::move(effect));
+    std::visit(
+        [&](auto&& e) {
+          using Type = std::decay_t<decltype(e)>;
+          if constexpr (!std::is_same_v<Type, ScriptEffect>) bank.template group<Type>().push_back(std::move(e));
+        },
+        std::move(effect));
   }
 };
 
@@ -100,19 +108,23 @@ using PlanarEffect = PlanarBuiltInEffects::Variant;
 using PlanarEffectBank = PlanarBuiltInEffects::Bank;
 
 // The 2-D "type" names and their parsers, in the order of the list (like the 1-D
-// loader's table). parse reads the effect's own keys; the caller reads "type" and
-// "enabled" and calls finish().
+// loader's table), "script" last. parse reads the effect's own keys (a script effect
+// also takes the environment's shared load budget, see plan_script_loads); the caller
+// reads "type" and "enabled" and calls finish().
 struct PlanarEffectType {
   std::string_view name;
-  PlanarEffect (*parse)(ObjectReader& reader);
+  PlanarEffect (*parse)(ObjectReader& reader, ScriptLoadBudget* budget);
 };
 std::span<const PlanarEffectType> planar_effect_types();
 
 // One element of a 2-D scene's "effects" at `pointer` of `file`: its "type" (unknown
 // names are refused with a suggestion), "enabled" (a boolean, default true; a disabled
 // effect is not parsed further), its keys, and no others. Returns false when disabled.
+// A script's "file" is relative to `base_dir`; script effects charge `budget` (null: a
+// budget of their own, as when one effect is parsed alone).
 // Throws InputError with the file and the JSON pointer.
 bool parse_planar_effect(const nlohmann::json& value, const std::string& pointer, const std::string& file,
-                         PlanarEffect* effect);
+                         PlanarEffect* effect, const std::string& base_dir = ".",
+                         ScriptLoadBudget* budget = nullptr);
 
 }  // namespace hapscene
