@@ -9,10 +9,15 @@
 #include "engine/base/format.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
+#include "engine/cli/output_file.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/devices/planar/planar_hand.hpp"
 #include "engine/devices/planar/simulated_planar.hpp"
+#include "engine/harness/planar_figure.hpp"
+#include "engine/harness/planar_shape_list.hpp"
+#include "engine/harness/planar_trace.hpp"
 #include "engine/load/environment.hpp"
+#include "engine/run/observer_list.hpp"
 #include "engine/run/telemetry_log.hpp"
 
 namespace hapscene {
@@ -99,7 +104,14 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
     arguments.fail("--device " + settings.device +
                    ": a 2-DOF environment runs on the simulated device only (--device sim) so far");
   }
-  if (settings.plot_path) arguments.fail("--plot: not yet for a 2-DOF environment (use --log)");
+  // --plot: refused before anything runs when it would overwrite an input or the log.
+  if (settings.plot_path) {
+    std::vector<std::pair<std::string, std::string>> outputs;
+    if (settings.log_path) outputs.emplace_back("log", *settings.log_path);
+    outputs.emplace_back("plot", *settings.plot_path);
+    const std::string problem = output_path_problem(outputs, {file});
+    if (!problem.empty()) arguments.fail(problem);
+  }
   if (settings.noise_counts >= 0.0) arguments.fail("--noise: not yet for a 2-DOF environment");
   const PlanarScene scene = load_planar_environment_file(file);
 
@@ -125,9 +137,21 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
                                      : kDefaultTelemetryCapacity;
     log = std::make_unique<TelemetryLogOf<2>>(*settings.log_path, capacity);
   }
+  // The figure's trace (allocated before the run): the handle and the proxy of the shape
+  // nearest the start.
+  std::unique_ptr<PlanarTrace> trace;
+  int proxy_index = -1;
+  if (settings.plot_path) {
+    proxy_index = nearest_shape_index(planar_shape_list(scene), start_m);
+    const auto ticks = static_cast<std::uint64_t>(std::llround(settings.options.duration_s * scene.rate_hz));
+    trace = std::make_unique<PlanarTrace>(device->truth(), ticks, proxy_index);
+  }
+  ObserverListOf<2> observers;
+  observers.add(log.get());
+  observers.add(trace.get());
   RunOptions options = settings.options;
   options.reload = nullptr;  // hot reload: 1-DOF scenes only, so far
-  const RunSummaryOf<2> summary = run_scene(scene, *device, options, log.get());
+  const RunSummaryOf<2> summary = run_scene(scene, *device, options, &observers);
   print_planar_summary(scene, settings, simulation.hand, summary, *device);
   bool write_failed = false;
   if (log) {
@@ -141,6 +165,19 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
                 static_cast<unsigned long long>(log->written()), printable(*settings.log_path).c_str(),
                 static_cast<unsigned long long>(log->dropped()));
     }
+  }
+  if (trace) {
+    std::string what = "run, hand " + std::string(kPlanarHandMotionNames[static_cast<int>(simulation.hand.motion)]);
+    if (trace->ticks_per_bucket() > 1) {
+      what += ", first tick and highest force of every " + std::to_string(trace->ticks_per_bucket()) + " ticks";
+    }
+    const std::string proxy_label =
+        proxy_index >= 0 ? std::string("proxy of the ") +
+                               planar_shape_kind_name(planar_shape_list(scene)[static_cast<std::size_t>(proxy_index)].kind)
+                         : std::string();
+    write_output_file(*settings.plot_path, planar_figure_svg(scene, PlanarFigureOptions{}, trace->records(), what,
+                                                             proxy_label));
+    print_out("  plot             %s\n", printable(*settings.plot_path).c_str());
   }
   flush_out();
   const bool faulted = summary.overrun_fault || summary.safety.nonfinite_faults > 0;
