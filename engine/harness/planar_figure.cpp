@@ -327,7 +327,7 @@ std::string field_panel_svg(const PlanarScene& scene, const PlanarFieldView& vie
     if (!proxy_label.empty()) {
       ly += 14;
       out += "<text x=\"" + num(lx + 10) + "\" y=\"" + num(ly) +
-             "\" font-size=\"11\">(when free: the measured handle)</text>\n";
+             "\" font-size=\"11\">(free: at the measured handle)</text>\n";
     }
   }
   if (!shapes.empty()) entry("shape (solid shaded)", kShapeColor, "");

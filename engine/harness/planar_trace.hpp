@@ -17,7 +17,7 @@
 
 namespace hapscene {
 
-inline constexpr std::size_t kMaxPlanarTraceRecords = 20'000;  // 1.9 MiB of PlanarTickRecord
+inline constexpr std::size_t kMaxPlanarTraceRecords = 20'000;  // 2.0 MiB of PlanarTickRecord (104 bytes)
 
 struct PlanarTickRecord {
   double t_s{};

@@ -5,6 +5,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,9 @@
 #include "engine/harness/planar_trace.hpp"
 #include "engine/harness/svg_plot.hpp"
 #include "engine/load/environment.hpp"
+#include "engine/scene/safety.hpp"
+#include "tests/scratch_folder.hpp"
+#include "tests/support.hpp"
 
 using namespace hapscene;
 
@@ -192,6 +197,32 @@ TEST_CASE("planar figure: a cage shades the view outside its outline") {
   const std::string svg = planar_figure_svg(scene, {}, {}, "", "");
   CHECK(xml_problem(svg) == "");
   CHECK(svg.find("<path class=\"solid\" fill-rule=\"evenodd\"") != std::string::npos);
+}
+
+TEST_CASE("planar figure: a polygon workspace is drawn, and nothing is rendered outside it") {
+  // The Haplink's profile with a triangle for a workspace.
+  test::ScratchFolder scratch("planar_figure_polygon_workspace");
+  std::ifstream file(test::source_path("environments/devices/haplink.json"));
+  std::string profile((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const std::string box = R"("workspace": {"box": {"min": ["-70 mm", "90 mm"], "max": ["40 mm", "165 mm"]}})";
+  REQUIRE(profile.find(box) != std::string::npos);
+  profile.replace(profile.find(box), box.size(),
+                  R"("workspace": {"polygon": [["-70 mm", "90 mm"], ["40 mm", "165 mm"], ["-70 mm", "165 mm"]]})");
+  scratch.write("triangle.json", profile);
+  const PlanarScene scene = load_planar_environment_text(
+      R"({"device": "triangle.json", "effects": [{"type": "spring", "stiffness": 50, "center": [0, "120 mm"]}]})",
+      "env.json", scratch.dir.string());
+  REQUIRE(scene.safety.workspace_polygon_m.size() == 3);
+  const PlanarFieldGrid grid = planar_field_grid(scene, 12);
+  for (std::size_t i = 0; i < grid.points_m.size(); ++i) {
+    CHECK((norm(grid.output_N[i]) > 0.0) == within_workspace(scene.safety, grid.points_m[i]));
+  }
+  const std::string svg = planar_figure_svg(scene, {}, {}, "", "");
+  CHECK(xml_problem(svg) == "");
+  const PlanarFieldView view = planar_field_view(scene, 900, kSvgTitleHeight_px);
+  CHECK(between(svg, "<g id=\"workspace\"", "</g>")
+            .find("<polygon points=\"" + svg_number(view.px(-0.070)) + "," + svg_number(view.py(0.090)) + " ") !=
+        std::string::npos);
 }
 
 TEST_CASE("planar figure: the press scenario's paths, deterministic; the proxy stays out of the box") {
