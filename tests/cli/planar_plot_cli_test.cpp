@@ -71,6 +71,18 @@ TEST_CASE("planar plot: every 2-DOF scenario and shipped scene draws" * doctest:
   }
 }
 
+TEST_CASE("planar plot: press without a shape draws the field only and says so, exit 0") {
+  const ScratchFolder folder("planar_plot_no_shape");
+  const std::string env = folder.write("damper.json", R"({"name": "d", "device": "haplink", "effects": [{"type": "damper", "damping": 1}]})").string();
+  const std::string svg = (folder.dir / "d.svg").string();
+  const CliOutcome outcome = run_cli("plot '" + env + "' --scenario press --output '" + svg + "'");
+  CHECK(outcome.exit_code == 0);
+  CHECK(outcome.err == "note: press: no shape to press into; the figure shows the force field only\n");
+  const std::string figure = slurp_file(svg);
+  CHECK(figure.find("<g id=\"quiver\"") != std::string::npos);
+  CHECK(figure.find("handle-path") == std::string::npos);
+}
+
 TEST_CASE("planar plot: 1-DOF options on a 2-DOF scene and 2-DOF options on a 1-DOF one exit 2") {
   const auto refused = [](const std::string& args, const std::string& message) {
     const CliOutcome outcome = run_cli(args + " --output /dev/null");
