@@ -19,8 +19,11 @@ HarnessOptions take_harness_options(Arguments& arguments) {
 }
 
 std::vector<ScenarioKind> take_scenarios(Arguments& arguments) {
+  return parse_scenarios(arguments, arguments.take_value("scenario"));
+}
+
+std::vector<ScenarioKind> parse_scenarios(const Arguments& arguments, const std::optional<std::string>& list) {
   std::vector<ScenarioKind> kinds;
-  const std::optional<std::string> list = arguments.take_value("scenario");
   if (!list) return kinds;
   std::size_t begin = 0;
   while (begin <= list->size()) {

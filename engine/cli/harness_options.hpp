@@ -1,6 +1,8 @@
 #pragma once
 // Command-line options shared by `validate`, `plot` and `test`: the virtual hand, the
 // sensor noise, the seed, the free start and the scenario selection.
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "engine/cli/arguments.hpp"
@@ -13,5 +15,7 @@ HarnessOptions take_harness_options(Arguments& arguments);
 
 // Takes --scenario NAME[,NAME...]; empty when not given (all scenarios).
 std::vector<ScenarioKind> take_scenarios(Arguments& arguments);
+// The same for a list already taken (`list` empty: not given).
+std::vector<ScenarioKind> parse_scenarios(const Arguments& arguments, const std::optional<std::string>& list);
 
 }  // namespace hapscene

@@ -33,6 +33,8 @@ usage:
   hapscene test [SPEC...]                 run environment test specs (*.test.json)
   hapscene plot ENV [--scenario NAME] [--output FILE.svg]
                                           draw force-displacement and time series as SVG
+                                          (2-DOF: the force field, a run's paths and
+                                          time series; also --grid N, --width PX)
   hapscene help | --help                  this text
   hapscene version | --version
 

@@ -38,6 +38,10 @@ inline constexpr QuantityOption hand_damping = from_range("hand-damping", value_
 inline constexpr QuantityOption hand_mass = from_range("hand-mass", value_range::hand_mass);
 inline constexpr QuantityOption free_start = from_range("start", value_range::free_start);
 
+// plot on a 2-DOF environment: arrows along the workspace's longer side, the figure's width
+inline constexpr WholeOption plot_grid{"grid", 2, 200, "a whole number of arrows"};
+inline constexpr WholeOption plot_width{"width", 400, 4000, "a whole number of pixels"};
+
 // probe: START and STOP of --x, its STEP (at least kMinProbeStep_m in size), and --v
 inline constexpr QuantityOption probe_position = from_range("x", value_range::probe_position);
 inline constexpr QuantityOption probe_step{"x", Quantity::length_m, -1000.0, 1000.0};

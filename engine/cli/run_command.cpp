@@ -236,13 +236,6 @@ int run_command(std::vector<std::string> args) {
   if ((settings.log_path || settings.plot_path) && files.size() != 1) {
     arguments.fail("--log and --plot take one environment file");
   }
-  // A 2-DOF environment runs alone, on its own path (run_planar.cpp).
-  for (const std::string& file : files) {
-    if (environment_axes(file) != 2) continue;
-    if (files.size() != 1) arguments.fail(file + ": a 2-DOF environment runs alone (one file per run)");
-    return run_planar(arguments, settings, file);
-  }
-  parse_capstan_hand(arguments, &settings);
 
   // Output files that would overwrite an input or each other, or cannot be written where
   // they are asked for, are refused before anything runs.
@@ -253,6 +246,14 @@ int run_command(std::vector<std::string> args) {
     const std::string problem = output_path_problem(outputs, files);
     if (!problem.empty()) arguments.fail(problem);
   }
+
+  // A 2-DOF environment runs alone, on its own path (run_planar.cpp).
+  for (const std::string& file : files) {
+    if (environment_axes(file) != 2) continue;
+    if (files.size() != 1) arguments.fail(file + ": a 2-DOF environment runs alone (one file per run)");
+    return run_planar(arguments, settings, file);
+  }
+  parse_capstan_hand(arguments, &settings);
 
   // Load everything and open every device first: a bad file fails before anything moves.
   // A real board on a serial port is opened once and shared by every environment.

@@ -9,10 +9,15 @@
 #include "engine/base/format.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
+#include "engine/cli/output_file.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/devices/planar/planar_hand.hpp"
 #include "engine/devices/planar/simulated_planar.hpp"
+#include "engine/harness/planar_figure.hpp"
+#include "engine/harness/planar_shape_list.hpp"
+#include "engine/harness/planar_trace.hpp"
 #include "engine/load/environment.hpp"
+#include "engine/run/observer_list.hpp"
 #include "engine/run/telemetry_log.hpp"
 
 namespace hapscene {
@@ -107,7 +112,7 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
     arguments.fail("--device " + settings.device +
                    ": a 2-DOF environment runs on the simulated device only (--device sim) so far");
   }
-  if (settings.plot_path) arguments.fail("--plot: not yet for a 2-DOF environment (use --log)");
+  // (Output paths were checked by run_command: none overwrites an input or another.)
   if (settings.noise_counts >= 0.0) arguments.fail("--noise: not yet for a 2-DOF environment");
   const PlanarScene scene = load_planar_environment_file(file);
 
@@ -126,11 +131,36 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
   }
 
   const std::unique_ptr<TelemetryLogOf<2>> log = open_telemetry_log<2>(settings, scene.rate_hz);
+  // The figure's trace (allocated before the run): the handle and the proxy of the shape
+  // nearest the start.
+  std::unique_ptr<PlanarTrace> trace;
+  int proxy_index = -1;
+  if (settings.plot_path) {
+    proxy_index = nearest_shape_index(planar_shape_list(scene), start_m);
+    const auto ticks = static_cast<std::uint64_t>(std::llround(settings.options.duration_s * scene.rate_hz));
+    trace = std::make_unique<PlanarTrace>(device->truth(), ticks, proxy_index);
+  }
+  ObserverListOf<2> observers;
+  observers.add(log.get());
+  observers.add(trace.get());
   RunOptions options = settings.options;
   options.reload = nullptr;  // hot reload: 1-DOF scenes only, so far
-  const RunSummaryOf<2> summary = run_scene(scene, *device, options, log.get());
+  const RunSummaryOf<2> summary = run_scene(scene, *device, options, &observers);
   print_planar_summary(scene, settings, simulation.hand, summary, *device);
   const bool write_failed = log && !finish_telemetry_log(*log, *settings.log_path);
+  if (trace) {
+    std::string what = "run, hand " + std::string(kPlanarHandMotionNames[static_cast<int>(simulation.hand.motion)]);
+    if (trace->ticks_per_bucket() > 1) {
+      what += ", first tick and highest force of every " + std::to_string(trace->ticks_per_bucket()) + " ticks";
+    }
+    const std::string proxy_label =
+        proxy_index >= 0 ? std::string("proxy of the ") +
+                               planar_shape_kind_name(planar_shape_list(scene)[static_cast<std::size_t>(proxy_index)].kind)
+                         : std::string();
+    write_output_file(*settings.plot_path, planar_figure_svg(scene, PlanarFigureOptions{}, trace->records(), what,
+                                                             proxy_label));
+    print_out("  plot             %s\n", printable(*settings.plot_path).c_str());
+  }
   flush_out();
   // A script disabled by a fault is a fault the run saw (exit 1), as in 1-D.
   const bool script_faulted = std::any_of(summary.scripts.begin(), summary.scripts.end(),

@@ -65,6 +65,7 @@ bool finish_telemetry_log(TelemetryLogOf<N>& log, const std::string& path) {
 
 // Runs one planar environment on the simulated 2-DOF device (the only 2-DOF device so far)
 // with the options of `hapscene run` that apply: --sim-time, --duration, --log,
+// --plot FILE.svg (the figure of engine/harness/planar_figure.hpp),
 // --hand none|hold|line|circle|sweep|release|shake, --hold X,Y, --start X,Y (default the
 // profile's home), --hand-stiffness, --hand-damping, --release. Returns the exit code.
 int run_planar(const Arguments& arguments, const RunSettings& settings, const std::string& file);

@@ -11,27 +11,9 @@ constexpr double kLeft_px = 80.0;
 constexpr double kRight_px = 30.0;
 constexpr double kTop_px = 36.0;      // panel title
 constexpr double kBottom_px = 48.0;   // tick labels and axis label
-constexpr double kTitle_px = 40.0;    // document title
 
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f", value);
-  return text;
-}
-
-std::string escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+std::string number(double value) { return svg_number(value); }
+std::string escape(const std::string& text) { return svg_escape(text); }
 
 // A tick label: as few digits as the tick step needs.
 std::string tick_label(double value, double step) {
@@ -59,7 +41,29 @@ struct Range {
   }
 };
 
-std::string render_panel(const PlotPanel& panel, double top_px, double width_px, double height_px) {
+}  // namespace
+
+std::string svg_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", std::isfinite(value) ? value : 0.0);
+  return text;
+}
+
+std::string svg_escape(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string render_panel_svg(const PlotPanel& panel, double top_px, double width_px, double height_px) {
   // Data ranges, widened to whole ticks.
   Range xr;
   Range yr;
@@ -168,8 +172,6 @@ std::string render_panel(const PlotPanel& panel, double top_px, double width_px,
   return out;
 }
 
-}  // namespace
-
 std::vector<double> nice_ticks(double* low, double* high, int target_count) {
   const double span = *high - *low;
   const double rough = span / std::max(1, target_count);
@@ -213,9 +215,7 @@ void decimate_min_max(const std::vector<double>& x, const std::vector<double>& y
   }
 }
 
-std::string render_svg(const std::string& title, const std::vector<PlotPanel>& panels, int width_px,
-                       int panel_height_px) {
-  const double height_px = kTitle_px + static_cast<double>(panels.size()) * panel_height_px;
+std::string svg_document(const std::string& title, int width_px, double height_px, const std::string& body) {
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width_px) + "\" height=\"" +
          number(height_px) + "\" viewBox=\"0 0 " + std::to_string(width_px) + " " + number(height_px) +
@@ -223,12 +223,20 @@ std::string render_svg(const std::string& title, const std::vector<PlotPanel>& p
   out += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   out += "<text x=\"" + number(kLeft_px) + "\" y=\"26\" font-size=\"18\" font-weight=\"bold\">" +
          escape(title) + "</text>\n";
-  for (std::size_t i = 0; i < panels.size(); ++i) {
-    out += render_panel(panels[i], kTitle_px + static_cast<double>(i) * panel_height_px, width_px,
-                        panel_height_px);
-  }
+  out += body;
   out += "</svg>\n";
   return out;
+}
+
+std::string render_svg(const std::string& title, const std::vector<PlotPanel>& panels, int width_px,
+                       int panel_height_px) {
+  const double height_px = kSvgTitleHeight_px + static_cast<double>(panels.size()) * panel_height_px;
+  std::string body;
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    body += render_panel_svg(panels[i], kSvgTitleHeight_px + static_cast<double>(i) * panel_height_px, width_px,
+                             panel_height_px);
+  }
+  return svg_document(title, width_px, height_px, body);
 }
 
 }  // namespace hapscene

@@ -39,6 +39,19 @@ std::vector<double> nice_ticks(double* low, double* high, int target_count = 6);
 void decimate_min_max(const std::vector<double>& x, const std::vector<double>& y,
                       std::size_t max_points, std::vector<double>* out_x, std::vector<double>* out_y);
 
+// The pieces of a figure, for figures laid out by hand (engine/harness/planar_figure.cpp).
+// The document title's height above the first panel.
+inline constexpr double kSvgTitleHeight_px = 40.0;
+// A coordinate or length with one decimal ("12.3"); a non-finite value is written as 0.
+std::string svg_number(double value);
+// Text with &, <, > and " escaped for SVG text and attribute values.
+std::string svg_escape(const std::string& text);
+// One panel whose top edge is at top_px (its clip path is named after top_px: one panel
+// per top).
+std::string render_panel_svg(const PlotPanel& panel, double top_px, double width_px, double height_px);
+// A whole document of the given size: white background, the title, then `body`.
+std::string svg_document(const std::string& title, int width_px, double height_px, const std::string& body);
+
 // A whole SVG document.
 std::string render_svg(const std::string& title, const std::vector<PlotPanel>& panels,
                        int width_px = 900, int panel_height_px = 260);

@@ -1,5 +1,5 @@
 #pragma once
-// Several tick observers behind one (live status, telemetry log, plot trace), fixed
+// Several tick observers of a scene with N axes behind one (live status, telemetry log, plot trace), fixed
 // size: adding happens before the run, the loop only iterates.
 #include <array>
 #include <cstddef>
@@ -8,28 +8,31 @@
 
 namespace hapscene {
 
-class ObserverList final : public TickObserver {
+template <int N>
+class ObserverListOf final : public TickObserverOf<N> {
  public:
   // Ignores null and anything beyond the fixed capacity.
-  void add(TickObserver* observer) noexcept {
+  void add(TickObserverOf<N>* observer) noexcept {
     if (observer != nullptr && count_ < observers_.size()) observers_[count_++] = observer;
   }
-  void on_start(const TickState& state) override {
+  void on_start(const TickStateOf<N>& state) override {
     for (std::size_t i = 0; i < count_; ++i) observers_[i]->on_start(state);
   }
-  void on_tick(const TickState& state) noexcept override {
+  void on_tick(const TickStateOf<N>& state) noexcept override {
     for (std::size_t i = 0; i < count_; ++i) observers_[i]->on_tick(state);
   }
   void on_scripts(ScriptSpan running, ScriptSpan replaced) noexcept override {
     for (std::size_t i = 0; i < count_; ++i) observers_[i]->on_scripts(running, replaced);
   }
-  void on_finish(const TickState& state) override {
+  void on_finish(const TickStateOf<N>& state) override {
     for (std::size_t i = 0; i < count_; ++i) observers_[i]->on_finish(state);
   }
 
  private:
-  std::array<TickObserver*, 8> observers_{};
+  std::array<TickObserverOf<N>*, 8> observers_{};
   std::size_t count_{};
 };
+
+using ObserverList = ObserverListOf<1>;
 
 }  // namespace hapscene

@@ -64,11 +64,21 @@ TEST_CASE("planar run: options of the other dimension and devices without 2-DOF 
 }
 
 TEST_CASE("planar scenes: commands that take 1-DOF scenes only say so and exit 2") {
-  for (const char* command : {"validate", "plot"}) {
+  for (const char* command : {"validate"}) {  // plot draws 2-DOF scenes: planar_plot_cli_test.cpp
     CAPTURE(command);
     const CliOutcome outcome = run_cli(std::string(command) + " environments/planar/haplink_box_inside.json");
     CHECK(outcome.exit_code == 2);
     CHECK(outcome.err.find("\"haplink\" is a 2-DOF (planar) profile: this command takes 1-DOF scenes only") !=
           std::string::npos);
   }
+}
+
+TEST_CASE("planar run: a --log that would overwrite the environment is refused before anything runs") {
+  ScratchFolder scratch("planar_log_overwrite");
+  const auto environment = scratch.write("cage.json", slurp_file(HAPSCENE_SOURCE_DIR "/environments/planar/haplink_box_outside.json"));
+  const std::string before = slurp_file(environment);
+  const CliOutcome outcome =
+      run_cli("run '" + environment.string() + "' --sim-time --duration 0.1s --log '" + environment.string() + "'");
+  CHECK(outcome.exit_code == 2);
+  CHECK(slurp_file(environment) == before);
 }
