@@ -9,6 +9,7 @@
 
 #include "engine/bench/lab_baseline.hpp"
 #include "engine/bench/lua_equivalent.hpp"
+#include "engine/bench/planar_tick_bench.hpp"
 #include "engine/bench/tick_bench.hpp"
 #include "engine/cli/bench_modes.hpp"
 #include "engine/cli/option_definitions.hpp"
@@ -17,6 +18,42 @@
 #include "engine/scene/step.hpp"
 
 namespace hapscene {
+namespace {
+
+// A 2-DOF environment: the hand-written 2-D code or step<2>() over 1 s of readings.
+int planar_callgrind(Arguments& arguments, const std::string& file, const std::string& impl, long long ticks) {
+  if (impl == "lua") arguments.fail("--impl lua: not for a 2-DOF environment (no 2-D scripts yet)");
+  const PlanarScene scene = load_planar_environment_file(file);
+  const std::vector<PlanarReading> readings = record_planar_readings(scene, 1.0);
+  const auto n = static_cast<long long>(readings.size());
+  if (n == 0) arguments.fail(file + ": no readings recorded");
+  double checksum = 0.0;
+  if (impl == "baseline") {
+    PlanarBaselineKind kind{};
+    PlanarBaselineConstants constants;
+    if (!planar_baseline_for(scene, &kind, &constants)) {
+      arguments.fail(file + ": the hand-written 2-D code is one inside box on the haplink or a 2DIY");
+    }
+    PlanarBaselineState state;
+    void (*tick)(const PlanarBaselineConstants&, const PlanarReading&, PlanarBaselineState*) =
+        kind == PlanarBaselineKind::haplink_box ? haplink_box_tick : five_bar_box_tick;
+    for (long long i = 0; i < ticks; ++i) {
+      tick(constants, readings[static_cast<std::size_t>(i % n)], &state);
+      checksum += state.duty[0] + state.duty[1];
+    }
+  } else {
+    TickStateOf<2> state = make_tick_state(scene);
+    for (long long i = 0; i < ticks; ++i) {
+      step(scene, readings[static_cast<std::size_t>(i % n)], &state);
+      checksum += state.command.motor[0].duty + state.command.motor[1].duty;
+    }
+  }
+  print_out("callgrind mode: %s, %s, %lld ticks, checksum %.17g\n", scene.name.c_str(), impl.c_str(), ticks, checksum);
+  flush_out();
+  return 0;
+}
+
+}  // namespace
 
 int bench_callgrind(Arguments& arguments) {
   const std::string impl = arguments.take_value("impl").value_or("builtin");
@@ -27,6 +64,8 @@ int bench_callgrind(Arguments& arguments) {
   if (impl != "builtin" && impl != "lua" && impl != "baseline") {
     arguments.fail("--impl: \"" + impl + "\" is not one of \"builtin\", \"lua\", \"baseline\"");
   }
+
+  if (environment_axes(files[0]) == 2) return planar_callgrind(arguments, files[0], impl, ticks);
 
   // The same inputs for every implementation: 1 s of readings of the closed loop.
   const Scene scene = load_environment_file(files[0]);

@@ -12,6 +12,7 @@
 #include "engine/base/object_reader.hpp"
 #include "engine/bench/instruction_counter.hpp"
 #include "engine/bench/lua_equivalent.hpp"
+#include "engine/bench/planar_tick_bench.hpp"
 #include "engine/bench/tick_bench.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/bench_modes.hpp"
@@ -26,6 +27,14 @@ namespace {
 
 constexpr const char* kLabEnvironments[] = {"environments/spring.json", "environments/wall.json",
                                             "environments/damper.json", "environments/texture.json"};
+
+// The 2-D rows by default: the course's inside box on both devices (against the
+// hand-written 2-D code), a round cage, and a polygon of kPolygonEdges edges.
+constexpr const char* kPlanarEnvironments[] = {"environments/planar/haplink_box_inside.json",
+                                               "environments/planar/haply2diy_v3_box_inside.json",
+                                               "environments/planar/haplink_circle_outside.json"};
+constexpr int kPolygonEdges = 1000;
+constexpr const char* kPolygonDevice = "haplink";
 
 // Scenes that differ in one part only: the difference in cost is that part's cost.
 constexpr const char* kPartScenes[][2] = {
@@ -63,6 +72,8 @@ constexpr const char* kPartScenes[][2] = {
 constexpr double kBuiltinGoalRatio = 1.5;     // built-in effects against the hand-written code
 constexpr double kLuaGoal_ns = 150.0;         // Lua scripts, median per tick
 constexpr double kTailGoalRatio = 5.0;        // Lua scripts: p99.9 against the median (no GC spikes)
+constexpr double kPolygonGoal_ns = 1000.0;    // the 1000-edge polygon, median per tick
+constexpr double kLuaPlanarGoalRatio = 1.2;   // a 2-D Lua spring against the 1-D Lua spring
 
 void print_header() {
   print_out("%-10s %-18s %8s %8s %8s %9s %7s %8s %11s\n", "environment", "implementation", "median", "p99",
@@ -84,6 +95,56 @@ bool print_row(const std::string& scene, const char* implementation, const TickC
   return ok || !tail_goal;
 }
 
+// The 2-D table and its goals, after the 1-D ones: each scene's hand-written 2-D code
+// (when there is one for it) and step<2>() on its recorded readings.
+struct PlanarRow {
+  const PlanarScene* scene;
+  std::vector<TickCost> costs;  // the baseline's first when there is one
+  bool has_baseline;
+  bool polygon_goal;            // the generated kPolygonEdges-edge polygon
+};
+
+void print_planar_row(const std::string& scene, const char* implementation, const TickCost& cost) {
+  print_out("%-24s %-18s %8.1f %8.1f %8.1f %9.1f", scene.c_str(), implementation, cost.median_ns, cost.p99_ns,
+            cost.p999_ns, cost.max_ns);
+  if (cost.ratio >= 0.0) print_out(" %6.2fx", cost.ratio);
+  else print_out(" %7s", "-");
+  if (cost.instructions_per_tick >= 0.0) print_out(" %8.0f", cost.instructions_per_tick);
+  else print_out(" %8s", "-");
+  print_out(" %6.2f\n", cost.median_ns > 0.0 ? cost.p999_ns / cost.median_ns : 0.0);
+}
+
+void print_planar_table(const std::vector<PlanarRow>& rows) {
+  print_out("\n2-DOF (planar): the same measure, each scene's readings from a simulated run with the hand "
+            "sweeping its workspace; ratios against the hand-written 2-D code, same rounds\n\n");
+  print_out("%-24s %-18s %8s %8s %8s %9s %7s %8s %11s\n", "environment", "implementation", "median", "p99", "p99.9",
+            "max", "ratio", "instr", "p99.9/med");
+  std::vector<std::string> goals;
+  char goal[200];
+  for (const PlanarRow& row : rows) {
+    const std::string& name = row.scene->name;
+    std::size_t k = 0;
+    if (row.has_baseline) print_planar_row(name, "hand-written C++", row.costs[k++]);
+    TickCost builtin = row.costs[k];
+    if (!row.has_baseline) builtin.ratio = -1.0;
+    print_planar_row(name, "built-in (JSON)", builtin);
+    if (row.has_baseline) {
+      std::snprintf(goal, sizeof goal, "%s: built-in %.2fx the hand-written code (goal <= %.1fx): %s", name.c_str(),
+                    builtin.ratio, kBuiltinGoalRatio, builtin.ratio <= kBuiltinGoalRatio ? "met" : "NOT met");
+      goals.push_back(goal);
+    }
+    if (row.polygon_goal) {
+      std::snprintf(goal, sizeof goal, "%s: built-in median %.1f ns (goal < %.0f ns): %s", name.c_str(),
+                    builtin.median_ns, kPolygonGoal_ns, builtin.median_ns < kPolygonGoal_ns ? "met" : "NOT met");
+      goals.push_back(goal);
+    }
+  }
+  print_out("\n2-DOF goals\n");
+  for (const std::string& line : goals) print_out("  %s\n", line.c_str());
+  // The 2-D Lua row joins here when 2-D scripts exist: a 2-D Lua spring against the 1-D one.
+  print_out("  Lua 2-D spring <= %.1fx the Lua 1-D spring: not measured (no 2-D scripts yet)\n", kLuaPlanarGoalRatio);
+}
+
 // What a scene's engine row runs: built-in effects only, scripts only (a .lua
 // environment, or JSON made of script effects), or both.
 const char* implementation_label(const Scene& scene) {
@@ -101,7 +162,8 @@ constexpr double kMaxBenchBytes = 1024.0 * 1024.0 * 1024.0;  // 1 GiB
 
 std::string mebibytes(double bytes) { return format_number(std::round(bytes / (1024.0 * 1024.0))) + " MiB"; }
 
-void check_bench_memory(const Arguments& arguments, const std::vector<Scene>& scenes, double seconds, int passes) {
+void check_bench_memory(const Arguments& arguments, const std::vector<Scene>& scenes,
+                        const std::vector<PlanarScene>& planar_scenes, double seconds, int passes) {
   double longest_ticks = std::floor(seconds * 1000.0);  // the parts group runs at the default 1 kHz
   double readings = longest_ticks;
   for (const Scene& scene : scenes) {
@@ -109,7 +171,15 @@ void check_bench_memory(const Arguments& arguments, const std::vector<Scene>& sc
     readings += ticks;
     longest_ticks = std::max(longest_ticks, ticks);
   }
-  const double loops = 3.0 * static_cast<double>(scenes.size()) + static_cast<double>(std::size(kPartScenes));
+  // A 2-D reading, and its index, count as (sizeof(PlanarReading) + 4) / 4 readings.
+  constexpr double kPlanarReadingWeight = (static_cast<double>(sizeof(PlanarReading)) + 4.0) / 4.0;
+  for (const PlanarScene& scene : planar_scenes) {
+    const double ticks = std::floor(seconds * scene.rate_hz);
+    readings += kPlanarReadingWeight * ticks;
+    longest_ticks = std::max(longest_ticks, ticks);
+  }
+  const double loops = 3.0 * static_cast<double>(scenes.size()) + 2.0 * static_cast<double>(planar_scenes.size()) +
+                       static_cast<double>(std::size(kPartScenes));
   const double slices = std::max(1.0, std::floor(longest_ticks / static_cast<double>(kSliceTicks)));
   const double readings_bytes = 4.0 * readings;
   const double rounds_bytes = 2.0 * 8.0 * static_cast<double>(passes) * slices * loops;
@@ -117,7 +187,7 @@ void check_bench_memory(const Arguments& arguments, const std::vector<Scene>& sc
   const double total = readings_bytes + rounds_bytes + tail_bytes;
   if (total > kMaxBenchBytes) {
     arguments.fail("--seconds " + format_number(seconds) + " x --passes " + std::to_string(passes) + " over " +
-                   std::to_string(scenes.size()) + " environment(s) needs about " + mebibytes(total) +
+                   std::to_string(scenes.size() + planar_scenes.size()) + " environment(s) needs about " + mebibytes(total) +
                    " (readings " + mebibytes(readings_bytes) + ", round timings " + mebibytes(rounds_bytes) +
                    ", tail timings " + mebibytes(tail_bytes) + "), more than the " + mebibytes(kMaxBenchBytes) +
                    " a bench may use; lower --seconds or --passes, or give fewer environments");
@@ -136,17 +206,31 @@ int bench_command(std::vector<std::string> args) {
   const int passes = static_cast<int>(arguments.take(option::bench_passes).value_or(10));
   const std::string scripts_dir = arguments.take_value("scripts").value_or("scripts");
   std::vector<std::string> files = arguments.positionals();
-  if (files.empty()) files.assign(std::begin(kLabEnvironments), std::end(kLabEnvironments));
+  const bool defaults = files.empty();
+  if (defaults) files.assign(std::begin(kLabEnvironments), std::end(kLabEnvironments));
 
-  // Every scene, and its Lua twin, loaded before anything is timed.
+  // Every scene, and its Lua twin, loaded before anything is timed; a 2-DOF environment
+  // (its device a planar profile) goes to the 2-D table.
   std::vector<Scene> scenes;
   std::vector<std::optional<Scene>> lua_scenes;
+  std::vector<PlanarScene> planar_scenes;
   for (const std::string& file : files) {
+    if (environment_axes(file) == 2) {
+      planar_scenes.push_back(load_planar_environment_file(file));
+      continue;
+    }
     scenes.push_back(load_environment_file(file));
     lua_scenes.push_back(lua_equivalent(scenes.back(), scripts_dir));
   }
+  if (defaults) {
+    for (const char* file : kPlanarEnvironments) planar_scenes.push_back(load_planar_environment_file(file));
+    const PlanarScene empty =
+        load_planar_environment_text(std::string(R"({"device": ")") + kPolygonDevice + R"(", "effects": []})", "bench");
+    planar_scenes.push_back(
+        load_planar_environment_text(regular_polygon_environment(empty, kPolygonDevice, kPolygonEdges), "bench"));
+  }
 
-  check_bench_memory(arguments, scenes, seconds, passes);
+  check_bench_memory(arguments, scenes, planar_scenes, seconds, passes);
 
   TickTimer timer;
   InstructionCounter counter;
@@ -199,6 +283,25 @@ int bench_command(std::vector<std::string> args) {
   }
   groups.push_back(parts);
 
+  // The 2-D groups: the hand-written 2-D code first (when there is one), then step<2>().
+  struct PlanarLoops {
+    std::vector<PlanarReading> readings;
+    std::vector<std::int32_t> indices;
+    std::unique_ptr<TickLoop> baseline, builtin;
+  };
+  std::vector<PlanarLoops> planar(planar_scenes.size());
+  for (std::size_t i = 0; i < planar_scenes.size(); ++i) {
+    PlanarLoops& p = planar[i];
+    p.readings = record_planar_readings(planar_scenes[i], seconds);
+    p.indices = reading_indices(p.readings.size());
+    p.baseline = planar_baseline_tick_loop(planar_scenes[i], p.readings);
+    p.builtin = planar_scene_tick_loop(planar_scenes[i], p.readings);
+    TickLoopGroup group{&p.indices, {}};
+    if (p.baseline) group.loops.push_back(p.baseline.get());
+    group.loops.push_back(p.builtin.get());
+    groups.push_back(std::move(group));
+  }
+
   // Everything measured in one interleaved run, then printed.
   const std::vector<std::vector<TickCost>> costs = compare_tick_loops(groups, passes, &timer, &counter);
 
@@ -241,7 +344,7 @@ int bench_command(std::vector<std::string> args) {
 
   print_out("\nwhat each part of a scene costs (median ns per tick, measured with the rows above; "
             "ratio against the first row)\n\n");
-  const std::vector<TickCost>& part_costs = costs.back();
+  const std::vector<TickCost>& part_costs = costs[scenes.size()];
   for (std::size_t i = 0; i < part_scenes.size(); ++i) {
     print_out("%-52s %8.1f %6.2fx", kPartScenes[i][0], part_costs[i].median_ns, part_costs[i].ratio);
     if (part_scenes[i].script_count > 0) {
@@ -249,6 +352,15 @@ int bench_command(std::vector<std::string> args) {
                 part_loops[i]->script_calls_per_tick());
     }
     print_out("\n");
+  }
+
+  if (!planar_scenes.empty()) {
+    std::vector<PlanarRow> rows;
+    for (std::size_t i = 0; i < planar_scenes.size(); ++i) {
+      rows.push_back(PlanarRow{&planar_scenes[i], costs[scenes.size() + 1 + i], planar[i].baseline != nullptr,
+                               defaults && i + 1 == planar_scenes.size()});
+    }
+    print_planar_table(rows);
   }
 
   // A script that faulted was disabled and its row timed the 0 N left behind: the

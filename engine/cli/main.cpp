@@ -23,6 +23,7 @@ usage:
                                           print the force-displacement curve as CSV
   hapscene bench [ENV...] [--seconds T] [--passes N]
                                           tick cost against the hand-written lab code
+                                          (1-D and 2-D: a planar ENV goes to the 2-D table)
   hapscene bench --accuracy [--svg FILE]  simulator run time against error
   hapscene bench --stress                 stiffness and damping sweeps
   hapscene bench --soak [--ticks N]       100 million ticks per lab environment

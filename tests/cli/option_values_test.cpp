@@ -178,8 +178,10 @@ TEST_CASE("cli values: bench refuses values whose recordings or timings would no
         "--passes, or give fewer environments\n");
   CHECK(refused("bench --seconds 600 --passes 1000 " + medium.string()).starts_with(
       "error: hapscene bench: --seconds 600 x --passes 1000 over 1 environment(s) needs about 19521 MiB"));
-  // The largest values of both ranges over the four lab environments are just over.
-  CHECK(refused("bench --seconds 600 --passes 1000").find("needs about 1025 MiB") != std::string::npos);
+  // The largest values of both ranges over the default rows (the four lab environments
+  // and the four 2-D scenes, whose readings are 24 bytes and an index a tick) are over.
+  CHECK(refused("bench --seconds 600 --passes 1000").find("over 8 environment(s) needs about 1125 MiB (readings 76 MiB") !=
+        std::string::npos);
   std::filesystem::remove(fast);
   std::filesystem::remove(medium);
 }
