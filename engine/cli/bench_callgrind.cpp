@@ -22,7 +22,7 @@ namespace {
 
 // A 2-DOF environment: the hand-written 2-D code or step<2>() over 1 s of readings.
 int planar_callgrind(Arguments& arguments, const std::string& file, const std::string& impl, long long ticks) {
-  if (impl == "lua") arguments.fail("--impl lua: not for a 2-DOF environment (no 2-D scripts yet)");
+  if (impl == "lua") arguments.fail("--impl lua: not for a 2-DOF environment yet (the bench has no 2-D script row)");
   const PlanarScene scene = load_planar_environment_file(file);
   const std::vector<PlanarReading> readings = record_planar_readings(scene, 1.0);
   const auto n = static_cast<long long>(readings.size());

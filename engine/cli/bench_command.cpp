@@ -142,7 +142,7 @@ void print_planar_table(const std::vector<PlanarRow>& rows) {
   print_out("\n2-DOF goals\n");
   for (const std::string& line : goals) print_out("  %s\n", line.c_str());
   // The 2-D Lua row joins here when 2-D scripts exist: a 2-D Lua spring against the 1-D one.
-  print_out("  Lua 2-D spring <= %.1fx the Lua 1-D spring: not measured (no 2-D scripts yet)\n", kLuaPlanarGoalRatio);
+  print_out("  Lua 2-D spring <= %.1fx the Lua 1-D spring: not measured yet (no 2-D script row in the bench)\n", kLuaPlanarGoalRatio);
 }
 
 // What a scene's engine row runs: built-in effects only, scripts only (a .lua

@@ -169,7 +169,7 @@ TEST_CASE("planar bench: --callgrind runs the 2-D baseline and the built-in scen
   CHECK(builtin.out.find("callgrind mode: haply2diy_v3_box_inside, builtin, 2000 ticks") != std::string::npos);
   const test::CliOutcome lua = test::run_cli("bench --callgrind environments/planar/haplink_box_inside.json --impl lua");
   CHECK(lua.exit_code == 2);
-  CHECK(lua.err.find("no 2-D scripts yet") != std::string::npos);
+  CHECK(lua.err.find("the bench has no 2-D script row") != std::string::npos);
   const test::CliOutcome none = test::run_cli(
       "bench --callgrind environments/planar/haplink_circle_outside.json --impl baseline --ticks 10");
   CHECK(none.exit_code == 2);
