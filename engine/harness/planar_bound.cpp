@@ -15,6 +15,7 @@ bool bound_at(const PlanarScene& scene, const Vec2& q_rad, PlanarPoseBound* out)
   const LinkagePose pose = solve_linkage(scene.device.linkage, q_rad);
   if (!pose.valid) return false;
   const Jacobian2& j = pose.jacobian;
+  out->condition = condition_number(j);
   const double det = j.m[0][0] * j.m[1][1] - j.m[0][1] * j.m[1][0];
   if (!(std::fabs(det) > 1e-12)) return false;
   // J^-1 (rows: joints; columns: task axes).
@@ -75,6 +76,11 @@ PlanarStiffnessBound planar_stiffness_bound(const PlanarScene& scene, int grid) 
       PlanarPoseBound pose;
       if (!bound_at(scene, q, &pose)) continue;
       if (norm(pose.x_m - p) > 1e-6) continue;  // the nearest reachable pose, not this one
+      // Past the condition limit the safety stage ramps force out: no wall is rendered there.
+      if (!(pose.condition <= scene.device_model.condition_limit)) {
+        ++result.held_poses;
+        continue;
+      }
       if (result.poses.empty() || pose.bound_N_per_m < result.lowest.bound_N_per_m) result.lowest = pose;
       if (result.poses.empty() || pose.bound_N_per_m > result.highest.bound_N_per_m) result.highest = pose;
       result.poses.push_back(pose);

@@ -12,6 +12,8 @@
 //            sensor count (the larger of the two joints' |J column| x resolution):
 //            min over u of 2 f_c(u) / D (72 directions);
 // and the pose's bound is the smaller of the two, named as in 1-D ("2b/T", "2fc/D").
+// Poses past the profile's condition_limit are left out (the safety stage ramps force out
+// there, so no wall is rendered) and counted.
 #include <vector>
 
 #include "engine/base/axes.hpp"
@@ -25,11 +27,13 @@ struct PlanarPoseBound {
   double coulomb_N_per_m{};   // min over directions of 2 f_c(u) / D
   double bound_N_per_m{};     // the smaller
   const char* name{"2b/T"};
+  double condition{};         // the Jacobian's condition number there
 };
 
 struct PlanarStiffnessBound {
   int grid{};                          // points per side of the grid (grid x grid)
   std::vector<PlanarPoseBound> poses;  // the poses reached, row by row from the bottom left
+  int held_poses{};                    // poses reached past the condition limit (left out: no force there)
   PlanarPoseBound lowest;              // the pose with the smallest bound
   PlanarPoseBound highest;             // and the largest
   double stiffest_N_per_m{};           // the scene's stiffest shape or spring (0: none)

@@ -56,14 +56,14 @@ std::string failed_text(const Tally& t) {
 }
 
 std::string pose_text(const PlanarPoseBound& pose) {
-  return printf_string("%.0f N/m (%s) at (%.1f, %.1f) mm", pose.bound_N_per_m, pose.name, pose.x_m[0] * 1e3,
+  return printf_string("%.3g N/m (%s) at (%.1f, %.1f) mm", pose.bound_N_per_m, pose.name, pose.x_m[0] * 1e3,
                        pose.x_m[1] * 1e3);
 }
 
 json pose_json(const PlanarPoseBound& pose) {
   return {{"x_m", vec(pose.x_m)}, {"viscous_N_per_m", pose.viscous_N_per_m},
           {"coulomb_N_per_m", pose.coulomb_N_per_m}, {"bound_N_per_m", pose.bound_N_per_m},
-          {"bound", pose.name}};
+          {"bound", pose.name}, {"condition", pose.condition}};
 }
 
 }  // namespace
@@ -83,8 +83,8 @@ std::string format_planar_report_table(const PlanarValidationReport& report) {
   if (b.poses.empty()) {
     out += "stiffness bound per pose: no pose of the grid is reachable\n";
   } else {
-    out += printf_string("stiffness bound per pose (%zu poses of a %d x %d grid): lowest ", b.poses.size(), b.grid,
-                         b.grid) +
+    out += printf_string("stiffness bound per pose (%zu poses of a %d x %d grid%s): lowest ", b.poses.size(), b.grid,
+                         b.grid, b.held_poses > 0 ? printf_string(", %d past the condition limit left out", b.held_poses).c_str() : "") +
            pose_text(b.lowest) + ", highest " + pose_text(b.highest) + "\n";
   }
   const HarnessOptions& o = report.options;
@@ -123,7 +123,7 @@ json planar_report_to_json(const PlanarValidationReport& report) {
                  {"passivity_bound_N_per_m", b.poses.empty() ? json(nullptr) : json(b.lowest.bound_N_per_m)},
                  {"passivity_bound", b.poses.empty() ? json(nullptr) : json(b.lowest.name)},
                  {"stiffest_region_N_per_m", b.stiffest_N_per_m},
-                 {"stiffness_bound", {{"grid", b.grid},
+                 {"stiffness_bound", {{"grid", b.grid}, {"held_poses", b.held_poses},
                                       {"lowest", b.poses.empty() ? json(nullptr) : pose_json(b.lowest)},
                                       {"highest", b.poses.empty() ? json(nullptr) : pose_json(b.highest)},
                                       {"poses", poses}}},

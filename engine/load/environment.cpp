@@ -207,7 +207,7 @@ Environment compile(const nlohmann::json& root, const std::string& file, const s
   const auto load_capstan_profile = [](const std::string& name, const std::string& dir) {
     if (names_planar_profile(name, dir)) {
       throw InputError("\"" + name + "\" is a 2-DOF (planar) profile: this command takes 1-DOF scenes only so far "
-                       "(2-DOF scenes: probe and run)");
+                       "(2-DOF scenes: probe, run, plot and validate)");
     }
     return load_device_profile(name, dir);
   };

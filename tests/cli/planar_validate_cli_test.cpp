@@ -20,7 +20,7 @@ TEST_CASE("planar validate cli: the table and the quiet line of a passing lab sc
   const CliOutcome table = run_cli("validate " + kBox);
   CHECK(table.exit_code == 0);
   CHECK(table.out.rfind("validate haplink_box_inside (" + kBox + "): 2 axes, 1000 Hz, stiffest shape or spring 200 N/m\n"
-                        "stiffness bound per pose (110 poses of a 11 x 11 grid): lowest 42 N/m (2fc/D) at (-70.0, 165.0) mm, "
+                        "stiffness bound per pose (110 poses of a 11 x 11 grid): lowest 42.2 N/m (2fc/D) at (-70.0, 165.0) mm, "
                         "highest 135 N/m (2fc/D) at (-15.0, 90.0) mm\n",
                         0) == 0);
   for (const char* scenario : {"\nsweep ", "\npress ", "\nswipe ", "\nrelease ", "\nhold ", "\nshake ", "\nfree "}) {
