@@ -64,6 +64,8 @@ validate options:
   --hand-stiffness K    --hand-damping B    --hand-mass M    (default 200 N/m, 2 N*s/m, 20 g)
   --noise COUNTS        --seed N            --start X (free scenario start, default 4 mm)
   --report FILE.json    --plot FILE.svg     --quiet
+  2-DOF: --scenario sweep, press, swipe, release, hold, shake, free; --start X,Y
+                        (free scenario start, default the profile's home)
 
 Values take SI numbers or strings with units ("10 mm", "2 kHz"); each numeric option
 has a range (README, "Using it"), and a value outside it is invalid input.

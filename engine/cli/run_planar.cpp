@@ -8,6 +8,7 @@
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
 #include "engine/cli/commands.hpp"
+#include "engine/cli/harness_options.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/standard_output.hpp"
@@ -22,18 +23,6 @@
 
 namespace hapscene {
 namespace {
-
-// "X,Y" as two lengths, each in the option's range.
-Vec2 parse_point(const Arguments& arguments, const std::string& name, const std::string& text,
-                 const QuantityOption& option) {
-  const std::size_t comma = text.find(',');
-  if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) {
-    arguments.fail("--" + name + ": a 2-DOF environment takes X,Y, got \"" + text + "\"");
-  }
-  const std::string what = arguments.command() + ": --" + name;
-  return Vec2{{parse_option_quantity(text.substr(0, comma), option, what + " X"),
-               parse_option_quantity(text.substr(comma + 1), option, what + " Y")}};
-}
 
 // The hand of a planar run: its motion over the scene's workspace box (a sweep covers the
 // middle 80 % of it; a line crosses it; a circle of a quarter of its smaller side turns
@@ -53,7 +42,7 @@ PlanarHandConfig planar_hand(const Arguments& arguments, const RunSettings& sett
   hand.stiffness_N_per_m = settings.simulation.hand.stiffness_N_per_m;
   hand.damping_N_s_per_m = settings.simulation.hand.damping_N_s_per_m;
   hand.release_s = settings.simulation.hand.release_s;
-  hand.hold_m = settings.hold_text ? parse_point(arguments, "hold", *settings.hold_text, option::hold) : start_m;
+  hand.hold_m = settings.hold_text ? parse_planar_point(arguments, "hold", *settings.hold_text, option::hold) : start_m;
   const Vec2 low = scene.safety.workspace_min_m;
   const Vec2 high = scene.safety.workspace_max_m;
   const Vec2 middle = (low + high) * 0.5;
@@ -118,7 +107,7 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
 
   // Where the handle starts: --start, else the profile's home.
   const Vec2 start_m =
-      settings.start_text ? parse_point(arguments, "start", *settings.start_text, option::run_start) : scene.device.home_m;
+      settings.start_text ? parse_planar_point(arguments, "start", *settings.start_text, option::run_start) : scene.device.home_m;
   PlanarSimulationConfig simulation;
   simulation.hand = planar_hand(arguments, settings, scene, start_m);
   simulation.noise_seed = settings.simulation.noise_seed;

@@ -4,6 +4,11 @@
 // figure. Exit 0 when every check passes or is not judged, 1 when any fails (a script
 // fault always fails the "script" check), 2 for invalid input (options, or any of the
 // files: the others still get their verdicts).
+//
+// A 2-DOF environment (its device a planar profile) runs the 2-D scenarios (sweep, press,
+// swipe, release, hold, shake, free: engine/harness/planar_validate.hpp) with the same
+// options; its --start is X,Y (the free scenario's start, default the profile's home).
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -13,10 +18,13 @@
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/harness_options.hpp"
+#include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/per_file.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/harness/figures.hpp"
+#include "engine/harness/planar_report.hpp"
+#include "engine/harness/planar_validate.hpp"
 #include "engine/harness/report.hpp"
 #include "engine/load/environment.hpp"
 
@@ -24,8 +32,11 @@ namespace hapscene {
 
 int validate_command(std::vector<std::string> args) {
   Arguments arguments(std::move(args), "hapscene validate");
-  const HarnessOptions options = take_harness_options(arguments);
-  const std::vector<ScenarioKind> kinds = take_scenarios(arguments);
+  // --start and --scenario mean different things for 1-DOF and 2-DOF environments: taken
+  // as text, read once the files' axes are known.
+  const std::optional<std::string> start_text = arguments.take_value("start");
+  HarnessOptions options = take_harness_options(arguments);
+  const std::optional<std::string> scenario_text = arguments.take_value("scenario");
   const std::optional<std::string> report_path = arguments.take_value("report");
   const std::optional<std::string> plot_path = arguments.take_value("plot");
   const bool quiet = arguments.take_flag("quiet");
@@ -33,6 +44,29 @@ int validate_command(std::vector<std::string> args) {
   if (files.empty()) arguments.fail("expected at least one environment file");
   if ((report_path || plot_path) && files.size() != 1) {
     arguments.fail("--report and --plot take one environment file");
+  }
+
+  // The axes of each file (one that cannot be read is left to its load, which reports it);
+  // the options each kind of file takes are checked before anything runs.
+  std::vector<int> axes(files.size(), 1);
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    try {
+      axes[i] = environment_axes(files[i]);
+    } catch (const InputError&) {
+      axes[i] = 1;
+    }
+  }
+  const bool any_planar = std::find(axes.begin(), axes.end(), 2) != axes.end();
+  const bool any_capstan = std::find(axes.begin(), axes.end(), 1) != axes.end();
+  std::vector<ScenarioKind> kinds;
+  std::vector<PlanarValidateKind> planar_kinds;
+  if (any_capstan) {
+    if (start_text) options.free_start_m = parse_option_quantity(*start_text, option::free_start, "hapscene validate: --start");
+    kinds = parse_scenarios(arguments, scenario_text);
+  }
+  if (any_planar) {
+    if (start_text) options.free_start_planar_m = parse_planar_point(arguments, "start", *start_text, option::run_start);
+    planar_kinds = parse_planar_scenarios(arguments, scenario_text);
   }
 
   // Output files that would overwrite an input or each other, or cannot be written where
@@ -50,6 +84,38 @@ int validate_command(std::vector<std::string> args) {
   int exit_code = kExitOk;
   for (std::size_t i = 0; i < files.size(); ++i) {
     const int file_code = run_for_file([&] {
+      if (axes[i] == 2) {
+        const PlanarEnvironment environment = load_planar_environment(files[i]);
+        const PlanarScene& scene = environment.scene;
+        HarnessOptions file_options = options;
+        file_options.thresholds = environment.validate;
+        PlanarValidationReport report;
+        try {
+          report = validate_planar_scene(scene, planar_kinds, file_options);
+        } catch (const InputError& error) {
+          throw InputError(files[i] + ": a scenario cannot start where it asks (" + error.what() + ")");
+        }
+        // The printed forms name the file in printable form (the JSON report escapes it);
+        // the records are not needed for that.
+        PlanarValidationReport shown;
+        shown.scene_name = report.scene_name;
+        shown.source_path = printable(report.source_path);
+        shown.rate_hz = report.rate_hz;
+        shown.bound = report.bound;
+        shown.options = report.options;
+        shown.scene_checks = report.scene_checks;
+        for (const PlanarScenarioResult& s : report.scenarios) {
+          shown.scenarios.push_back({s.scenario, s.metrics, s.checks, {}, {}, s.pass});
+        }
+        if (quiet) {
+          print_out("%s", format_planar_report_line(shown).c_str());
+        } else {
+          print_out("%s%s", i > 0 ? "\n" : "", format_planar_report_table(shown).c_str());
+        }
+        if (report_path) write_output_file(*report_path, planar_report_to_json(report).dump(2) + "\n");
+        if (plot_path) write_output_file(*plot_path, planar_validation_figure_svg(scene, report));
+        return report.pass ? kExitOk : kExitFailure;
+      }
       const Environment environment = load_environment(files[i]);
       const Scene& scene = environment.scene;
       HarnessOptions file_options = options;

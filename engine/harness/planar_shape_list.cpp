@@ -32,6 +32,22 @@ Vec2 PlanarShapeGeometry::nearest_boundary_m(const Vec2& p_m) const noexcept {
   return p_m;
 }
 
+double PlanarShapeGeometry::depth_m(const Vec2& p_m) const noexcept {
+  switch (kind) {
+    case PlanarShapeKind::wall: return dot(point_m - p_m, normal);
+    case PlanarShapeKind::circle: {
+      const double inside_m = radius_m - norm(p_m - center_m);
+      return solid_inside ? inside_m : -inside_m;
+    }
+    case PlanarShapeKind::box:
+    case PlanarShapeKind::polygon: {
+      const double distance_m = norm(outline->nearest_point(p_m) - p_m);
+      return outline->in_solid(p_m) ? distance_m : -distance_m;
+    }
+  }
+  return 0.0;
+}
+
 std::vector<PlanarShapeGeometry> planar_shape_list(const PlanarScene& scene) {
   std::vector<PlanarShapeGeometry> shapes;
   const auto& bank = scene.bank;
@@ -40,12 +56,14 @@ std::vector<PlanarShapeGeometry> planar_shape_list(const PlanarScene& scene) {
     g.kind = PlanarShapeKind::wall;
     g.point_m = wall.point_m;
     g.normal = wall.normal;
+    g.stiffness_N_per_m = wall.stiffness_N_per_m;
     shapes.push_back(std::move(g));
   }
   for (const PlanarBox& box : bank.group<PlanarBox>()) {
     PlanarShapeGeometry g;
     g.kind = PlanarShapeKind::box;
     g.solid_inside = box.solid_inside;
+    g.stiffness_N_per_m = box.stiffness_N_per_m;
     g.points_m = {box.min_m, Vec2{{box.max_m[0], box.min_m[1]}}, box.max_m, Vec2{{box.min_m[0], box.max_m[1]}}};
     g.outline = &box.outline;
     shapes.push_back(std::move(g));
@@ -54,6 +72,7 @@ std::vector<PlanarShapeGeometry> planar_shape_list(const PlanarScene& scene) {
     PlanarShapeGeometry g;
     g.kind = PlanarShapeKind::circle;
     g.solid_inside = circle.solid_inside;
+    g.stiffness_N_per_m = circle.stiffness_N_per_m;
     g.center_m = circle.center_m;
     g.radius_m = circle.radius_m;
     shapes.push_back(std::move(g));
@@ -62,6 +81,7 @@ std::vector<PlanarShapeGeometry> planar_shape_list(const PlanarScene& scene) {
     PlanarShapeGeometry g;
     g.kind = PlanarShapeKind::polygon;
     g.solid_inside = polygon.outline.solid_inside();
+    g.stiffness_N_per_m = polygon.stiffness_N_per_m;
     for (int i = 0; i < polygon.outline.edge_count(); ++i) g.points_m.push_back(polygon.outline.vertex(i));
     g.outline = &polygon.outline;
     shapes.push_back(std::move(g));

@@ -25,6 +25,12 @@ struct PlanarShapeGeometry {
   double radius_m{};                    // circle
   std::vector<Vec2> points_m;           // box: its corners counter-clockwise from min; polygon: its points
   const PolygonOutline* outline{};      // box, polygon: the scene's (valid while the scene lives)
+  double stiffness_N_per_m{};           // the effect's stiffness
+
+  // How deep p is in the shape's solid: the distance to the boundary, positive in the
+  // solid (a wall's half-plane, a solid disc or box or polygon, or outside a cage),
+  // negative outside it.
+  double depth_m(const Vec2& p_m) const noexcept;
 
   // The point of the shape's boundary nearest to p (a wall's line, a circle's rim, an
   // outline); the circle's centre goes to (cx + r, cy).

@@ -12,14 +12,6 @@ std::string padded(std::string text, std::size_t width) {
   return text;
 }
 
-std::string check_row(const CheckResult& c) {
-  const char* relation = c.name == "slew" ? "< " : "<= ";
-  const std::string verdict = verdict_text(c);
-  return padded("", 10) + padded(c.name, 15) + padded(format_value(c.value, c.unit), 16) +
-         padded(relation + format_value(c.threshold, c.unit), 17) + padded(verdict, 9) +
-         (verdict.size() >= 9 ? " " : "") + c.detail + "\n";
-}
-
 // Counts of a report's checks: all, failed (with their names) and not judged.
 struct Tally {
   int total{};
@@ -61,6 +53,14 @@ std::string failed_text(const Tally& t) {
 
 }  // namespace
 
+std::string format_check_row(const CheckResult& c) {
+  const char* relation = c.name == "slew" ? "< " : "<= ";
+  const std::string verdict = verdict_text(c);
+  return padded("", 10) + padded(c.name, 15) + padded(format_value(c.value, c.unit), 16) +
+         padded(relation + format_value(c.threshold, c.unit), 17) + padded(verdict, 9) +
+         (verdict.size() >= 9 ? " " : "") + c.detail + "\n";
+}
+
 std::string format_report_line(const ValidationReport& report) {
   const Tally t = tally(report);
   std::string line = printf_string("%s %s (%s): ", t.failed == 0 ? "PASS" : "FAIL", report.scene_name.c_str(),
@@ -75,7 +75,7 @@ std::string format_value(double value, const std::string& unit) {
   if (unit == "m") return printf_string("%.3f mm", value * 1e3);
   if (unit == "s") return printf_string("%.2f us", value * 1e6);
   if (unit == "N/s") return printf_string("%.3f N/ms", value * 1e-3);
-  if (unit == "ticks" || unit == "faults") return printf_string("%.0f %s", value, unit.c_str());
+  if (unit == "ticks" || unit == "faults" || unit == "crossings") return printf_string("%.0f %s", value, unit.c_str());
   return printf_string("%.3f", value);
 }
 
@@ -96,7 +96,7 @@ std::string format_report_table(const ValidationReport& report) {
 
   if (!report.scene_checks.empty()) {
     out += padded("scene", 10) + "the environment as loaded and probed open loop\n";
-    for (const CheckResult& c : report.scene_checks) out += check_row(c);
+    for (const CheckResult& c : report.scene_checks) out += format_check_row(c);
   }
   for (const ScenarioResult& s : report.scenarios) {
     out += padded(s.scenario.name, 10) + s.scenario.description + "\n";
@@ -104,7 +104,7 @@ std::string format_report_table(const ValidationReport& report) {
       out += padded("", 10) + "(not applicable)\n";
       continue;
     }
-    for (const CheckResult& c : s.checks) out += check_row(c);
+    for (const CheckResult& c : s.checks) out += format_check_row(c);
   }
   const Tally t = tally(report);
   if (t.failed == 0) {

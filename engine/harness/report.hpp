@@ -25,6 +25,9 @@ nlohmann::json check_to_json(const CheckResult& check);
 // The JSON report (nlohmann writes non-finite numbers as null).
 nlohmann::json report_to_json(const ValidationReport& report);
 
+// One row of the table: a check's name, value, threshold, verdict and detail.
+std::string format_check_row(const CheckResult& check);
+
 // A value with its unit as the table shows it ("4.305 N", "8.571 mm", "1.63 us").
 std::string format_value(double value, const std::string& unit);
 

@@ -35,6 +35,7 @@ struct HarnessOptions {
   double noise_counts{-1.0};             // sensor noise; < 0: the profile's
   std::uint64_t seed{1};
   double free_start_m{0.004};            // free: where the handle starts (home period)
+  std::optional<Vec2> free_start_planar_m{};  // free on a 2-DOF scene (empty: the profile's home)
   ValidateThresholds thresholds;         // how scenarios are built and judged
 };
 

@@ -207,7 +207,7 @@ Environment compile(const nlohmann::json& root, const std::string& file, const s
   const auto load_capstan_profile = [](const std::string& name, const std::string& dir) {
     if (names_planar_profile(name, dir)) {
       throw InputError("\"" + name + "\" is a 2-DOF (planar) profile: this command takes 1-DOF scenes only so far "
-                       "(2-DOF scenes: probe and run)");
+                       "(2-DOF scenes: probe, run, plot and validate)");
     }
     return load_device_profile(name, dir);
   };
@@ -294,7 +294,8 @@ void set_planar_workspace(const PlanarWorkspace& workspace, SafetyConfigOf<2>* s
   safety->workspace_polygon_m = workspace.polygon_m;
 }
 
-PlanarScene compile_planar(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
+PlanarScene compile_planar(const nlohmann::json& root, const std::string& file, const std::string& base_dir,
+                           ValidateThresholds* validate = nullptr) {
   ObjectReader reader(root, "", file);
   PlanarScene scene;
   compile_header(reader, file, base_dir, load_planar_profile, &scene);
@@ -324,9 +325,13 @@ PlanarScene compile_planar(const nlohmann::json& root, const std::string& file, 
       add_effect(&scene, std::move(effect));
     }
   }
-  if (reader.has("validate")) {
-    reader.fail("validate", "2-DOF scenes have no validate thresholds yet (hapscene validate runs 1-DOF scenes)");
+  // Thresholds for the harness (hapscene validate on a 2-DOF scene), checked at every load.
+  ValidateThresholds thresholds;
+  if (const nlohmann::json* block = reader.get("validate")) {
+    ObjectReader validate_reader(*block, reader.pointer_to("validate"), file);
+    parse_planar_validate_block(validate_reader, &thresholds);
   }
+  if (validate != nullptr) *validate = thresholds;
   reader.finish();
   return scene;
 }
@@ -377,6 +382,20 @@ PlanarScene load_planar_environment_file(const std::string& path) {
   const std::filesystem::path file(path);
   const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
   return load_planar_environment_text(read_text_file(path, kMaxJsonFileBytes), path, base_dir);
+}
+
+PlanarEnvironment compile_planar_environment(std::string_view json_text, const std::string& display_name,
+                                             const std::string& base_dir) {
+  PlanarEnvironment environment;
+  environment.scene = compile_planar(parse_json_text(json_text, display_name), display_name, base_dir,
+                                     &environment.validate);
+  return environment;
+}
+
+PlanarEnvironment load_planar_environment(const std::string& path) {
+  const std::filesystem::path file(path);
+  const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
+  return compile_planar_environment(read_text_file(path, kMaxJsonFileBytes), path, base_dir);
 }
 
 Environment load_environment(const std::string& path) {

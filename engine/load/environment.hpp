@@ -43,4 +43,14 @@ PlanarScene load_planar_environment_file(const std::string& path);
 PlanarScene load_planar_environment_text(std::string_view json_text, const std::string& display_name,
                                          const std::string& base_dir = ".");
 
+// A planar environment with its "validate" block over the defaults (the 2-D keys:
+// engine/load/validate_block.hpp), for the harness.
+struct PlanarEnvironment {
+  PlanarScene scene;
+  ValidateThresholds validate;
+};
+PlanarEnvironment load_planar_environment(const std::string& path);
+PlanarEnvironment compile_planar_environment(std::string_view json_text, const std::string& display_name,
+                                             const std::string& base_dir = ".");
+
 }  // namespace hapscene

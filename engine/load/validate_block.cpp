@@ -59,4 +59,46 @@ void parse_validate_block(ObjectReader& reader, ValidateThresholds* t) {
   reader.finish();
 }
 
+void parse_planar_validate_block(ObjectReader& reader, ValidateThresholds* t) {
+  // The 1-DOF-only keys, refused with the reason before anything else is read.
+  if (reader.has("max_slip_ticks")) {
+    reader.fail("max_slip_ticks",
+                "a 2-DOF scene has no slip check (planar profiles give no capstan slip force or step); "
+                "this key is for 1-DOF scenes");
+  }
+  if (reader.has("stiff_threshold")) {
+    reader.fail("stiff_threshold",
+                "a 2-DOF scene's walls are its shapes (wall, box, circle, polygon), not regions found by "
+                "a scan of the field; this key is for 1-DOF scenes");
+  }
+  // Checks, in the units of the 1-DOF block.
+  t->max_force_N = reader.quantity_or("max_force", Quantity::force_N, t->max_force_N, ranges::kPositiveForce_N);
+  t->max_time_at_limit_fraction =
+      fraction_or(reader, "max_time_at_limit", t->max_time_at_limit_fraction);
+  t->max_slew_N_per_s = reader.quantity_or("max_slew", Quantity::force_rate_N_per_s,
+                                           t->max_slew_N_per_s, ranges::kPositiveSlew_N_per_s);
+  t->max_passivity_ratio = reader.quantity_or("max_passivity_ratio", Quantity::dimensionless,
+                                              t->max_passivity_ratio, kPositiveRatio);
+  t->max_residual_amplitude_m = reader.quantity_or(
+      "max_residual_amplitude", Quantity::length_m, t->max_residual_amplitude_m, kPositiveLength_m);
+  t->max_amplitude_growth = reader.quantity_or("max_amplitude_growth", Quantity::dimensionless,
+                                               t->max_amplitude_growth, kPositiveRatio);
+  t->max_penetration_m = reader.quantity_or("max_penetration", Quantity::length_m,
+                                            t->max_penetration_m, kPositiveLength_m);
+  t->max_force_jitter_N = reader.quantity_or("max_force_jitter", Quantity::force_N,
+                                             t->max_force_jitter_N, ranges::kPositiveForce_N);
+  t->max_tick_compute_s = reader.quantity_or("max_tick_compute", Quantity::time_s,
+                                             t->max_tick_compute_s, ranges::kPositiveDuration_s);
+  t->max_script_faults = count_or(reader, "max_script_faults", t->max_script_faults);
+  // 2-D only.
+  t->max_pop_through = count_or(reader, "max_pop_through", t->max_pop_through);
+  t->max_singularity_ticks = count_or(reader, "max_singularity_ticks", t->max_singularity_ticks);
+
+  // Scenario construction.
+  t->press_force_N =
+      reader.quantity_or("press_force", Quantity::force_N, t->press_force_N, ranges::kPositiveForce_N);
+  t->release_from_m = reader.quantity_or("release_from", Quantity::length_m, t->release_from_m, kPositiveLength_m);
+  reader.finish();
+}
+
 }  // namespace hapscene

@@ -9,4 +9,9 @@ namespace hapscene {
 // naming the key ("/validate/max_force: must be > 0, got -1 N").
 void parse_validate_block(ObjectReader& reader, ValidateThresholds* thresholds);
 
+// The block of a 2-DOF (planar) environment: the keys that mean something in 2-D, in the
+// same units as in 1-D, plus "max_pop_through" and "max_singularity_ticks" (counts); the
+// 1-DOF-only keys ("max_slip_ticks", "stiff_threshold") are refused, each naming why.
+void parse_planar_validate_block(ObjectReader& reader, ValidateThresholds* thresholds);
+
 }  // namespace hapscene

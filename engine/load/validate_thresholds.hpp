@@ -21,6 +21,9 @@ struct ValidateThresholds {
   double max_force_jitter_N{0.1};          // rms second difference of the commanded force
   double max_tick_compute_s{-1.0};         // p99 of tick compute; < 0: half the period
   std::uint64_t max_script_faults{0};      // script errors plus budget overruns
+  // 2-DOF scenes only (the planar "validate" block; a 1-DOF block refuses them).
+  std::uint64_t max_pop_through{0};        // crossings of a solid the rendering let through
+  std::uint64_t max_singularity_ticks{0};  // ticks force was asked for while the pose was held
 
   // How the scenarios are built.
   double stiff_threshold_N_per_m{200.0};   // a region at least this stiff is a "wall" to press

@@ -63,15 +63,7 @@ TEST_CASE("planar run: options of the other dimension and devices without 2-DOF 
   CHECK(run_cli("run environments/spring.json --sim-time --hold 1mm,2mm").exit_code == 2);
 }
 
-TEST_CASE("planar scenes: commands that take 1-DOF scenes only say so and exit 2") {
-  for (const char* command : {"validate"}) {  // plot draws 2-DOF scenes: planar_plot_cli_test.cpp
-    CAPTURE(command);
-    const CliOutcome outcome = run_cli(std::string(command) + " environments/planar/haplink_box_inside.json");
-    CHECK(outcome.exit_code == 2);
-    CHECK(outcome.err.find("\"haplink\" is a 2-DOF (planar) profile: this command takes 1-DOF scenes only") !=
-          std::string::npos);
-  }
-}
+// validate and plot take 2-DOF scenes: planar_validate_cli_test.cpp, planar_plot_cli_test.cpp.
 
 TEST_CASE("planar run: a --log that would overwrite the environment is refused before anything runs") {
   ScratchFolder scratch("planar_log_overwrite");

@@ -236,7 +236,7 @@ TEST_CASE("planar profile: a polygon workspace") {
 TEST_CASE("planar profile: a 1-DOF environment naming a planar device is refused, saying why") {
   CHECK(test::load_error(R"({"device": "haplink", "effects": []})") ==
         "test.json: /device: \"haplink\" is a 2-DOF (planar) profile: this command takes 1-DOF scenes only so far "
-        "(2-DOF scenes: probe and run)");
+        "(2-DOF scenes: probe, run, plot and validate)");
   // The 1-DOF profile loader itself says what kind of profile it needs.
   CHECK_THROWS_WITH(load_device_profile("haplink", "."),
                     "environments/devices/haplink.json: /kind: a 2-DOF (planar) profile: a 1-DOF device needs a "

@@ -80,8 +80,8 @@ TEST_CASE("planar scene: the loader picks two axes from a planar profile, one fr
 TEST_CASE("planar scene: a 1-D form, a 1-D profile or harness thresholds are load errors that say so") {
   CHECK_THROWS_WITH_AS(planar(R"({"type": "spring", "stiffness": 100, "center": 0.01})"),
                        doctest::Contains("/effects/0/center"), InputError);
-  CHECK_THROWS_WITH_AS(planar(R"({"type": "spring", "stiffness": 100})", R"("validate": {}, )"),
-                       doctest::Contains("2-DOF scenes have no validate thresholds yet"), InputError);
+  CHECK_THROWS_WITH_AS(planar(R"({"type": "spring", "stiffness": 100})", R"("validate": {"stiff_threshold": 1}, )"),
+                       doctest::Contains("/validate/stiff_threshold: a 2-DOF scene's walls are its shapes"), InputError);
   CHECK_THROWS_WITH_AS(planar(R"({"type": "damper", "damping": 1})", "", "hapkit3"),
                        doctest::Contains("env.json: /device:"), InputError);
   CHECK_THROWS_WITH_AS(load_environment_text(R"({"device": "haplink", "effects": []})", "env.json"),

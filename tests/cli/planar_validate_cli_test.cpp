@@ -1,0 +1,96 @@
+// `hapscene validate` on 2-DOF environments as users call it: the table, the --quiet
+// line, the JSON report and the figure; the shipped lab scenes' verdicts; and the options
+// of the other dimension, an unknown scenario or an unreachable start refused with exit 2.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/cli/cli_support.hpp"
+#include "tests/scratch_folder.hpp"
+
+using namespace hapscene::test;
+
+namespace {
+const std::string kBox = "environments/planar/haplink_box_inside.json";
+}  // namespace
+
+TEST_CASE("planar validate cli: the table and the quiet line of a passing lab scene" * doctest::test_suite("threaded")) {
+  const CliOutcome table = run_cli("validate " + kBox);
+  CHECK(table.exit_code == 0);
+  CHECK(table.out.rfind("validate haplink_box_inside (" + kBox + "): 2 axes, 1000 Hz, stiffest shape or spring 200 N/m\n"
+                        "stiffness bound per pose (110 poses of a 11 x 11 grid): lowest 42.2 N/m (2fc/D) at (-70.0, 165.0) mm, "
+                        "highest 135 N/m (2fc/D) at (-15.0, 90.0) mm\n",
+                        0) == 0);
+  for (const char* scenario : {"\nsweep ", "\npress ", "\nswipe ", "\nrelease ", "\nhold ", "\nshake ", "\nfree "}) {
+    CHECK(table.out.find(scenario) != std::string::npos);
+  }
+  CHECK(table.out.find("          pop_through    0 crossings     <= 0 crossings   pass") != std::string::npos);
+  CHECK(table.out.find("          singularity    0 ticks") != std::string::npos);
+  CHECK(table.out.find("\nresult: pass (66 checks") != std::string::npos);
+  const CliOutcome quiet = run_cli("validate --quiet " + kBox);
+  CHECK(quiet.exit_code == 0);
+  CHECK(quiet.out.rfind("PASS haplink_box_inside (" + kBox + "): 66 checks", 0) == 0);
+}
+
+TEST_CASE("planar validate cli: the shipped lab scenes" * doctest::test_suite("threaded")) {
+  // The Haplink's pass at their 200 N/m.
+  const CliOutcome haplink = run_cli(
+      "validate --quiet environments/planar/haplink_box_inside.json environments/planar/haplink_box_outside.json "
+      "environments/planar/haplink_circle_inside.json environments/planar/haplink_circle_outside.json");
+  CHECK(haplink.exit_code == 0);
+  CHECK(haplink.out.find("FAIL") == std::string::npos);
+  // The 2DIY v3's, at 300 N/m, are stable with the hand (no limit cycle, no growth) but
+  // create energy: the profile's joint damping gives a 2b/T bound of 0-20 N/m.
+  const CliOutcome haply = run_cli("validate --quiet environments/planar/haply2diy_v3_box_inside.json");
+  CHECK(haply.exit_code == 1);
+  CHECK(haply.out.find("checks failed: press/passivity, release/passivity, hold/passivity") != std::string::npos);
+}
+
+TEST_CASE("planar validate cli: ten times the stiffness fails a named check" * doctest::test_suite("threaded")) {
+  const ScratchFolder folder("planar_validate_cli_stiff");
+  std::string text = slurp_file(std::string(HAPSCENE_SOURCE_DIR) + "/environments/planar/haplink_circle_outside.json");
+  text.replace(text.find("\"200 N/m\""), 9, "\"2000 N/m\"");
+  text.replace(text.find("\"haplink\""), 9, "\"" HAPSCENE_SOURCE_DIR "/environments/devices/haplink.json\"");
+  const auto path = folder.write("stiff.json", text);
+  const CliOutcome out = run_cli("validate --quiet --scenario press '" + path.string() + "'");
+  CHECK(out.exit_code == 1);
+  CHECK(out.out.find("press/passivity") != std::string::npos);
+}
+
+TEST_CASE("planar validate cli: the JSON report and the figure" * doctest::test_suite("threaded")) {
+  const ScratchFolder folder("planar_validate_cli_report");
+  const std::string report = (folder.dir / "r.json").string();
+  const std::string figure = (folder.dir / "f.svg").string();
+  const CliOutcome out =
+      run_cli("validate " + kBox + " --scenario release,free --start=-10mm,150mm --report '" + report + "' --plot '" + figure + "'");
+  CHECK(out.exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(slurp_file(report));
+  CHECK(j["schema"] == "hapscene-validate/1");
+  CHECK(j["axes"] == 2);
+  CHECK(j["scenarios"].size() == 2);
+  CHECK(j["scenarios"][1]["start_m"] == nlohmann::json::array({-0.01, 0.15}));
+  CHECK(j["scenarios"][0]["metrics"]["max_output_x_m"].size() == 2);
+  const std::string svg = slurp_file(figure);
+  CHECK(svg.find("<g id=\"quiver\"") != std::string::npos);
+  CHECK(svg.find("<polyline id=\"handle-path\"") != std::string::npos);
+  CHECK(svg.find("release (") != std::string::npos);
+  CHECK(svg.find("nan") == std::string::npos);
+}
+
+TEST_CASE("planar validate cli: options of the other dimension and bad input, exit 2" * doctest::test_suite("threaded")) {
+  const CliOutcome unknown = run_cli("validate " + kBox + " --scenario line");
+  CHECK(unknown.exit_code == 2);
+  CHECK(unknown.err.find("--scenario: unknown scenario \"line\" for a 2-DOF environment (one of sweep, press, swipe") !=
+        std::string::npos);
+  const CliOutcome swipe_1d = run_cli("validate environments/wall.json --scenario swipe");
+  CHECK(swipe_1d.exit_code == 2);
+  CHECK(swipe_1d.err.find("unknown scenario \"swipe\"") != std::string::npos);
+  const CliOutcome start_1d = run_cli("validate " + kBox + " --start 4mm");
+  CHECK(start_1d.exit_code == 2);
+  CHECK(start_1d.err.find("--start: a 2-DOF environment takes X,Y") != std::string::npos);
+  const CliOutcome far = run_cli("validate " + kBox + " --scenario free --start=0.5,0.5");
+  CHECK(far.exit_code == 2);
+  CHECK(far.err.find(kBox + ": a scenario cannot start where it asks") != std::string::npos);
+}
