@@ -41,6 +41,7 @@ PassivityMetrics measure_passivity(const PlanarScene& scene, const std::vector<P
   const std::size_t n = records.size();
   if (n == 0) return p;
   const Vec2 b = scene.device.plant.viscous_N_m_s_per_rad;
+  const Vec2 c = scene.device.plant.coulomb_N_m;
   const double period_s = scene.period_s;
   // The springs' stretch as the rendering sees it: from the measured handle.
   const double start_J = stored_J(scene, shapes, proxies_m, 0, records[0].x_m);
@@ -50,7 +51,9 @@ PassivityMetrics measure_passivity(const PlanarScene& scene, const std::vector<P
     const Vec2 dq = next_q - records[k].q_rad;
     p.motor_work_J += dot(records[k].joint_torque_N_m, dq);
     if (records[k].joint_torque_N_m[0] != 0.0 || records[k].joint_torque_N_m[1] != 0.0) {
+      // The joints' own losses: viscous, and Coulomb friction (what the 2fc/D bound rests on).
       p.dissipated_J += (b[0] * dq[0] * dq[0] + b[1] * dq[1] * dq[1]) / period_s;
+      p.dissipated_J += c[0] * std::fabs(dq[0]) + c[1] * std::fabs(dq[1]);
     }
     if (k + 1 == n / 2) {
       const Vec2 next_x = records[k + 1].x_m;
