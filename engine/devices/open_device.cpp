@@ -1,6 +1,7 @@
 #include "engine/devices/open_device.hpp"
 
 #include "engine/base/errors.hpp"
+#include "engine/devices/haply/haply_device.hpp"
 #include "engine/devices/serial_hapkit.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
 #if HAPSCENE_HAVE_HIL
@@ -61,6 +62,25 @@ std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile
 #endif
   }
   throw InputError("--device: unknown device \"" + spec + "\" (available: " + kDeviceSpecs + ")");
+}
+
+std::unique_ptr<DeviceOf<2>> open_planar_device(const std::string& spec, const PlanarProfile& profile,
+                                                const PlanarSimulationConfig& simulation) {
+  if (spec == "sim") return std::make_unique<SimulatedPlanar>(profile, simulation);
+  if (spec == "haply" || spec.starts_with("haply:")) {
+    const std::string path = spec.size() > 6 ? spec.substr(6) : std::string();
+    if (path.empty()) throw InputError("--device haply: needs a port path, e.g. haply:/dev/ttyACM0");
+    HaplyConfig config;
+    config.path = path;
+    return std::make_unique<HaplyDevice>(profile, config);
+  }
+  const std::string device = spec.substr(0, spec.find(':'));
+  if (device == "serial" || device == "hil") {
+    throw InputError("--device " + device + ": a 2-DOF scene runs on " + kPlanarDeviceSpecs +
+                     " so far (two Hapkit boards as one device are not built yet)");
+  }
+  throw InputError("--device: unknown device \"" + spec + "\" for a 2-DOF scene (available: " +
+                   kPlanarDeviceSpecs + ")");
 }
 
 }  // namespace hapscene

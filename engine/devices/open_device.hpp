@@ -10,6 +10,7 @@
 
 #include "engine/devices/device.hpp"
 #include "engine/devices/hapkit_plant.hpp"
+#include "engine/devices/planar/simulated_planar.hpp"
 #include "engine/devices/profile.hpp"
 
 namespace hapscene {
@@ -26,6 +27,16 @@ struct LinkOptions {
 std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile& profile,
                                     const SimulationConfig& simulation,
                                     const LinkOptions& link = {});
+
+// The device specs a 2-DOF (planar) scene can run on, for messages.
+inline constexpr const char* kPlanarDeviceSpecs = "sim, haply:PATH";
+
+// Opens a 2-DOF device for a planar scene:
+//   sim         the simulated linkage of the scene's profile
+//   haply:PATH  a board running Haply's stock firmware (haply2diy_v1..v3 profiles)
+// Throws as open_device does.
+std::unique_ptr<DeviceOf<2>> open_planar_device(const std::string& spec, const PlanarProfile& profile,
+                                                const PlanarSimulationConfig& simulation);
 
 // The firmware `--device hil` loads when no ELF is named (empty when this build has none).
 std::string default_firmware_elf();

@@ -167,7 +167,7 @@ PlanarDrive parse_drive(ObjectReader& reader) {
   return drive;
 }
 
-PlanarJoint parse_joint(ObjectReader& reader) {
+PlanarJoint parse_joint(ObjectReader& reader, int number) {
   PlanarJoint joint;
   joint.sensor = parse_part(reader, "sensor", parse_sensor);
   // A capstan: both radii or neither (a direct drive, ratio 1).
@@ -182,6 +182,12 @@ PlanarJoint parse_joint(ObjectReader& reader) {
                                reader.quantity("sector_radius", Quantity::length_m, kLink_m);
   }
   joint.drive = parse_part(reader, "drive", parse_drive);
+  // Which board port: only a board that reports angles and takes torques has ports.
+  const bool board_joint = joint.sensor.kind == PlanarSensorKind::angle && joint.drive.law == PlanarDriveLaw::torque;
+  if (reader.has("board_port") && !board_joint) {
+    reader.fail("board_port", "only a joint with an \"angle\" sensor and a \"torque\" drive is on a board port");
+  }
+  joint.board_port = static_cast<int>(reader.integer_or("board_port", 1, 4, number));
   reader.finish();
   return joint;
 }
@@ -191,7 +197,12 @@ std::array<PlanarJoint, 2> parse_joints(ObjectReader& reader) {
   std::array<PlanarJoint, 2> result{};
   for (std::size_t i = 0; i < 2; ++i) {
     ObjectReader joint_reader(joints[i], reader.pointer_to("joints") + "/" + std::to_string(i), reader.file());
-    result[i] = parse_joint(joint_reader);
+    result[i] = parse_joint(joint_reader, static_cast<int>(i) + 1);
+  }
+  if (result[0].board_port == result[1].board_port && result[0].sensor.kind == PlanarSensorKind::angle) {
+    ObjectReader second(joints[1], reader.pointer_to("joints") + "/1", reader.file());
+    second.fail("board_port", "joint 1 is on board port " + std::to_string(result[0].board_port) +
+                                  " already: each joint needs its own port");
   }
   return result;
 }

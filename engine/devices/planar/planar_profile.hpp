@@ -75,6 +75,9 @@ struct PlanarJoint {
   PlanarSensor sensor;
   double transmission_ratio{1.0};  // pulley_radius / sector_radius: joint turns per motor turn
   PlanarDrive drive;
+  // A Haply-style board (an angle sensor and a torque drive): the board port (1..4) of the
+  // joint's encoder and motor. Default: the joint's number.
+  int board_port{};
 };
 
 // Task-space region where force may be rendered: a box, or a simple polygon.

@@ -1,0 +1,89 @@
+#include "engine/devices/haply/haply_device.hpp"
+
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+
+#include "engine/base/clock.hpp"
+#include "engine/base/format.hpp"
+
+namespace hapscene {
+
+HaplyDevice::HaplyDevice(const PlanarProfile& profile, const HaplyConfig& config)
+    : port_(config.path, 115200, "--device haply:" + config.path),
+      setup_(haply_setup_for(profile, config.id)),
+      link_(port_, setup_, config.link, monotonic_now_ns()),
+      start_ns_(monotonic_now_ns()) {
+  // The first reply, before the loop starts (the board answers within a millisecond).
+  const auto deadline_ns = start_ns_ + static_cast<std::int64_t>(config.handshake_timeout_s * 1e9);
+  while (link_.state() != HaplyLinkState::running) {
+    const std::int64_t now_ns = monotonic_now_ns();
+    if (now_ns > deadline_ns) {
+      throw std::runtime_error("--device haply:" + config.path + ": no reply to the setup within " +
+                               printf_string("%g", config.handshake_timeout_s) + " s (" +
+                               std::to_string(link_.counters().replies) + " replies, " +
+                               std::to_string(link_.counters().bytes_dropped) +
+                               " bytes that made no reply; is it a Haply board with its stock firmware?)");
+    }
+    link_.poll(now_ns);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  handshake_resyncs_ = link_.counters().resyncs;
+  (void)link_.take_restart();  // the run's own soft start covers the first contact
+  if (config.watchdog) {
+    watchdog_ = std::make_unique<ZeroTorqueWatchdog>(config.path, encode_torques(setup_, Vec2{}),
+                                                     config.watchdog_stall_ns);
+  }
+}
+
+HaplyDevice::~HaplyDevice() {
+  // Twice: a board whose parser was mid-frame takes the first as the frame's end.
+  link_.send_zero();
+  link_.send_zero();
+  // Destroying the watchdog tells it this was a clean end.
+}
+
+PlanarReading HaplyDevice::read() noexcept {
+  link_.poll(monotonic_now_ns());
+  PlanarReading reading;
+  reading.angle_deg = link_.angles_deg();
+  return reading;
+}
+
+void HaplyDevice::write(const PlanarMotorCommand& command) noexcept {
+  link_.send(command.torque_N_m, monotonic_now_ns());
+  if (watchdog_) {
+    const bool torque_on = link_.state() == HaplyLinkState::running &&
+                           (command.torque_N_m[0] != 0.0 || command.torque_N_m[1] != 0.0);
+    watchdog_->beat(torque_on);
+  }
+}
+
+bool HaplyDevice::take_restart() noexcept {
+  bool restart = link_.take_restart();
+  // The watchdog zeroed the torque while this process stalled: ramp in again.
+  if (watchdog_ && watchdog_->take_fired()) {
+    ++watchdog_restarts_;
+    restart = true;
+  }
+  return restart;
+}
+
+bool HaplyDevice::fault_seen() const noexcept {
+  return link_.counters().resyncs > handshake_resyncs_ || (watchdog_ && watchdog_->fired() > 0);
+}
+
+std::string HaplyDevice::report() const {
+  std::string text = link_.report(start_ns_);
+  if (handshake_resyncs_ > 0) {
+    text += printf_string("\n  %llu of the resyncs were before the first reply (opening)",
+                          static_cast<unsigned long long>(handshake_resyncs_));
+  }
+  if (watchdog_) {
+    text += printf_string("\n  zero-torque watchdog (pid %d): fired %llu times on a stalled loop", watchdog_->pid(),
+                          static_cast<unsigned long long>(watchdog_->fired()));
+  }
+  return text;
+}
+
+}  // namespace hapscene

@@ -1,0 +1,225 @@
+#include "engine/devices/haply/haply_link.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+#include "engine/base/format.hpp"
+
+namespace hapscene {
+
+const char* haply_resync_reason_name(HaplyResyncReason reason) noexcept {
+  switch (reason) {
+    case HaplyResyncReason::wrong_id: return "wrong id";
+    case HaplyResyncReason::corrupt: return "corrupt";
+    case HaplyResyncReason::jump: return "jump";
+    case HaplyResyncReason::short_reply: return "short reply";
+    case HaplyResyncReason::silence: return "silence";
+    case HaplyResyncReason::overflow: return "overflow";
+    case HaplyResyncReason::vanished: return "vanished";
+  }
+  return "?";
+}
+
+HaplyLink::HaplyLink(ByteLink& link, const HaplySetup& setup, const HaplyLinkConfig& config,
+                     std::int64_t now_ns) noexcept
+    : link_(link), setup_(setup), config_(config) {
+  restart_setup(now_ns);
+}
+
+void HaplyLink::send_frame(const HaplyFrame& frame) noexcept {
+  if (state_ == HaplyLinkState::vanished) return;
+  if (link_.write_some(frame.bytes.data(), frame.size) < 0) return;  // the next poll sees the link gone
+  ++counters_.frames_sent;
+}
+
+void HaplyLink::send_zero() noexcept { send_frame(encode_torques(setup_, Vec2{})); }
+
+// Zero torque, reset, setup; then a quiet time before the first request.
+void HaplyLink::restart_setup(std::int64_t now_ns) noexcept {
+  state_ = HaplyLinkState::configuring;
+  status_ = PositionStatus::unmeasured;
+  send_frame(encode_torques(setup_, Vec2{}));
+  send_frame(encode_reset());
+  send_frame(encode_setup(setup_));
+  counters_.bytes_dropped += rx_size_;
+  rx_size_ = 0;
+  rx_partial_since_ns_ = -1;
+  configured_ns_ = now_ns;
+  request_sent_ = false;
+  outstanding_ = 0;
+  waiting_since_ns_ = -1;
+}
+
+void HaplyLink::begin_resync(HaplyResyncReason reason, std::int64_t now_ns) noexcept {
+  ++counters_.resyncs;
+  ++counters_.by_reason[static_cast<std::size_t>(reason)];
+  if (counters_.first_resync_ns < 0) {
+    counters_.first_resync_ns = now_ns;
+    counters_.first_reason = reason;
+  }
+  if (have_trusted_) realign_ = true;
+  if (reason == HaplyResyncReason::vanished) {
+    state_ = HaplyLinkState::vanished;
+    status_ = PositionStatus::unmeasured;
+    counters_.bytes_dropped += rx_size_;
+    rx_size_ = 0;
+    last_reopen_ns_ = now_ns;
+    return;
+  }
+  restart_setup(now_ns);
+}
+
+void HaplyLink::accept(const Vec2& board_deg, std::int64_t now_ns) noexcept {
+  if (realign_) {
+    correction_deg_ = angles_deg_ - board_deg;
+    realign_ = false;
+  }
+  angles_deg_ = board_deg + correction_deg_;
+  have_trusted_ = true;
+  last_reply_ns_ = now_ns;
+  ++counters_.replies;
+  if (outstanding_ > 0) --outstanding_;
+  waiting_since_ns_ = outstanding_ > 0 ? now_ns : -1;
+}
+
+void HaplyLink::poll(std::int64_t now_ns) noexcept {
+  // Unplugged: try to open the port again now and then, and set the board up anew.
+  if (state_ == HaplyLinkState::vanished) {
+    ++counters_.unmeasured_polls;
+    if (now_ns - last_reopen_ns_ >= config_.reopen_retry_ns) {
+      last_reopen_ns_ = now_ns;
+      if (link_.reopen()) {
+        state_ = HaplyLinkState::configuring;
+        restart_setup(now_ns);
+      }
+    }
+    return;
+  }
+
+  // Everything that arrived; more than the buffer holds means the stream makes no sense.
+  for (;;) {
+    std::uint8_t chunk[64];
+    const long n = link_.read_some(chunk, sizeof chunk);
+    if (n < 0) {
+      begin_resync(HaplyResyncReason::vanished, now_ns);
+      ++counters_.unmeasured_polls;
+      return;
+    }
+    if (n == 0) break;
+    const auto count = static_cast<std::size_t>(n);
+    if (rx_size_ + count > rx_.size()) {
+      counters_.bytes_dropped += count;
+      begin_resync(HaplyResyncReason::overflow, now_ns);
+      ++counters_.unmeasured_polls;
+      return;
+    }
+    std::memcpy(rx_.data() + rx_size_, chunk, count);
+    rx_size_ += count;
+  }
+
+  // Setting up: drop what comes during the quiet time, then ask for one reply.
+  if (state_ == HaplyLinkState::configuring) {
+    ++counters_.unmeasured_polls;
+    if (!request_sent_) {
+      counters_.bytes_dropped += rx_size_;
+      rx_size_ = 0;
+      if (now_ns - configured_ns_ < config_.resync_quiet_ns) return;
+      send_frame(encode_torques(setup_, Vec2{}));
+      request_sent_ = true;
+      ++outstanding_;
+      waiting_since_ns_ = now_ns;
+      return;
+    }
+  }
+
+  // Whole replies, oldest first; each must carry the id, finite angles, and a plausible move.
+  const double deg_per_ns = config_.max_joint_speed_rad_per_s * (180.0 / std::numbers::pi) * 1e-9;
+  std::size_t used = 0;
+  while (rx_size_ - used >= kHaplyReplyBytes) {
+    const std::uint8_t* reply = rx_.data() + used;
+    if (reply[0] != setup_.id) return begin_resync(HaplyResyncReason::wrong_id, now_ns);
+    const std::optional<Vec2> board_deg = decode_reply(setup_, reply);
+    if (!board_deg) return begin_resync(HaplyResyncReason::corrupt, now_ns);
+    if (state_ == HaplyLinkState::running && have_trusted_) {
+      const double allowed_deg = deg_per_ns * static_cast<double>(now_ns - last_reply_ns_ + config_.motion_slack_ns);
+      const Vec2 move_deg = *board_deg + correction_deg_ - angles_deg_;
+      if (std::fabs(move_deg[0]) > allowed_deg || std::fabs(move_deg[1]) > allowed_deg) {
+        return begin_resync(HaplyResyncReason::jump, now_ns);
+      }
+    }
+    accept(*board_deg, now_ns);
+    used += kHaplyReplyBytes;
+    if (state_ == HaplyLinkState::configuring) {
+      state_ = HaplyLinkState::running;
+      restart_pending_ = true;
+      ever_running_ = true;
+    }
+  }
+  if (used > 0) {
+    std::memmove(rx_.data(), rx_.data() + used, rx_size_ - used);
+    rx_size_ -= used;
+    rx_partial_since_ns_ = rx_size_ > 0 ? now_ns : -1;
+  } else if (rx_size_ > 0 && rx_partial_since_ns_ < 0) {
+    rx_partial_since_ns_ = now_ns;
+  }
+
+  // A reply begun and never finished; frames that nobody answers.
+  if (rx_partial_since_ns_ >= 0 && now_ns - rx_partial_since_ns_ > config_.short_reply_ns) {
+    return begin_resync(HaplyResyncReason::short_reply, now_ns);
+  }
+  if (waiting_since_ns_ >= 0 && now_ns - waiting_since_ns_ > config_.silence_ns) {
+    return begin_resync(HaplyResyncReason::silence, now_ns);
+  }
+
+  // How far the angles can be trusted.
+  if (state_ != HaplyLinkState::running) {
+    if (state_ == HaplyLinkState::configuring) status_ = PositionStatus::unmeasured;
+    return;
+  }
+  if (now_ns - last_reply_ns_ > config_.max_angle_age_ns) {
+    status_ = PositionStatus::stale;
+    ++counters_.stale_polls;
+  } else {
+    status_ = PositionStatus::fresh;
+  }
+}
+
+void HaplyLink::send(const Vec2& joint_torque_N_m, std::int64_t now_ns) noexcept {
+  if (state_ != HaplyLinkState::running) return;
+  send_frame(encode_torques(setup_, joint_torque_N_m));
+  ++outstanding_;
+  if (waiting_since_ns_ < 0) waiting_since_ns_ = now_ns;
+}
+
+std::string HaplyLink::report(std::int64_t start_ns) const {
+  const HaplyLinkCounters& c = counters_;
+  std::string text = printf_string("haply link: %llu frames sent, %llu replies; %llu resyncs",
+                                   static_cast<unsigned long long>(c.frames_sent),
+                                   static_cast<unsigned long long>(c.replies),
+                                   static_cast<unsigned long long>(c.resyncs));
+  if (c.resyncs > 0) {
+    std::string reasons;
+    for (int i = 0; i < kHaplyResyncReasons; ++i) {
+      if (c.by_reason[static_cast<std::size_t>(i)] == 0) continue;
+      reasons += printf_string("%s%s %llu", reasons.empty() ? "" : ", ",
+                               haply_resync_reason_name(static_cast<HaplyResyncReason>(i)),
+                               static_cast<unsigned long long>(c.by_reason[static_cast<std::size_t>(i)]));
+    }
+    text += " (" + reasons + printf_string("), the first at t %.3f s (%s)",
+                                           static_cast<double>(c.first_resync_ns - start_ns) * 1e-9,
+                                           haply_resync_reason_name(c.first_reason));
+  }
+  text += printf_string("\n  %llu ticks with no position, %llu with a stale one; %llu bytes dropped",
+                        static_cast<unsigned long long>(c.unmeasured_polls),
+                        static_cast<unsigned long long>(c.stale_polls),
+                        static_cast<unsigned long long>(c.bytes_dropped));
+  if (c.resyncs > 0 && ever_running_) {
+    text += printf_string("\n  angles carried across the resyncs by a correction of (%.3f, %.3f) deg: if the arm "
+                          "moved while the link was down, stop, put it at its reference pose and start again",
+                          correction_deg_[0], correction_deg_[1]);
+  }
+  return text;
+}
+
+}  // namespace hapscene
