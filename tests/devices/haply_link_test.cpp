@@ -64,7 +64,7 @@ TEST_CASE("haply link: setup, then torques on each joint's port and angles per j
   // Nothing is trusted before the first reply, and nothing but zero torque goes out.
   const int ticks = rig.until_running();
   REQUIRE(ticks > 0);
-  CHECK(ticks <= 8);  // the quiet time (5 ms) and one reply
+  CHECK(ticks <= 8);  // the quiet time (5 ms) and two replies that agree
   CHECK(rig.link.take_restart());
   CHECK_FALSE(rig.link.take_restart());
   // At the reference pose the board reads its offsets: joint 1 168 deg (port 2), joint 2 12 deg.
@@ -165,6 +165,18 @@ TEST_CASE("haply link: a short reply among good ones misaligns the stream, which
             rig.resyncs(HaplyResyncReason::corrupt) == 1);
   CHECK(rig.board.torque_N_m[0] == 0.0f);
   CHECK(rig.until_running(200, kTorque) > 0);
+}
+
+TEST_CASE("haply link: a stray byte during the setup runs it again rather than shifting a reply") {
+  Rig rig;
+  rig.ticks(4);
+  rig.board.garbage = {0x05};  // an id-like byte ahead of the first reply
+  const int ticks = rig.until_running();
+  REQUIRE(ticks > 0);
+  CHECK(rig.link.counters().setup_retries == 1);
+  CHECK(rig.link.counters().resyncs == 0);
+  CHECK(within_a_count(rig.link.angles_deg()[0], 168.0));
+  CHECK(within_a_count(rig.link.angles_deg()[1], 12.0));
 }
 
 TEST_CASE("haply link: a board that stays silent is retried, each time counted") {

@@ -33,6 +33,21 @@ void HaplyLink::send_frame(const HaplyFrame& frame) noexcept {
   ++counters_.frames_sent;
 }
 
+// One zero-torque frame whose reply the setup waits for.
+void HaplyLink::send_request(std::int64_t now_ns) noexcept {
+  send_frame(encode_torques(setup_, Vec2{}));
+  request_sent_ = true;
+  outstanding_ = 1;
+  waiting_since_ns_ = now_ns;
+}
+
+// Whether the joints can turn by `move_deg` in `elapsed_ns` (plus the arrival jitter).
+bool HaplyLink::plausible_move(const Vec2& move_deg, std::int64_t elapsed_ns) const noexcept {
+  const double allowed_deg = config_.max_joint_speed_rad_per_s * (180.0 / std::numbers::pi) * 1e-9 *
+                             static_cast<double>(elapsed_ns + config_.motion_slack_ns);
+  return std::fabs(move_deg[0]) <= allowed_deg && std::fabs(move_deg[1]) <= allowed_deg;
+}
+
 void HaplyLink::send_zero() noexcept { send_frame(encode_torques(setup_, Vec2{})); }
 
 // Zero torque, reset, setup; then a quiet time before the first request.
@@ -47,6 +62,7 @@ void HaplyLink::restart_setup(std::int64_t now_ns) noexcept {
   rx_partial_since_ns_ = -1;
   configured_ns_ = now_ns;
   request_sent_ = false;
+  candidate_ns_ = -1;
   outstanding_ = 0;
   waiting_since_ns_ = -1;
 }
@@ -118,43 +134,61 @@ void HaplyLink::poll(std::int64_t now_ns) noexcept {
     rx_size_ += count;
   }
 
-  // Setting up: drop what comes during the quiet time, then ask for one reply.
+  // Setting up: drop what comes during the quiet time, then ask for replies one at a time
+  // until two in a row come back exactly (nine bytes, nothing more, the id, angles that
+  // agree): a stray byte (a late answer to a frame sent before the reset) would otherwise
+  // shift a reply and hand the loop a made-up pose.
   if (state_ == HaplyLinkState::configuring) {
     ++counters_.unmeasured_polls;
     if (!request_sent_) {
       counters_.bytes_dropped += rx_size_;
       rx_size_ = 0;
       if (now_ns - configured_ns_ < config_.resync_quiet_ns) return;
-      send_frame(encode_torques(setup_, Vec2{}));
-      request_sent_ = true;
-      ++outstanding_;
-      waiting_since_ns_ = now_ns;
+      send_request(now_ns);
       return;
     }
+    if (rx_size_ < kHaplyReplyBytes) {
+      if (waiting_since_ns_ >= 0 && now_ns - waiting_since_ns_ > config_.silence_ns) {
+        begin_resync(HaplyResyncReason::silence, now_ns);
+      }
+      return;
+    }
+    const std::optional<Vec2> board_deg =
+        rx_size_ == kHaplyReplyBytes ? decode_reply(setup_, rx_.data()) : std::optional<Vec2>{};
+    const bool agrees = board_deg && candidate_ns_ >= 0 && plausible_move(*board_deg - candidate_deg_, now_ns - candidate_ns_);
+    if (!board_deg || (candidate_ns_ >= 0 && !agrees)) {
+      ++counters_.setup_retries;
+      restart_setup(now_ns);
+      return;
+    }
+    rx_size_ = 0;
+    if (!agrees) {
+      candidate_deg_ = *board_deg;
+      candidate_ns_ = now_ns;
+      send_request(now_ns);
+      return;
+    }
+    accept(*board_deg, now_ns);
+    state_ = HaplyLinkState::running;
+    status_ = PositionStatus::fresh;
+    restart_pending_ = true;
+    ever_running_ = true;
+    return;
   }
 
-  // Whole replies, oldest first; each must carry the id, finite angles, and a plausible move.
-  const double deg_per_ns = config_.max_joint_speed_rad_per_s * (180.0 / std::numbers::pi) * 1e-9;
+  // Running: whole replies, oldest first; each must carry the id, finite angles, and a
+  // plausible move.
   std::size_t used = 0;
   while (rx_size_ - used >= kHaplyReplyBytes) {
     const std::uint8_t* reply = rx_.data() + used;
     if (reply[0] != setup_.id) return begin_resync(HaplyResyncReason::wrong_id, now_ns);
     const std::optional<Vec2> board_deg = decode_reply(setup_, reply);
     if (!board_deg) return begin_resync(HaplyResyncReason::corrupt, now_ns);
-    if (state_ == HaplyLinkState::running && have_trusted_) {
-      const double allowed_deg = deg_per_ns * static_cast<double>(now_ns - last_reply_ns_ + config_.motion_slack_ns);
-      const Vec2 move_deg = *board_deg + correction_deg_ - angles_deg_;
-      if (std::fabs(move_deg[0]) > allowed_deg || std::fabs(move_deg[1]) > allowed_deg) {
-        return begin_resync(HaplyResyncReason::jump, now_ns);
-      }
+    if (!plausible_move(*board_deg + correction_deg_ - angles_deg_, now_ns - last_reply_ns_)) {
+      return begin_resync(HaplyResyncReason::jump, now_ns);
     }
     accept(*board_deg, now_ns);
     used += kHaplyReplyBytes;
-    if (state_ == HaplyLinkState::configuring) {
-      state_ = HaplyLinkState::running;
-      restart_pending_ = true;
-      ever_running_ = true;
-    }
   }
   if (used > 0) {
     std::memmove(rx_.data(), rx_.data() + used, rx_size_ - used);
@@ -210,10 +244,12 @@ std::string HaplyLink::report(std::int64_t start_ns) const {
                                            static_cast<double>(c.first_resync_ns - start_ns) * 1e-9,
                                            haply_resync_reason_name(c.first_reason));
   }
-  text += printf_string("\n  %llu ticks with no position, %llu with a stale one; %llu bytes dropped",
+  text += printf_string("\n  %llu ticks with no position, %llu with a stale one; %llu bytes dropped; %llu setups "
+                        "retried (replies that did not come back exactly twice in a row)",
                         static_cast<unsigned long long>(c.unmeasured_polls),
                         static_cast<unsigned long long>(c.stale_polls),
-                        static_cast<unsigned long long>(c.bytes_dropped));
+                        static_cast<unsigned long long>(c.bytes_dropped),
+                        static_cast<unsigned long long>(c.setup_retries));
   if (c.resyncs > 0 && ever_running_) {
     text += printf_string("\n  angles carried across the resyncs by a correction of (%.3f, %.3f) deg: if the arm "
                           "moved while the link was down, stop, put it at its reference pose and start again",

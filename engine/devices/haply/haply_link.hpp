@@ -14,8 +14,9 @@
 //   a read or write error (unplugged)                 "vanished"     reopen every
 //                                                                    reopen_retry_ns, then resync
 // A resync: a zero-torque frame, a reset, the setup again, a quiet time in which every
-// byte that arrives is dropped (replies to frames sent before), then a zero-torque request
-// whose reply must come back whole and with the id before torques flow again. The setup
+// byte that arrives is dropped (replies to frames sent before), then zero-torque requests
+// one at a time until two replies in a row come back exactly (nine bytes and no more, the
+// id, angles that agree); anything else runs the setup again (counted as a setup retry). The setup
 // presets the board's encoders to their offsets wherever the arm is, so after a resync
 // the link carries an angle correction per joint that makes the first angles continue
 // the last trusted ones (the arm moves little in the few ms a resync takes); every resync
@@ -61,6 +62,7 @@ struct HaplyLinkCounters {
   std::array<std::uint64_t, kHaplyResyncReasons> by_reason{};
   std::uint64_t unmeasured_polls{};   // ticks with no position (configuring, vanished)
   std::uint64_t stale_polls{};        // ticks whose newest reply was older than the bound
+  std::uint64_t setup_retries{};      // setups run again because their replies did not come back exactly
   std::int64_t first_resync_ns{-1};   // when the first resync began (-1: none)
   HaplyResyncReason first_reason{};
 };
@@ -95,6 +97,8 @@ class HaplyLink {
  private:
   void begin_resync(HaplyResyncReason reason, std::int64_t now_ns) noexcept;
   void restart_setup(std::int64_t now_ns) noexcept;
+  void send_request(std::int64_t now_ns) noexcept;
+  bool plausible_move(const Vec2& move_deg, std::int64_t elapsed_ns) const noexcept;
   void send_frame(const HaplyFrame& frame) noexcept;
   void accept(const Vec2& board_deg, std::int64_t now_ns) noexcept;
 
@@ -110,7 +114,9 @@ class HaplyLink {
   std::int64_t rx_partial_since_ns_{-1};   // when the pending partial reply began
 
   std::int64_t configured_ns_{};           // when the last reset and setup went out
-  bool request_sent_{};                    // configuring: the zero-torque request is out
+  bool request_sent_{};                    // configuring: a zero-torque request is out
+  Vec2 candidate_deg_{};                   // configuring: the first of two replies that must agree
+  std::int64_t candidate_ns_{-1};          // ... and when it came (-1: none yet)
   std::int64_t last_reply_ns_{-1};
   int outstanding_{};                      // frames sent and not yet answered
   std::int64_t waiting_since_ns_{-1};      // since when a frame has waited for its reply (-1: none)
