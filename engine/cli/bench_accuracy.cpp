@@ -1,4 +1,4 @@
-// `hapscene bench --accuracy [--svg FILE] [--rate HZ]`: run time against error of the
+// `hapscene bench --accuracy [--svg FILE] [--rate HZ] [--axes 1|2]`: run time against error of the
 // simulated Hapkit for each loop rate, plant integrator and substep count, with each
 // scenario's Pareto front marked (table and SVG); then the 2-D rows: the integration
 // error of the simulated 2-DOF plant for each kinematics family.
@@ -108,7 +108,7 @@ std::string accuracy_svg(const std::vector<AccuracyResult>& results) {
 void print_planar_rows(double only_rate) {
   std::vector<PlanarAccuracyCase> cases = default_planar_accuracy_cases();
   if (only_rate > 0.0) std::erase_if(cases, [&](const PlanarAccuracyCase& c) { return c.rate_hz != only_rate; });
-  print_out("\nintegration error of the simulated 2-DOF plant (profiles haplink: serial 2R, haply2diy_v3: five-bar; "
+  print_out("integration error of the simulated 2-DOF plant (profiles haplink: serial 2R, haply2diy_v3: five-bar; "
             "their link, rotor and friction estimates)\n");
   print_out("release: 200 N/m spring to the home pose, released from (+8, -5) mm, no Coulomb friction, 1 s; "
             "circle: hand 500 N/m 5 N*s/m draws a 15 mm circle at 100 mm/s, no field, Coulomb on, 1.5 s; "
@@ -141,9 +141,19 @@ void print_planar_rows(double only_rate) {
 int bench_accuracy(Arguments& arguments) {
   const std::optional<std::string> svg = arguments.take_value("svg");
   const std::optional<double> only_rate = arguments.take(option::accuracy_rate);
+  // --axes 1 or 2: only the 1-D (Hapkit) or the 2-D (planar plant) rows; both by default.
+  const std::optional<std::uint64_t> only_axes = arguments.take(option::accuracy_axes);
   const std::vector<std::string> rest = arguments.positionals();
   if (!rest.empty()) arguments.fail("--accuracy takes no environment files");
 
+  if (only_axes == 2u) {
+    if (svg) arguments.fail("--svg: the figure is of the 1-D rows (leave out --axes 2)");
+    if (only_rate && *only_rate != 500.0 && *only_rate != 1000.0 && *only_rate != 2000.0 && *only_rate != 5000.0) {
+      arguments.fail("--rate: the 2-D rows run at 500, 1000, 2000 or 5000 Hz");
+    }
+    print_planar_rows(only_rate.value_or(0.0));
+    return 0;
+  }
   const DeviceProfile profile = load_device_profile("hapkit3", ".");
   const AccuracySetup setup = accuracy_setup(profile);
   std::vector<AccuracyCase> cases = default_accuracy_cases();
@@ -164,7 +174,10 @@ int bench_accuracy(Arguments& arguments) {
             "I = on the front of run time against integ_rms at this loop rate\n\n");
   std::vector<AccuracyResult> results = run_accuracy_sweep(profile, cases);
   print_results(results);
-  print_planar_rows(only_rate.value_or(0.0));
+  if (!only_axes) {
+    print_out("\n");
+    print_planar_rows(only_rate.value_or(0.0));
+  }
   if (svg) {
     write_output_file(*svg, accuracy_svg(results));
     print_out("\nwrote %s\n", svg->c_str());

@@ -159,8 +159,11 @@ void compare_profiles(const PlanarProfile& a, const PlanarProfile& b, Changes* c
   c->compare("plant.rotor_inertia_kg_m2", pa.rotor_inertia_kg_m2, pb.rotor_inertia_kg_m2);
   c->compare("plant.viscous_N_m_s_per_rad", pa.viscous_N_m_s_per_rad, pb.viscous_N_m_s_per_rad);
   c->compare("plant.coulomb_N_m", pa.coulomb_N_m, pb.coulomb_N_m);
-  c->compare("plant.end_stops_rad[1]", pa.end_stops_rad[0], pb.end_stops_rad[0]);
-  c->compare("plant.end_stops_rad[2]", pa.end_stops_rad[1], pb.end_stops_rad[1]);
+  for (std::size_t j = 0; j < 2; ++j) {
+    const std::string at = "plant.end_stops_rad[" + std::to_string(j + 1) + "].";
+    c->compare((at + "min").c_str(), pa.end_stops_rad[j][0], pb.end_stops_rad[j][0]);
+    c->compare((at + "max").c_str(), pa.end_stops_rad[j][1], pb.end_stops_rad[j][1]);
+  }
   c->compare("plant.end_stop_stiffness_N_m_per_rad", pa.end_stop_stiffness_N_m_per_rad, pb.end_stop_stiffness_N_m_per_rad);
   c->compare("plant.sensor_noise_counts", pa.sensor_noise_counts, pb.sensor_noise_counts);
 }

@@ -1,7 +1,7 @@
-// `hapscene bench --accuracy` prints 2-D rows after the 1-D ones: the simulated 2-DOF
-// plant's integration error for each kinematics family's shipped profile, every scenario,
-// integrator and substep count at the chosen rate, each finite, with the 1-D rows first
-// and unchanged in form.
+// `hapscene bench --accuracy` prints 2-D rows after the 1-D ones (`--axes 2`: those
+// alone): the simulated 2-DOF plant's integration error for each kinematics family's
+// shipped profile, every scenario, integrator and substep count at the chosen rate, each
+// finite.
 #include <doctest/doctest.h>
 
 #include <set>
@@ -13,14 +13,15 @@
 using namespace hapscene::test;
 
 TEST_CASE("bench --accuracy: 2-D rows for both kinematics families, every case, finite") {
-  const CliOutcome bench = run_cli("bench --accuracy --rate 1000");
+  // The 2-D rows alone (--axes 2); the 1-D ones come first without it.
+  const CliOutcome bench = run_cli("bench --accuracy --axes 2 --rate 1000");
   REQUIRE(bench.exit_code == 0);
   const std::string header =
       "device        scenario rate_Hz integ  sub   ms_per_s integ_rms_um integ_max_um travel_mm\n";
   const std::size_t table = bench.out.find(header);
   REQUIRE(table != std::string::npos);
-  // The 1-D table comes first.
-  CHECK(bench.out.find("scenario rate_Hz integ  sub") < table);
+  CHECK(bench.out.starts_with("integration error of the simulated 2-DOF plant"));
+  CHECK(bench.out.find("pos_rms_um") == std::string::npos);  // no 1-D rows
   std::istringstream rows(bench.out.substr(table + header.size()));
   std::string row;
   std::set<std::string> seen;
@@ -47,4 +48,12 @@ TEST_CASE("bench --accuracy: 2-D rows for both kinematics families, every case, 
   CHECK(seen.size() == 48);
   CHECK(seen.count("haplink release euler 1") == 1);
   CHECK(seen.count("haply2diy_v3 wall rk4 8") == 1);
+}
+
+TEST_CASE("bench --accuracy: --axes and a rate the 2-D sweep does not run are refused, exit 2") {
+  CHECK(run_cli("bench --accuracy --axes 3").exit_code == 2);
+  const CliOutcome rate = run_cli("bench --accuracy --axes 2 --rate 250");
+  CHECK(rate.exit_code == 2);
+  CHECK(rate.err.find("--rate: the 2-D rows run at 500, 1000, 2000 or 5000 Hz") != std::string::npos);
+  CHECK(run_cli("bench --accuracy --axes 2 --svg x.svg").exit_code == 2);
 }

@@ -14,16 +14,6 @@
 
 using namespace hapscene::test;
 
-namespace {
-
-std::size_t occurrences(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
-
-}  // namespace
-
 TEST_CASE("planar run summary: simulated time has the 1-D lines, the linkage's counters and no jitter lines") {
   const CliOutcome run =
       run_cli("run environments/planar/haplink_box_inside.json --sim-time --duration 0.3s --hand circle --quiet");

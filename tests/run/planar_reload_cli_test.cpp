@@ -25,11 +25,6 @@ std::string spring_env(const std::string& device, const std::string& extra = "",
          R"(, "center": ["3.67 mm", "142.34 mm"]}]})";
 }
 
-std::size_t occurrences(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
 
 // The largest commanded force magnitude in the --log rows from `from_s` on.
 double largest_output_N(const std::string& csv, double from_s) {
@@ -64,7 +59,7 @@ TEST_CASE("planar run reload: an edit cross-fades in; the summary counts it and 
                                              log + "'");
   editor.join();
   CHECK(run.exit_code == 0);
-  CHECK_MESSAGE(occurrences(run.err, "reloaded " + env.string() + ": cross-fading to the new version\n") == 1, run.err);
+  CHECK_MESSAGE(test::occurrences(run.err, "reloaded " + env.string() + ": cross-fading to the new version\n") == 1, run.err);
   CHECK(run.out.find("(limit 1 N, magnitudes)") != std::string::npos);
   CHECK(run.out.find("  limits           tightened by a reload: max force 2 -> 1 N\n") != std::string::npos);
   CHECK(run.out.find("  reloads          1\n") != std::string::npos);
@@ -90,14 +85,14 @@ TEST_CASE("planar run reload: an invalid edit, a 1-DOF file and another profile 
   editor.join();
   CHECK(run.exit_code == 0);
   // The located error, once.
-  CHECK_MESSAGE(occurrences(run.err, "reload failed, keeping the running version: " + env.string() +
+  CHECK_MESSAGE(test::occurrences(run.err, "reload failed, keeping the running version: " + env.string() +
                                          ": /effects/0/stiffness: ") == 1,
                 run.err);
-  CHECK(occurrences(run.err, "reload failed") == 1);
-  CHECK(occurrences(run.err, "reload refused, keeping the running version: " + env.string() +
+  CHECK(test::occurrences(run.err, "reload failed") == 1);
+  CHECK(test::occurrences(run.err, "reload refused, keeping the running version: " + env.string() +
                                  ": the device cannot change during a run (the file now makes a 1-DOF scene; this "
                                  "run's is 2-DOF (planar))\n") == 1);
-  CHECK(occurrences(run.err, "reload refused, keeping the running version: " + env.string() +
+  CHECK(test::occurrences(run.err, "reload refused, keeping the running version: " + env.string() +
                                  ": the device cannot change during a run (profile name \"haplink\" -> "
                                  "\"haply2diy_v3\", ") == 1);
   CHECK(run.err.find("reloaded") == std::string::npos);

@@ -15,6 +15,7 @@
 #include "engine/run/reload_guard.hpp"
 #include "engine/run/reload_watcher.hpp"
 #include "tests/cli/cli_support.hpp"
+#include "tests/run/reload_support.hpp"
 #include "tests/scratch_folder.hpp"
 #include "tests/support.hpp"
 
@@ -23,21 +24,6 @@ using namespace hapscene;
 namespace {
 
 PlanarScene planar(const std::string& text) { return load_planar_environment_text(text, "t.json", HAPSCENE_SOURCE_DIR); }
-
-struct Reports {
-  std::mutex mutex;
-  std::vector<std::string> lines;
-  ReloadWatcherOf<2>::Report sink() {
-    return [this](const std::string& line) {
-      std::lock_guard lock(mutex);
-      lines.push_back(line);
-    };
-  }
-  std::string last() {
-    std::lock_guard lock(mutex);
-    return lines.empty() ? "" : lines.back();
-  }
-};
 
 const char* kSpring = R"("effects": [{"type": "spring", "stiffness": "100 N/m", "center": ["-16 mm", "140 mm"]}])";
 
@@ -76,9 +62,9 @@ TEST_CASE("planar reload watcher: a changed file is offered, a broken one is rep
   const auto env = scratch.write("env.json", std::string(R"({"device": "haplink", )") + kSpring + "}");
   const PlanarScene running = load_planar_environment_file(env.string());
   SceneExchangeOf<2> exchange;
-  Reports reports;
+  test::Reports reports;
   ReloadWatcherOptionsOf<2> manual;
-  manual.poll_period_s = 0.0;
+  manual.poll_period_s = 0.0;  // the test polls
   ReloadWatcherOf<2> watcher(env.string(), running, &exchange, reports.sink(), manual);
 
   scratch.write("env.json", R"({"device": "haplink", "effects": [{"type": "spring", "stiffness": "300 N/m", "center": ["-16 mm", "140 mm"]}]})");
