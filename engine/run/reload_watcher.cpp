@@ -32,14 +32,11 @@ std::unique_ptr<LoadedSceneOf<N>> load_scene(const std::string& path) {
     throw RefusedLoad(std::string("the device cannot change during a run (the file now makes a ") + axes_name(axes) +
                       " scene; this run's is " + axes_name(N) + ")");
   }
-  auto next = std::make_unique<LoadedSceneOf<N>>();
   if constexpr (N == 1) {
-    next->scene = load_environment_file(path);
+    return make_loaded_scene<1>(load_environment_file(path));
   } else {
-    next->scene = load_planar_environment_file(path);
+    return make_loaded_scene<N>(load_planar_environment_file(path));
   }
-  next->scripts = make_script_instances(next->scene);
-  return next;
 }
 
 }  // namespace

@@ -52,7 +52,12 @@ TEST_CASE("planar run reload: an edit cross-fades in; the summary counts it and 
   std::thread editor([&] {
     // After the 0.5 s soft start.
     std::this_thread::sleep_for(std::chrono::milliseconds(800));
-    scratch.write("env.json", spring_env("haplink", R"("safety": {"max_force": "1 N"}, )"));
+    // The new version adds a shape (a cage round the workspace): its proxy's run state is
+    // made off the loop (before, a planar reload adding a shape crashed the run).
+    std::string next = spring_env("haplink", R"("safety": {"max_force": "1 N"}, )");
+    next.replace(next.rfind("]}"), 2, R"(, {"type": "box", "min": ["-60 mm", "95 mm"], "max": ["35 mm", "160 mm"], )"
+                                      R"("stiffness": "100 N/m", "solid": "outside"}]})");
+    scratch.write("env.json", next);
   });
   const test::CliOutcome run = test::run_cli("run " + env.string() +
                                              " --duration 2.4s --hand hold --hand-stiffness 2000 --quiet --log '" +
