@@ -86,3 +86,35 @@ TEST_CASE("planar reload watcher: a changed file is offered, a broken one is rep
                               ": the device cannot change during a run (the file now makes a 1-DOF scene; this run's "
                               "is 2-DOF (planar))");
 }
+
+TEST_CASE("planar reload watcher: an edit of a 2-D script the scene uses is a new version too" *
+          doctest::test_suite("threaded")) {
+  test::ScratchFolder scratch("planar_reload_script");
+  scratch.write("field.lua", "function force(s) return 0, 0 end\n");
+  const auto env = scratch.write("env.json", R"({"device": "haplink", "effects": [{"type": "script", "file": "field.lua"}]})");
+  const PlanarScene running = load_planar_environment_file(env.string());
+  SceneExchangeOf<2> exchange;
+  test::Reports reports;
+  ReloadWatcherOptionsOf<2> manual;
+  manual.poll_period_s = 0.0;  // the test polls
+  ReloadWatcherOf<2> watcher(env.string(), running, &exchange, reports.sink(), manual);
+
+  watcher.poll();  // nothing changed
+  CHECK(exchange.take_offer() == nullptr);
+  scratch.write("field.lua", "function force(s) return -100 * s.x, -100 * s.y end\n");
+  watcher.poll();
+  std::unique_ptr<LoadedSceneOf<2>> next(exchange.take_offer());
+  REQUIRE(next != nullptr);
+  REQUIRE(next->scripts.size() == 1);
+  PlanarScriptInput at;
+  at.x_m = 0.01;
+  at.y_m = 0.02;
+  const PlanarScriptForce force = next->scripts[0]->planar_force_N(at);
+  CHECK(force.x_N == doctest::Approx(-1.0));
+  CHECK(force.y_N == doctest::Approx(-2.0));
+  // A script of the other dimension is a located load error; the running version stays.
+  scratch.write("field.lua", "function force(s) return -100 * s.x end\n");
+  watcher.poll();
+  CHECK(exchange.take_offer() == nullptr);
+  CHECK(reports.last().starts_with("reload failed, keeping the running version: "));
+}
