@@ -6,6 +6,8 @@
 #include <map>
 #include <utility>
 
+#include "engine/devices/planar/simulated_planar.hpp"
+
 namespace hapscene {
 namespace {
 
@@ -120,6 +122,10 @@ void simulate(const PlanarPlantExample& device, PlanarAccuracyScenario scenario,
 }
 
 }  // namespace
+
+PlanarPlantExample planar_accuracy_device(const PlanarProfile& profile) {
+  return PlanarPlantExample{planar_plant_parameters(profile), planar_joint_angles_at(profile, profile.home_m)};
+}
 
 std::vector<PlanarAccuracyCase> default_planar_accuracy_cases() {
   std::vector<PlanarAccuracyCase> cases;

@@ -18,6 +18,7 @@
 
 #include "engine/devices/planar/planar_plant.hpp"
 #include "engine/devices/planar/planar_plant_examples.hpp"
+#include "engine/devices/planar/planar_profile.hpp"
 
 namespace hapscene {
 
@@ -51,6 +52,11 @@ struct PlanarAccuracyOptions {
 std::vector<PlanarAccuracyResult> run_planar_accuracy(const PlanarPlantExample& device,
                                                       const std::vector<PlanarAccuracyCase>& cases,
                                                       const PlanarAccuracyOptions& options = {});
+
+// A shipped or given planar profile as the device of these runs: its plant's parameters
+// (engine/devices/planar/simulated_planar.hpp) and the joint angles of its home pose.
+// Throws InputError when the home pose cannot be reached.
+PlanarPlantExample planar_accuracy_device(const PlanarProfile& profile);
 
 // The default sweep: every scenario at 500 Hz .. 5 kHz, each integrator at 1, 2, 4 and 8
 // substeps.

@@ -1,16 +1,19 @@
-// `hapscene bench --accuracy [--svg FILE] [--rate HZ]`: run time against error of the
+// `hapscene bench --accuracy [--svg FILE] [--rate HZ] [--axes 1|2]`: run time against error of the
 // simulated Hapkit for each loop rate, plant integrator and substep count, with each
-// scenario's Pareto front marked (table and SVG).
+// scenario's Pareto front marked (table and SVG); then the 2-D rows: the integration
+// error of the simulated 2-DOF plant for each kinematics family.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "engine/bench/accuracy.hpp"
+#include "engine/bench/planar_accuracy.hpp"
 #include "engine/cli/bench_modes.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/standard_output.hpp"
+#include "engine/devices/planar/planar_profile.hpp"
 #include "engine/devices/profile.hpp"
 #include "engine/harness/svg_plot.hpp"
 
@@ -99,14 +102,58 @@ std::string accuracy_svg(const std::vector<AccuracyResult>& results) {
   return render_svg("hapscene bench --accuracy: run time against error", panels, 900, 360);
 }
 
+// The 2-D rows: the planar plant's integration error (engine/bench/planar_accuracy.hpp)
+// on each kinematics family's shipped profile, at the rates of the sweep `only_rate`
+// leaves (0: all).
+void print_planar_rows(double only_rate) {
+  std::vector<PlanarAccuracyCase> cases = default_planar_accuracy_cases();
+  if (only_rate > 0.0) std::erase_if(cases, [&](const PlanarAccuracyCase& c) { return c.rate_hz != only_rate; });
+  print_out("integration error of the simulated 2-DOF plant (profiles haplink: serial 2R, haply2diy_v3: five-bar; "
+            "their link, rotor and friction estimates)\n");
+  print_out("release: 200 N/m spring to the home pose, released from (+8, -5) mm, no Coulomb friction, 1 s; "
+            "circle: hand 500 N/m 5 N*s/m draws a 15 mm circle at 100 mm/s, no field, Coulomb on, 1.5 s; "
+            "wall: hand 2000 N/m 10 N*s/m drives the handle diagonally at 100 mm/s into a 1000 N/m wall 10 mm away, "
+            "10 mm beyond it, holds 0.1 s and back, Coulomb on\n");
+  print_out("force from the true handle position, J^T F at that pose, held one tick (ideal sensors and drives); "
+            "ms_per_s = CPU ms per simulated second (best of repeats); integ_rms / integ_max = handle position "
+            "RMS / largest distance against the same loop rate with 1 us RK4 steps; travel = that run's handle "
+            "path length\n\n");
+  if (cases.empty()) {
+    print_out("(no 2-D rows at this rate: the 2-D sweep runs 500, 1000, 2000 and 5000 Hz)\n");
+    return;
+  }
+  print_out("%-13s %-8s %7s %-6s %3s %10s %12s %12s %9s\n", "device", "scenario", "rate_Hz", "integ", "sub", "ms_per_s",
+            "integ_rms_um", "integ_max_um", "travel_mm");
+  for (const char* name : {"haplink", "haply2diy_v3"}) {
+    const PlanarProfile profile = load_planar_profile(name, ".");
+    for (const PlanarAccuracyResult& r : run_planar_accuracy(planar_accuracy_device(profile), cases)) {
+      print_out("%-13s %-8s %7.0f %-6s %3d %10.3f %12.4g %12.4g %9.2f\n", name,
+                std::string(kPlanarAccuracyScenarioNames[static_cast<int>(r.which.scenario)]).c_str(), r.which.rate_hz,
+                std::string(kPlanarIntegratorNames[static_cast<int>(r.which.integrator)]).c_str(), r.which.substeps,
+                r.run_time_s_per_s * 1e3, r.finite ? r.integration_rms_m * 1e6 : NAN,
+                r.finite ? r.integration_max_m * 1e6 : NAN, r.travel_m * 1e3);
+    }
+  }
+}
+
 }  // namespace
 
 int bench_accuracy(Arguments& arguments) {
   const std::optional<std::string> svg = arguments.take_value("svg");
   const std::optional<double> only_rate = arguments.take(option::accuracy_rate);
+  // --axes 1 or 2: only the 1-D (Hapkit) or the 2-D (planar plant) rows; both by default.
+  const std::optional<std::uint64_t> only_axes = arguments.take(option::accuracy_axes);
   const std::vector<std::string> rest = arguments.positionals();
   if (!rest.empty()) arguments.fail("--accuracy takes no environment files");
 
+  if (only_axes == 2u) {
+    if (svg) arguments.fail("--svg: the figure is of the 1-D rows (leave out --axes 2)");
+    if (only_rate && *only_rate != 500.0 && *only_rate != 1000.0 && *only_rate != 2000.0 && *only_rate != 5000.0) {
+      arguments.fail("--rate: the 2-D rows run at 500, 1000, 2000 or 5000 Hz");
+    }
+    print_planar_rows(only_rate.value_or(0.0));
+    return 0;
+  }
   const DeviceProfile profile = load_device_profile("hapkit3", ".");
   const AccuracySetup setup = accuracy_setup(profile);
   std::vector<AccuracyCase> cases = default_accuracy_cases();
@@ -127,6 +174,10 @@ int bench_accuracy(Arguments& arguments) {
             "I = on the front of run time against integ_rms at this loop rate\n\n");
   std::vector<AccuracyResult> results = run_accuracy_sweep(profile, cases);
   print_results(results);
+  if (!only_axes) {
+    print_out("\n");
+    print_planar_rows(only_rate.value_or(0.0));
+  }
   if (svg) {
     write_output_file(*svg, accuracy_svg(results));
     print_out("\nwrote %s\n", svg->c_str());

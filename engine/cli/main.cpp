@@ -24,7 +24,9 @@ usage:
   hapscene bench [ENV...] [--seconds T] [--passes N]
                                           tick cost against the hand-written lab code
                                           (1-D and 2-D: a planar ENV goes to the 2-D table)
-  hapscene bench --accuracy [--svg FILE]  simulator run time against error
+  hapscene bench --accuracy [--svg FILE] [--rate HZ] [--axes 1|2]
+                                          simulator run time against error (1-D), and
+                                          the 2-D plant's integration error
   hapscene bench --stress                 stiffness and damping sweeps
   hapscene bench --soak [--ticks N]       100 million ticks per lab environment
   hapscene bench --callgrind ENV [--impl builtin|lua|baseline] [--ticks N]

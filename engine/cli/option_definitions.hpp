@@ -61,5 +61,6 @@ inline constexpr WholeOption callgrind_ticks{"ticks", 0, 1'000'000'000};
 inline constexpr QuantityOption stress_noise{"noise", Quantity::dimensionless, 0.0, 100.0, false, "counts"};
 inline constexpr QuantityOption stress_rate{"rate", Quantity::frequency_Hz, 100.0, 100'000.0};
 inline constexpr QuantityOption accuracy_rate{"rate", Quantity::frequency_Hz, 250.0, 20'000.0};
+inline constexpr WholeOption accuracy_axes{"axes", 1, 2, "1 (the Hapkit's rows) or 2 (the planar plant's)"};
 
 }  // namespace hapscene::option

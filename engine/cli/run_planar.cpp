@@ -1,5 +1,7 @@
 #include "engine/cli/run_settings.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +13,8 @@
 #include "engine/cli/harness_options.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
+#include "engine/cli/run_session.hpp"
+#include "engine/cli/run_summary.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/devices/planar/planar_hand.hpp"
 #include "engine/devices/planar/simulated_planar.hpp"
@@ -18,7 +22,7 @@
 #include "engine/harness/planar_shape_list.hpp"
 #include "engine/harness/planar_trace.hpp"
 #include "engine/load/environment.hpp"
-#include "engine/run/observer_list.hpp"
+#include "engine/run/script_fault_places.hpp"
 #include "engine/run/telemetry_log.hpp"
 
 namespace hapscene {
@@ -57,43 +61,6 @@ PlanarHandConfig planar_hand(const Arguments& arguments, const RunSettings& sett
   return hand;
 }
 
-void print_planar_summary(const PlanarScene& scene, const RunSettings& settings, const PlanarHandConfig& hand,
-                          const RunSummaryOf<2>& summary, const SimulatedPlanar& device) {
-  const bool real_time = settings.options.pacing == Pacing::real_time;
-  print_out("%s (%s) on %s:%s, %g Hz, %s, hand %s\n", scene.name.c_str(), printable(scene.source_path).c_str(),
-            printable(settings.device).c_str(), printable(scene.device.name).c_str(), scene.rate_hz,
-            real_time ? "real time" : "simulated time",
-            std::string(kPlanarHandMotionNames[static_cast<int>(hand.motion)]).c_str());
-  print_out("  ticks            %llu in %.3f s of device time, loop rate %.1f Hz\n",
-            static_cast<unsigned long long>(summary.ticks), summary.device_time_s, summary.achieved_rate_hz);
-  print_out("  max force        asked %.3f N, commanded %.3f N (limit %g N, magnitudes)\n",
-            summary.max_abs_requested_N, summary.max_abs_output_N, summary.limits_at_end.max_force_N);
-  const SafetyCounters& safety = summary.safety;
-  const auto ticks = [](std::uint64_t n) { return static_cast<unsigned long long>(n); };
-  print_out("  time clamped     %.3f s (%llu ticks); slew-limited %llu, soft start %llu, "
-            "outside workspace %llu ticks\n",
-            static_cast<double>(safety.clamped_ticks) * scene.period_s, ticks(safety.clamped_ticks),
-            ticks(safety.slew_limited_ticks), ticks(safety.soft_start_ticks), ticks(safety.outside_workspace_ticks));
-  print_out("  linkage          %llu ticks near a singular pose or unreachable (force held), "
-            "%llu with a saturated motor (both scaled)\n",
-            ticks(safety.pose_hold_ticks), ticks(safety.motor_saturated_ticks));
-  print_out("  faults           %llu non-finite forces\n", ticks(safety.nonfinite_faults));
-  for (const ScriptReport& script : summary.scripts) {
-    if (script.disabled) {
-      print_out("  script disabled  %s (at t = %.3f s; 0 N for the remaining %llu ticks)\n",
-                printable(script.fault).c_str(), script.fault_time_s, ticks(script.skipped_calls));
-    } else {
-      print_out("  script ok        %s\n", printable(script.name).c_str());
-    }
-  }
-  print_out("  tick compute     p50 %.2f us  p99 %.2f us  max %.2f us\n",
-            static_cast<double>(summary.compute_ns.percentile_ns(0.50)) * 1e-3,
-            static_cast<double>(summary.compute_ns.percentile_ns(0.99)) * 1e-3,
-            static_cast<double>(summary.compute_ns.max_ns()) * 1e-3);
-  print_out("  plant            %llu linkage faults (the five-bar at the edge of closing)\n",
-            ticks(device.plant().linkage_faults()));
-}
-
 }  // namespace
 
 int run_planar(const Arguments& arguments, const RunSettings& settings, const std::string& file) {
@@ -129,16 +96,17 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
     const auto ticks = static_cast<std::uint64_t>(std::llround(settings.options.duration_s * scene.rate_hz));
     trace = std::make_unique<PlanarTrace>(device->truth(), ticks, proxy_index);
   }
-  ObserverListOf<2> observers;
-  observers.add(log.get());
-  observers.add(trace.get());
-  RunOptions options = settings.options;
-  options.reload = nullptr;  // hot reload: 1-DOF scenes only, so far
-  const RunSummaryOf<2> summary = run_scene(scene, *device, options, &observers);
-  print_planar_summary(scene, settings, simulation.hand, summary, *device);
+  ScriptFaultPlaces<2> fault_places;
+  const bool show_status = !settings.quiet && isatty(STDERR_FILENO) == 1;
+  const WatchedRun<2> run =
+      run_watched<2>(scene, *device, file, settings, show_status, {log.get(), trace.get(), &fault_places});
+  const RunSummaryOf<2>& summary = run.summary;
+  const std::string hand(kPlanarHandMotionNames[static_cast<int>(simulation.hand.motion)]);
+  print_run_summary<2>(scene, settings, hand, summary, &fault_places);
+  if (run.reloads > 0) print_out("  reloads          %llu\n", static_cast<unsigned long long>(run.reloads));
   const bool write_failed = log && !finish_telemetry_log(*log, *settings.log_path);
   if (trace) {
-    std::string what = "run, hand " + std::string(kPlanarHandMotionNames[static_cast<int>(simulation.hand.motion)]);
+    std::string what = "run, hand " + hand;
     if (trace->ticks_per_bucket() > 1) {
       what += ", first tick and highest force of every " + std::to_string(trace->ticks_per_bucket()) + " ticks";
     }
@@ -150,12 +118,13 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
                                                              proxy_label));
     print_out("  plot             %s\n", printable(*settings.plot_path).c_str());
   }
+  // The simulated device's report.
+  print_out("  plant            %llu linkage faults (the five-bar at the edge of closing)\n",
+            static_cast<unsigned long long>(device->plant().linkage_faults()));
   flush_out();
   // A script disabled by a fault is a fault the run saw (exit 1), as in 1-D.
-  const bool script_faulted = std::any_of(summary.scripts.begin(), summary.scripts.end(),
-                                          [](const ScriptReport& script) { return script.disabled; });
-  const bool faulted = summary.overrun_fault || summary.safety.nonfinite_faults > 0 || script_faulted;
-  return faulted || write_failed ? kExitFailure : kExitOk;
+  const bool faulted = summary.overrun_fault || summary.safety.nonfinite_faults > 0 || script_faulted(run);
+  return end_run(faulted || write_failed);
 }
 
 }  // namespace hapscene

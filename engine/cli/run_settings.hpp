@@ -67,7 +67,10 @@ bool finish_telemetry_log(TelemetryLogOf<N>& log, const std::string& path) {
 // with the options of `hapscene run` that apply: --sim-time, --duration, --log,
 // --plot FILE.svg (the figure of engine/harness/planar_figure.hpp),
 // --hand none|hold|line|circle|sweep|release|shake, --hold X,Y, --start X,Y (default the
-// profile's home), --hand-stiffness, --hand-damping, --release. Returns the exit code.
+// profile's home), --hand-stiffness, --hand-damping, --release, --quiet, --no-reload. As
+// a 1-DOF run (engine/cli/run_session.hpp): the live status and script log() lines on
+// stderr, hot reload of the environment and its scripts, the same summary
+// (engine/cli/run_summary.hpp). Returns the exit code.
 int run_planar(const Arguments& arguments, const RunSettings& settings, const std::string& file);
 
 }  // namespace hapscene

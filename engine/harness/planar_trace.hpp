@@ -13,6 +13,7 @@
 
 #include "engine/base/axes.hpp"
 #include "engine/devices/device.hpp"
+#include "engine/harness/bucketed_trace.hpp"
 #include "engine/run/tick_observer.hpp"
 
 namespace hapscene {
@@ -35,33 +36,14 @@ class PlanarTrace final : public TickObserverOf<2> {
   // recording and counts the ticks it dropped. `proxy_index`: which of the run's shape
   // proxies to record (TickStateOf<2>::effect_runs, in the bank's order), or -1 for none.
   PlanarTrace(const SimulationTruthOf<2>* truth, std::uint64_t planned_ticks, int proxy_index)
-      : truth_(truth), proxy_index_(proxy_index) {
-    const std::uint64_t buckets = kMaxPlanarTraceRecords / 2;
-    ticks_per_bucket_ =
-        planned_ticks + 1 <= kMaxPlanarTraceRecords ? 1 : (planned_ticks + buckets - 1) / buckets;
-    records_.reserve(kMaxPlanarTraceRecords);
-  }
+      : truth_(truth), proxy_index_(proxy_index), trace_(planned_ticks, kMaxPlanarTraceRecords) {}
 
-  void on_tick(const TickStateOf<2>& s) noexcept override {
-    const PlanarTickRecord r = record(s);
-    if (ticks_per_bucket_ == 1) {
-      push(r);
-      return;
-    }
-    if (in_bucket_ == 0) first_ = r;
-    const double magnitude = norm(r.output_N);
-    if (in_bucket_ == 0 || magnitude > peak_magnitude_) {
-      peak_ = r;
-      peak_magnitude_ = magnitude;
-    }
-    if (++in_bucket_ == ticks_per_bucket_) close_bucket();
-  }
+  void on_tick(const TickStateOf<2>& s) noexcept override { trace_.add(record(s)); }
+  void on_finish(const TickStateOf<2>& /*state*/) override { trace_.finish(); }
 
-  void on_finish(const TickStateOf<2>& /*state*/) override { close_bucket(); }
-
-  const std::vector<PlanarTickRecord>& records() const { return records_; }
-  std::uint64_t ticks_per_bucket() const { return ticks_per_bucket_; }
-  std::uint64_t dropped() const { return dropped_; }
+  const std::vector<PlanarTickRecord>& records() const { return trace_.records(); }
+  std::uint64_t ticks_per_bucket() const { return trace_.ticks_per_bucket(); }
+  std::uint64_t dropped() const { return trace_.dropped(); }
   int proxy_index() const { return proxy_index_; }
 
  private:
@@ -78,31 +60,15 @@ class PlanarTrace final : public TickObserverOf<2> {
     return r;
   }
 
-  void push(const PlanarTickRecord& r) noexcept {
-    if (records_.size() == records_.capacity()) {
-      ++dropped_;
-      return;
-    }
-    records_.push_back(r);
-  }
-
-  // The bucket's first tick and its peak, earlier first (one record when they coincide).
-  void close_bucket() noexcept {
-    if (in_bucket_ == 0) return;
-    push(first_);
-    if (peak_.t_s != first_.t_s) push(peak_);
-    in_bucket_ = 0;
-  }
+  // Each bucket's first tick and its largest force magnitude.
+  struct Keep {
+    static double low(const PlanarTickRecord& r) noexcept { return r.t_s; }
+    static double high(const PlanarTickRecord& r) noexcept { return norm(r.output_N); }
+  };
 
   const SimulationTruthOf<2>* truth_;
   int proxy_index_;
-  std::uint64_t ticks_per_bucket_{1};
-  std::uint64_t in_bucket_{0};
-  PlanarTickRecord first_{};
-  PlanarTickRecord peak_{};
-  double peak_magnitude_{};
-  std::vector<PlanarTickRecord> records_;
-  std::uint64_t dropped_{0};
+  BucketedTrace<PlanarTickRecord, Keep> trace_;
 };
 
 }  // namespace hapscene

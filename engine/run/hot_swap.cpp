@@ -12,6 +12,9 @@ SceneExchangeOf<N>::~SceneExchangeOf() {
 
 template <int N>
 bool SceneExchangeOf<N>::offer(std::unique_ptr<LoadedScene>& next) {
+  if constexpr (requires { next->scene.bank.proxy_count(); }) {
+    if (next->runs.size() != next->scene.bank.proxy_count()) next->runs = next->scene.bank.make_run_state();
+  }
   LoadedScene* expected = nullptr;
   if (!offered_.compare_exchange_strong(expected, next.get(), std::memory_order_acq_rel)) return false;
   next.release();

@@ -11,6 +11,7 @@
 // destroyed only after it was left out of that list.
 #include <atomic>
 #include <memory>
+#include <utility>
 
 #include "engine/run/tick_observer.hpp"
 #include "engine/scene/scene.hpp"
@@ -29,6 +30,17 @@ struct LoadedSceneOf {
 
 using LoadedScene = LoadedSceneOf<1>;
 
+// A compiled scene ready to offer: with its own script instances and its built-in
+// effects' run state (the planar shapes' proxies), made here, off the loop.
+template <int N>
+std::unique_ptr<LoadedSceneOf<N>> make_loaded_scene(SceneOf<N> scene) {
+  auto loaded = std::make_unique<LoadedSceneOf<N>>();
+  loaded->scene = std::move(scene);
+  loaded->scripts = make_script_instances(loaded->scene);
+  loaded->runs = loaded->scene.bank.make_run_state();
+  return loaded;
+}
+
 // The two slots between the reload thread and the loop.
 template <int N>
 class SceneExchangeOf {
@@ -36,8 +48,9 @@ class SceneExchangeOf {
   using LoadedScene = LoadedSceneOf<N>;
   ~SceneExchangeOf();
 
-  // Reload thread: offers a scene; false (and `next` untouched) while an earlier offer
-  // has not been taken yet.
+  // Reload thread: offers a scene; false (and `next` kept) while an earlier offer has not
+  // been taken yet. A run state that does not fit the scene's effects (a carrier made
+  // without make_loaded_scene) is made first: the loop steps the scene with it.
   bool offer(std::unique_ptr<LoadedScene>& next);
   // Reload thread: a scene the loop is done with, to destroy here; null when none.
   std::unique_ptr<LoadedScene> take_retired();

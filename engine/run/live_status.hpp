@@ -10,6 +10,7 @@
 // (drain_retired), and the loop hands a scene back only after leaving it out of the
 // published list, so a drain never reads an instance being destroyed. What is left when
 // the run ends is drained on the loop's thread after the last tick (on_finish).
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <mutex>
@@ -22,7 +23,8 @@
 
 namespace hapscene {
 
-class LiveStatus final : public TickObserver {
+template <int N>
+class LiveStatusOf final : public TickObserverOf<N> {
  public:
   void on_scripts(ScriptSpan running, ScriptSpan replaced) noexcept override {
     const std::uint64_t sequence = sequence_.load(std::memory_order_relaxed);
@@ -36,7 +38,7 @@ class LiveStatus final : public TickObserver {
     sequence_.store(sequence + 2, std::memory_order_release);
   }
 
-  void on_finish(const TickState& state) override {
+  void on_finish(const TickStateOf<N>& state) override {
     (void)state;
     std::lock_guard lock(log_mutex_);
     drain_published();
@@ -52,19 +54,22 @@ class LiveStatus final : public TickObserver {
   }
 
   // The reload thread, before destroying a scene the loop let go of: keeps its messages.
-  void drain_retired(LoadedScene& retired) {
+  void drain_retired(LoadedSceneOf<N>& retired) {
     std::lock_guard lock(log_mutex_);
     for (const auto& script : retired.scripts) script->drain_log(&log_);
   }
 
-  void on_tick(const TickState& state) noexcept override {
-    x_m_.store(state.x_m, std::memory_order_relaxed);
-    output_N_.store(state.output_N, std::memory_order_relaxed);
+  void on_tick(const TickStateOf<N>& state) noexcept override {
+    for (int i = 0; i < N; ++i) {
+      x_m_[i].store(component(state.x_m, i), std::memory_order_relaxed);
+      output_N_[i].store(component(state.output_N, i), std::memory_order_relaxed);
+    }
     ticks_.store(state.tick, std::memory_order_relaxed);
   }
 
-  double x_m() const noexcept { return x_m_.load(std::memory_order_relaxed); }
-  double output_N() const noexcept { return output_N_.load(std::memory_order_relaxed); }
+  // Each axis is read on its own: the components may be a tick apart (a display only).
+  Axes<N> x_m() const noexcept { return load(x_m_); }
+  Axes<N> output_N() const noexcept { return load(output_N_); }
   std::uint64_t ticks() const noexcept { return ticks_.load(std::memory_order_relaxed); }
 
  private:
@@ -89,8 +94,18 @@ class LiveStatus final : public TickObserver {
     }
   }
 
-  std::atomic<double> x_m_{0.0};
-  std::atomic<double> output_N_{0.0};
+  static Axes<N> load(const std::array<std::atomic<double>, N>& values) noexcept {
+    if constexpr (N == 1) {
+      return values[0].load(std::memory_order_relaxed);
+    } else {
+      Axes<N> out{};
+      for (int i = 0; i < N; ++i) out[i] = values[i].load(std::memory_order_relaxed);
+      return out;
+    }
+  }
+
+  std::array<std::atomic<double>, N> x_m_{};
+  std::array<std::atomic<double>, N> output_N_{};
   std::atomic<std::uint64_t> ticks_{0};
   // The published instance arrays (running, replaced).
   std::atomic<std::uint64_t> sequence_{0};
@@ -99,5 +114,7 @@ class LiveStatus final : public TickObserver {
   std::mutex log_mutex_;
   std::vector<std::string> log_;
 };
+
+using LiveStatus = LiveStatusOf<1>;
 
 }  // namespace hapscene

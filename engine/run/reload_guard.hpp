@@ -11,5 +11,7 @@ namespace hapscene {
 // "" when `next` may replace `running`; otherwise one message naming every change that
 // is refused ("device profile content changed: limits.max_force_N 6 -> 60; ...").
 std::string reload_refusal(const Scene& running, const Scene& next);
+// The same for a planar scene: every field of its profile, and its workspace box per axis.
+std::string reload_refusal(const PlanarScene& running, const PlanarScene& next);
 
 }  // namespace hapscene

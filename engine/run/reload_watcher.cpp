@@ -1,5 +1,6 @@
 #include "engine/run/reload_watcher.hpp"
 
+#include <stdexcept>
 #include <system_error>
 
 #include "engine/base/object_reader.hpp"
@@ -8,29 +9,48 @@
 
 namespace hapscene {
 
-std::atomic<std::uint64_t> ReloadWatcher::abandoned_{0};
-
 namespace {
+
+std::atomic<std::uint64_t> g_abandoned_loads{0};
 
 // After this many loads were abandoned, watching stops (each may still hold a thread).
 constexpr int kMaxAbandonedLoads = 2;
 
-std::unique_ptr<LoadedScene> load_scene(const std::string& path) {
-  auto next = std::make_unique<LoadedScene>();
-  next->scene = load_environment_file(path);
-  next->scripts = make_script_instances(next->scene);
-  return next;
+// A new version the run cannot take whatever it holds: not a load failure.
+struct RefusedLoad : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+const char* axes_name(int axes) { return axes == 2 ? "2-DOF (planar)" : "1-DOF"; }
+
+// The default load: the environment file, compiled for N axes, with its script instances.
+// A file that now makes a scene of another axis count names another device: refused.
+template <int N>
+std::unique_ptr<LoadedSceneOf<N>> load_scene(const std::string& path) {
+  const int axes = environment_axes(path);
+  if (axes != N) {
+    throw RefusedLoad(std::string("the device cannot change during a run (the file now makes a ") + axes_name(axes) +
+                      " scene; this run's is " + axes_name(N) + ")");
+  }
+  if constexpr (N == 1) {
+    return make_loaded_scene<1>(load_environment_file(path));
+  } else {
+    return make_loaded_scene<N>(load_planar_environment_file(path));
+  }
 }
 
 }  // namespace
 
-ReloadWatcher::ReloadWatcher(std::string environment_path, const Scene& running,
-                             SceneExchange* exchange, Report report, ReloadWatcherOptions options)
+std::uint64_t abandoned_reload_loads() noexcept { return g_abandoned_loads.load(); }
+
+template <int N>
+ReloadWatcherOf<N>::ReloadWatcherOf(std::string environment_path, const Scene& running,
+                                    SceneExchangeOf<N>* exchange, Report report, ReloadWatcherOptionsOf<N> options)
     : environment_path_(std::move(environment_path)),
       exchange_(exchange),
       report_(std::move(report)),
       options_(std::move(options)) {
-  if (!options_.load) options_.load = load_scene;
+  if (!options_.load) options_.load = load_scene<N>;
   limits_.rate_hz = running.rate_hz;
   limits_.device = running.device;
   limits_.safety = running.safety;
@@ -44,7 +64,8 @@ ReloadWatcher::ReloadWatcher(std::string environment_path, const Scene& running,
   });
 }
 
-ReloadWatcher::~ReloadWatcher() {
+template <int N>
+ReloadWatcherOf<N>::~ReloadWatcherOf() {
   stop_.store(true);
   if (thread_.joinable()) thread_.join();
   if (job_ != nullptr) {
@@ -61,7 +82,8 @@ ReloadWatcher::~ReloadWatcher() {
   }
 }
 
-ReloadWatcher::Stamp ReloadWatcher::stamp_of(const std::string& path) {
+template <int N>
+typename ReloadWatcherOf<N>::Stamp ReloadWatcherOf<N>::stamp_of(const std::string& path) {
   std::error_code error;
   Stamp stamp;
   stamp.time = std::filesystem::last_write_time(path, error);
@@ -71,9 +93,10 @@ ReloadWatcher::Stamp ReloadWatcher::stamp_of(const std::string& path) {
 
 // The environment file and every script file it uses. A file that was watched when the
 // load started keeps the stamp it had then, so an edit made during the load is seen.
-void ReloadWatcher::watch_files_of(const Scene& scene, const std::vector<Watched>& at_load_start) {
+template <int N>
+void ReloadWatcherOf<N>::watch_files_of(const Scene& scene, const std::vector<Watched>& at_load_start) {
   std::vector<std::string> paths{environment_path_};
-  for (const Effect& effect : scene.effects) {
+  for (const auto& effect : scene.effects) {
     if (const auto* script = std::get_if<ScriptEffect>(&effect); script != nullptr && !script->file.empty()) {
       paths.push_back(script->file);
     }
@@ -88,14 +111,16 @@ void ReloadWatcher::watch_files_of(const Scene& scene, const std::vector<Watched
   }
 }
 
-bool ReloadWatcher::changed() const {
+template <int N>
+bool ReloadWatcherOf<N>::changed() const {
   for (const Watched& watched : files_) {
     if (!(stamp_of(watched.path) == watched.stamp)) return true;
   }
   return false;
 }
 
-void ReloadWatcher::poll() {
+template <int N>
+void ReloadWatcherOf<N>::poll() {
   // Destroy what the loop let go of; a fault of a replaced version is reported here
   // (the run's summary covers only the version running at the end).
   if (std::unique_ptr<LoadedScene> retired = exchange_->take_retired()) {
@@ -126,7 +151,8 @@ void ReloadWatcher::poll() {
   collect_load();
 }
 
-void ReloadWatcher::start_load() {
+template <int N>
+void ReloadWatcherOf<N>::start_load() {
   for (Watched& watched : files_) watched.stamp = stamp_of(watched.path);
   load_start_files_ = files_;
   job_ = std::make_shared<Job>();
@@ -135,9 +161,13 @@ void ReloadWatcher::start_load() {
   job_thread_ = std::thread([job = job_, load = options_.load, path = environment_path_] {
     std::unique_ptr<LoadedScene> scene;
     std::string error;
+    bool refused = false;
     try {
       scene = load(path);
       if (scene == nullptr) error = path + ": the load gave no scene";
+    } catch (const RefusedLoad& caught) {
+      error = caught.what();
+      refused = true;
     } catch (const std::exception& caught) {
       error = caught.what();
     } catch (...) {
@@ -146,21 +176,25 @@ void ReloadWatcher::start_load() {
     std::lock_guard lock(job->mutex);
     job->scene = std::move(scene);
     job->error = std::move(error);
+    job->refused = refused;
     job->done = true;
     job->finished.notify_all();
   });
 }
 
-void ReloadWatcher::collect_load() {
+template <int N>
+void ReloadWatcherOf<N>::collect_load() {
   std::unique_ptr<LoadedScene> next;
   std::string error;
   bool done = false;
+  bool refused = false;
   {
     std::lock_guard lock(job_->mutex);
     done = job_->done;
     if (done) {
       next = std::move(job_->scene);
       error = std::move(job_->error);
+      refused = job_->refused;
     }
   }
   if (!done) {
@@ -171,6 +205,10 @@ void ReloadWatcher::collect_load() {
   }
   job_thread_.join();
   job_.reset();
+  if (refused) {
+    report_("reload refused, keeping the running version: " + environment_path_ + ": " + error);
+    return;
+  }
   if (next == nullptr) {
     report_("reload failed, keeping the running version: " + error);
     return;
@@ -180,10 +218,11 @@ void ReloadWatcher::collect_load() {
 
 // A load that does not end: its thread is left to finish on its own (it holds only its
 // own data) and no later load waits for it.
-void ReloadWatcher::abandon_load(const std::string& why) {
+template <int N>
+void ReloadWatcherOf<N>::abandon_load(const std::string& why) {
   job_thread_.detach();
   job_.reset();
-  abandoned_.fetch_add(1);
+  g_abandoned_loads.fetch_add(1);
   ++abandoned_here_;
   std::string message = "reload of " + environment_path_ + " abandoned, keeping the running version: " + why;
   if (abandoned_here_ >= kMaxAbandonedLoads && !stop_.load()) {
@@ -195,7 +234,8 @@ void ReloadWatcher::abandon_load(const std::string& why) {
 }
 
 // A compiled version: refused when it would change the device or loosen a limit.
-void ReloadWatcher::accept(std::unique_ptr<LoadedScene> next) {
+template <int N>
+void ReloadWatcherOf<N>::accept(std::unique_ptr<LoadedScene> next) {
   const std::string refusal = reload_refusal(limits_, next->scene);
   if (!refusal.empty()) {
     report_("reload refused, keeping the running version: " + environment_path_ + ": " + refusal);
@@ -208,5 +248,9 @@ void ReloadWatcher::accept(std::unique_ptr<LoadedScene> next) {
     report_("reloaded " + environment_path_ + ": cross-fading to the new version");
   }
 }
+
+// The axis counts scenes are compiled for.
+template class ReloadWatcherOf<1>;
+template class ReloadWatcherOf<2>;
 
 }  // namespace hapscene

@@ -3,8 +3,9 @@
 // it uses; when one changes, loads and compiles the new version off the loop, makes its
 // script instances and offers it to the loop (engine/run/hot_swap.hpp). A broken new
 // version, or one that would change the device or loosen a safety limit
-// (engine/run/reload_guard.hpp), is reported and the running one keeps going. Scenes the
-// loop lets go of are destroyed here.
+// (engine/run/reload_guard.hpp), or one that makes a scene of another number of axes, is
+// reported and the running one keeps going. Scenes the loop lets go of are destroyed
+// here. Written once for the 1-DOF and the planar scenes (ReloadWatcherOf<N>).
 //
 // Nothing here waits unboundedly on a load: each load runs on a thread of its own, and
 // the watcher only looks at it when it polls. A load still running after the compile
@@ -27,7 +28,8 @@
 
 namespace hapscene {
 
-struct ReloadWatcherOptions {
+template <int N>
+struct ReloadWatcherOptionsOf {
   // How often the files are looked at; 0: no thread, the owner calls poll() (which then
   // waits for the load it starts, at most compile_timeout_s).
   double poll_period_s{0.2};
@@ -35,31 +37,41 @@ struct ReloadWatcherOptions {
   double compile_timeout_s{10.0};
   // Called on the watcher's thread with each scene the loop let go of, just before it is
   // destroyed (the live status drains its scripts' log messages here).
-  std::function<void(LoadedScene& retired)> before_destroy;
+  std::function<void(LoadedSceneOf<N>& retired)> before_destroy;
   // Loads a new version (tests replace it); the default loads the environment file and
-  // makes its script instances.
-  std::function<std::unique_ptr<LoadedScene>(const std::string& path)> load;
+  // makes its script instances, and refuses a file that now makes a scene with another
+  // number of axes (another device).
+  std::function<std::unique_ptr<LoadedSceneOf<N>>(const std::string& path)> load;
 };
 
-class ReloadWatcher {
+using ReloadWatcherOptions = ReloadWatcherOptionsOf<1>;
+
+// Loads abandoned by every watcher of this process, whatever its scene's axes.
+std::uint64_t abandoned_reload_loads() noexcept;
+
+// Watches the files of a scene with N axes (1: the Hapkit's; 2: a planar device's).
+template <int N>
+class ReloadWatcherOf {
  public:
   using Report = std::function<void(const std::string& message)>;
+  using LoadedScene = LoadedSceneOf<N>;
+  using Scene = SceneOf<N>;
 
   // Starts watching. `running` is the scene the run starts with; `report` is called from
   // the watcher's thread with one line per reload or failed reload.
-  ReloadWatcher(std::string environment_path, const Scene& running, SceneExchange* exchange,
-                Report report, ReloadWatcherOptions options = {});
+  ReloadWatcherOf(std::string environment_path, const Scene& running, SceneExchangeOf<N>* exchange,
+                  Report report, ReloadWatcherOptionsOf<N> options = {});
   // Stops the thread; abandons a load still running (never waits for it).
-  ~ReloadWatcher();
-  ReloadWatcher(const ReloadWatcher&) = delete;
-  ReloadWatcher& operator=(const ReloadWatcher&) = delete;
+  ~ReloadWatcherOf();
+  ReloadWatcherOf(const ReloadWatcherOf&) = delete;
+  ReloadWatcherOf& operator=(const ReloadWatcherOf&) = delete;
 
   // Checks once (the thread calls this every poll period; without a thread, the owner).
   void poll();
 
   // Loads abandoned by every watcher of this process (their threads may still run: the
   // process should then end with std::_Exit after flushing its output).
-  static std::uint64_t abandoned_loads() noexcept { return abandoned_.load(); }
+  static std::uint64_t abandoned_loads() noexcept { return abandoned_reload_loads(); }
 
   // Scripts of replaced versions that had been disabled by a fault (each was reported).
   std::uint64_t replaced_script_faults() const noexcept { return replaced_script_faults_.load(); }
@@ -81,6 +93,7 @@ class ReloadWatcher {
     bool done{false};
     std::unique_ptr<LoadedScene> scene;
     std::string error;
+    bool refused{};  // the file makes a scene the run cannot take (error says why)
   };
 
   static Stamp stamp_of(const std::string& path);
@@ -93,9 +106,9 @@ class ReloadWatcher {
 
   std::string environment_path_;
   Scene limits_;  // rate, device and safety in force (the last version accepted)
-  SceneExchange* exchange_;
+  SceneExchangeOf<N>* exchange_;
   Report report_;
-  ReloadWatcherOptions options_;
+  ReloadWatcherOptionsOf<N> options_;
   std::vector<Watched> files_;
   std::vector<Watched> load_start_files_;  // the stamps the running load started from
   std::unique_ptr<LoadedScene> waiting_;   // compiled, not yet taken by the loop
@@ -107,8 +120,8 @@ class ReloadWatcher {
   bool stopped_watching_{false};
   std::atomic<bool> stop_{false};
   std::thread thread_;
-
-  static std::atomic<std::uint64_t> abandoned_;
 };
+
+using ReloadWatcher = ReloadWatcherOf<1>;
 
 }  // namespace hapscene

@@ -73,16 +73,6 @@ class MissWindow {
   std::array<std::uint64_t, kMaxOverrunWindow / 64> bits_{};
 };
 
-// Hot reload offers 1-DOF scenes (RunOptions::reload); scenes of other axis counts run
-// without it.
-SceneExchangeOf<1>* reload_exchange(const RunOptions& options, const SceneOf<1>&) noexcept {
-  return options.reload;
-}
-template <int N>
-SceneExchangeOf<N>* reload_exchange(const RunOptions&, const SceneOf<N>&) noexcept {
-  return nullptr;
-}
-
 }  // namespace
 
 template <int N>
@@ -90,7 +80,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
                           const RunOptions& options, std::type_identity_t<TickObserverOf<N>>* observer) {
   RunSummaryOf<N> summary;
   TickStateOf<N> state = make_tick_state(initial_scene);
-  HotSwapOf<N> hot_swap(initial_scene, reload_exchange(options, initial_scene), &state, observer);
+  HotSwapOf<N> hot_swap(initial_scene, reload_exchange<N>(options), &state, observer);
   // Rate and device stay for the whole run (a reload that changes them is refused).
   const SceneOf<N>& scene = initial_scene;
   const auto total_ticks = static_cast<std::uint64_t>(std::llround(options.duration_s * scene.rate_hz));

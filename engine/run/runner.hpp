@@ -29,8 +29,11 @@ struct RunOptions {
   Pacing pacing{Pacing::real_time};
   // Set from another thread (e.g. on Ctrl-C) to end the run at the next tick.
   const std::atomic<bool>* stop_requested{nullptr};
-  // Hot reload: scenes offered here replace the running one at a tick boundary.
-  SceneExchange* reload{nullptr};  // (1-DOF scenes)
+  // Hot reload: scenes offered here replace the running one at a tick boundary (the
+  // exchange of the run's axis count: `reload` for 1-DOF scenes, `reload_planar` for
+  // 2-DOF ones; reload_exchange<N>() picks it).
+  SceneExchange* reload{nullptr};
+  SceneExchangeOf<2>* reload_planar{nullptr};
   // Sustained overruns: this many deadline misses in a row (a single stall of k periods
   // counts k) is a warning, this many a fault: the device is commanded zero force and
   // the run ends.
@@ -44,6 +47,29 @@ struct RunOptions {
   std::uint32_t overrun_window_deadlines{1000};
   std::uint32_t overrun_window_misses{100};
 };
+
+// The exchange a run of a scene with N axes takes its reloads from (null: no reload).
+template <int N>
+SceneExchangeOf<N>* reload_exchange(const RunOptions& options) noexcept {
+  if constexpr (N == 1) {
+    return options.reload;
+  } else if constexpr (N == 2) {
+    return options.reload_planar;
+  } else {
+    return nullptr;
+  }
+}
+
+// Sets the exchange a run of a scene with N axes takes its reloads from.
+template <int N>
+void set_reload_exchange(RunOptions* options, SceneExchangeOf<N>* exchange) noexcept {
+  static_assert(N == 1 || N == 2, "hot reload: 1 or 2 axes");
+  if constexpr (N == 1) {
+    options->reload = exchange;
+  } else {
+    options->reload_planar = exchange;
+  }
+}
 
 // The longest sliding window of deadlines the runner can judge (a fixed bit ring: no
 // allocation in the loop).

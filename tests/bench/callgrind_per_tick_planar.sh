@@ -1,28 +1,7 @@
 #!/bin/sh
 # Instructions per tick of the 2-D bench rows (the hand-written 2-D code and the built-in
-# scene) counted by valgrind's callgrind, as tests/bench/callgrind_per_tick.sh does for
-# the 1-D rows: (Ir(N2 ticks) - Ir(N1 ticks)) / (N2 - N1), so loading and recording the
-# simulated run's readings cancel.
+# scene), counted as tests/bench/callgrind_per_tick.sh counts the 1-D rows (it does the
+# work: this is its "planar" set).
 # Usage, from the repository root: tests/bench/callgrind_per_tick_planar.sh [build/hapscene]
 set -eu
-hapscene=${1:-build/hapscene}
-n1=5000
-n2=25000
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-
-instructions() {  # impl env ticks -> total instructions (Ir) of the whole run
-  valgrind --tool=callgrind --callgrind-out-file="$out/cg" "$hapscene" bench --callgrind \
-    --impl "$1" --ticks "$3" "$2" >/dev/null 2>&1
-  sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$out/cg"
-}
-
-printf '%-24s %-10s %14s\n' environment impl instr_per_tick
-for env in haplink_box_inside haply2diy_v3_box_inside haplink_circle_outside; do
-  for impl in baseline builtin; do
-    [ "$env" = haplink_circle_outside ] && [ "$impl" = baseline ] && continue
-    a=$(instructions "$impl" "environments/planar/$env.json" $n1)
-    b=$(instructions "$impl" "environments/planar/$env.json" $n2)
-    printf '%-24s %-10s %14.1f\n' "$env" "$impl" "$(echo "($b - $a) / ($n2 - $n1)" | bc -l)"
-  done
-done
+exec "$(dirname "$0")/callgrind_per_tick.sh" "${1:-build/hapscene}" planar

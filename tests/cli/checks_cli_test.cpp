@@ -22,12 +22,6 @@ const char* kFaulting =
     "  return -100 * s.x\n"
     "end\n";
 
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
-
 }  // namespace
 
 TEST_CASE("cli: probe writes the CSV, prints a script fault once with file:line and exits 1") {
@@ -38,7 +32,7 @@ TEST_CASE("cli: probe writes the CSV, prints a script fault once with file:line 
   CHECK(outcome.out == "x_m,v_m_per_s,force_N,output_N\n0,0,0,0\n0.005,0,-0.5,-0.5\n0.01,0,-1,-1\n"
                        "0.015,0,0,0\n0.02,0,0,0\n");
   CHECK(outcome.err == script + ":3: undefined global 'k' (first at x 15.00 mm, v 0 m/s, t 0 s)\n");
-  CHECK(count(outcome.err, "undefined global") == 1);
+  CHECK(hapscene::test::occurrences(outcome.err, "undefined global") == 1);
   // Backwards: the same rows, reversed, and the same message.
   const auto backwards = run_cli("probe " + script + " --x 20mm:0:-5mm");
   CHECK(backwards.exit_code == 1);
@@ -75,7 +69,7 @@ TEST_CASE("cli: plot still writes the figure, prints the fault once and exits 1"
   const auto outcome = run_cli("plot " + script + " --output " + svg);
   CHECK(outcome.exit_code == 1);
   CHECK(std::filesystem::exists(svg));
-  CHECK(count(outcome.err, "undefined global 'k'") == 1);
+  CHECK(hapscene::test::occurrences(outcome.err, "undefined global 'k'") == 1);
   CHECK(outcome.err.starts_with(script + ":3: undefined global 'k'"));
 }
 
@@ -171,7 +165,7 @@ TEST_CASE("cli: a fault whose message changes at every point is printed a bounde
   // About 40 distinct messages (one per millimetre), each at 4 points.
   const auto up = run_cli("probe " + script + " --x -10mm:40mm:0.25mm");
   CHECK(up.exit_code == 1);
-  CHECK(count(up.err, "\n") == 21);
+  CHECK(hapscene::test::occurrences(up.err, "\n") == 21);
   CHECK(up.err.find("... and script faults with other messages (only the 20 first") != std::string::npos);
   // The same faults are shown whichever way the points are probed.
   const auto down = run_cli("probe " + script + " --x 40mm:-10mm:-0.25mm");

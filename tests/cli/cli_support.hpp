@@ -24,6 +24,13 @@ inline std::string slurp_file(const std::filesystem::path& path) {
   return buffer.str();
 }
 
+// How many times `what` occurs in `text` (overlaps counted): "reported once" checks.
+inline std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
 // Runs `hapscene ARGS` from the source directory.
 inline CliOutcome run_cli(const std::string& args) {
   static int counter = 0;

@@ -34,12 +34,6 @@ hapscene::test::CliOutcome run_cli_to_full_disk(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, "", hapscene::test::slurp_file(err_path)};
 }
 
-std::size_t count(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-  return n;
-}
-
 }  // namespace
 
 TEST_CASE("cli: bench reports a script fault once with file:line and exits 1") {
@@ -47,14 +41,14 @@ TEST_CASE("cli: bench reports a script fault once with file:line and exits 1") {
   const std::string script = folder.write("faulting.lua", kFaultingScript);
   const auto outcome = run_cli("bench " + script + " --seconds 0.2 --passes 1");
   CHECK(outcome.exit_code == 1);
-  CHECK(count(outcome.err, script + ":3: undefined global 'k' (while timing faulting, Lua script)\n") == 1);
+  CHECK(hapscene::test::occurrences(outcome.err, script + ":3: undefined global 'k' (while timing faulting, Lua script)\n") == 1);
   CHECK(outcome.err.find("its rows timed 0 N") != std::string::npos);
   // The table is still printed, and the row says it runs a Lua script.
   CHECK(outcome.out.find("faulting   Lua script ") != std::string::npos);
 
   const auto callgrind = run_cli("bench --callgrind " + script + " --ticks 2000");
   CHECK(callgrind.exit_code == 1);
-  CHECK(count(callgrind.err, script + ":3: undefined global 'k'") == 1);
+  CHECK(hapscene::test::occurrences(callgrind.err, script + ":3: undefined global 'k'") == 1);
 }
 
 TEST_CASE("cli: bench labels a .lua environment and a mixed one by what they run, and exits 0 without faults") {
@@ -80,7 +74,7 @@ TEST_CASE("cli: validate gives every file its verdict when one is invalid input"
   CHECK(quiet.out.starts_with("PASS spring (environments/spring.json): "));
   CHECK(quiet.out.find("FAIL " + bad + ": invalid input (see the error above)\n") != std::string::npos);
   CHECK(quiet.out.find("PASS damper (environments/damper.json): ") != std::string::npos);
-  CHECK(count(quiet.err, "error: " + bad + ":1:") == 1);
+  CHECK(hapscene::test::occurrences(quiet.err, "error: " + bad + ":1:") == 1);
 
   // Without --quiet: both tables, the error once.
   const auto tables = run_cli("validate --scenario hold " + bad + " environments/spring.json");
@@ -103,7 +97,7 @@ TEST_CASE("cli: test runs every spec when one cannot be loaded") {
   CHECK(outcome.out.find("PASS environments/damper.test.json") != std::string::npos);
   CHECK(outcome.out.find("3 specs, ") != std::string::npos);
   CHECK(outcome.out.find("1 specs failed") != std::string::npos);
-  CHECK(count(outcome.err, "error: " + bad) == 1);
+  CHECK(hapscene::test::occurrences(outcome.err, "error: " + bad) == 1);
 }
 
 TEST_CASE("cli: a failed write of standard output names the cause and exits 1") {

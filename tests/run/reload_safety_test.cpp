@@ -34,25 +34,6 @@ std::string hapkit3_with(const std::string& max_force, const std::string& slew_l
   return text;
 }
 
-struct Reports {
-  std::mutex mutex;
-  std::vector<std::string> lines;
-  ReloadWatcher::Report sink() {
-    return [this](const std::string& line) {
-      std::lock_guard lock(mutex);
-      lines.push_back(line);
-    };
-  }
-  std::string last() {
-    std::lock_guard lock(mutex);
-    return lines.empty() ? "" : lines.back();
-  }
-  std::size_t count() {
-    std::lock_guard lock(mutex);
-    return lines.size();
-  }
-};
-
 }  // namespace
 
 TEST_CASE("reload guard: each loosened limit, the rate and any profile change are named") {
@@ -94,7 +75,7 @@ TEST_CASE("reload watcher: a same-named profile file with looser limits is refus
   const auto env = scratch.write("env.json", R"({"device": "a/hapkit3.json", "effects": [{"type": "spring", "stiffness": 1000}]})");
   const Scene running = load_environment_file(env.string());
   SceneExchange exchange;
-  Reports reports;
+  test::Reports reports;
   ReloadWatcher watcher(env.string(), running, &exchange, reports.sink(), test::manual_polling());
 
   // The environment now points at the other file, whose profile has the same name.
@@ -151,7 +132,7 @@ TEST_CASE("reload watcher: a load that never ends is abandoned; destroying the w
     throw InputError("let go");
   };
   SceneExchange exchange;
-  Reports reports;
+  test::Reports reports;
   {
     auto watcher = std::make_unique<ReloadWatcher>(env.string(), running, &exchange, reports.sink(), options);
     scratch.write("env.json", R"({"effects": [{"type": "damper", "damping": 1}]})");

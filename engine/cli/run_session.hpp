@@ -1,0 +1,149 @@
+#pragma once
+// One environment's run as `hapscene run` does it, whatever the scene's axes: the live
+// status line and the scripts' log() lines on stderr, hot reload of the environment and
+// its scripts (unless --no-reload), the caller's observers (telemetry log, plot trace),
+// and the log lines still queued at the end printed once, after the run. run_command.cpp
+// (1-DOF) and run_planar.cpp (2-DOF) print the summary and their own outputs after it.
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <initializer_list>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
+#include "engine/cli/run_settings.hpp"
+#include "engine/cli/standard_output.hpp"
+#include "engine/run/live_status.hpp"
+#include "engine/run/observer_list.hpp"
+#include "engine/run/reload_watcher.hpp"
+#include "engine/run/runner.hpp"
+
+namespace hapscene {
+
+// Prints script log lines as they come, and the handle, force and loop rate on one
+// terminal line ten times a second, until destroyed (nothing when not enabled).
+template <int N>
+class StatusLine {
+ public:
+  StatusLine(LiveStatusOf<N>& status, double period_s, bool enabled) : status_(status), period_s_(period_s) {
+    if (enabled) thread_ = std::thread([this] { loop(); });
+  }
+  ~StatusLine() {
+    done_.store(true);
+    if (thread_.joinable()) {
+      thread_.join();
+      std::fprintf(stderr, "\r\033[K");
+    }
+  }
+  StatusLine(const StatusLine&) = delete;
+  StatusLine& operator=(const StatusLine&) = delete;
+
+ private:
+  void loop() {
+    using namespace std::chrono;
+    std::uint64_t last_ticks = status_.ticks();
+    auto last_time = steady_clock::now();
+    while (!done_.load()) {
+      std::this_thread::sleep_for(milliseconds(100));
+      const auto now = steady_clock::now();
+      const std::uint64_t ticks = status_.ticks();
+      const double rate_hz = static_cast<double>(ticks - last_ticks) / duration<double>(now - last_time).count();
+      last_ticks = ticks;
+      last_time = now;
+      log_lines_.clear();
+      status_.drain_log(&log_lines_);
+      for (const std::string& line : log_lines_) std::fprintf(stderr, "\r\033[K%s\n", line.c_str());
+      const double t_s = static_cast<double>(ticks) * period_s_;
+      if constexpr (N == 1) {
+        std::fprintf(stderr, "\r\033[K  t %7.3f s   x %+8.3f mm   force %+7.3f N   loop %8.1f Hz", t_s,
+                     status_.x_m() * 1e3, status_.output_N(), rate_hz);
+      } else {
+        const Axes<N> x_m = status_.x_m();
+        std::fprintf(stderr, "\r\033[K  t %7.3f s   x %+8.3f mm   y %+8.3f mm   force %7.3f N   loop %8.1f Hz", t_s,
+                     x_m[0] * 1e3, x_m[1] * 1e3, norm(status_.output_N()), rate_hz);
+      }
+      std::fflush(stderr);
+    }
+  }
+
+  LiveStatusOf<N>& status_;
+  std::vector<std::string> log_lines_;
+  double period_s_;
+  std::atomic<bool> done_{false};
+  std::thread thread_;
+};
+
+template <int N>
+struct WatchedRun {
+  RunSummaryOf<N> summary;
+  std::uint64_t reloads{};                 // versions the loop took
+  std::uint64_t replaced_script_faults{};  // disabled scripts in versions a reload replaced
+};
+
+// Runs `scene` (loaded from `file`) on `device` for settings.options. `observers`: the
+// caller's (null ones are skipped), after the live status.
+template <int N>
+WatchedRun<N> run_watched(const SceneOf<N>& scene, DeviceOf<N>& device, const std::string& file,
+                          const RunSettings& settings, bool show_status,
+                          std::initializer_list<TickObserverOf<N>*> observers) {
+  LiveStatusOf<N> status;
+  ObserverListOf<N> all;
+  all.add(&status);
+  for (TickObserverOf<N>* observer : observers) all.add(observer);
+  SceneExchangeOf<N> exchange;
+  RunOptions options = settings.options;
+  if (settings.reload) set_reload_exchange<N>(&options, &exchange);
+  WatchedRun<N> run;
+  {
+    StatusLine<N> line(status, scene.period_s, show_status);
+    std::unique_ptr<ReloadWatcherOf<N>> watcher;
+    if (settings.reload) {
+      ReloadWatcherOptionsOf<N> watch;
+      watch.before_destroy = [&status](LoadedSceneOf<N>& retired) { status.drain_retired(retired); };
+      watcher = std::make_unique<ReloadWatcherOf<N>>(
+          file, scene, &exchange,
+          [show_status](const std::string& message) {
+            std::fprintf(stderr, "%s%s\n", show_status ? "\r\033[K" : "", printable(message).c_str());
+          },
+          std::move(watch));
+    }
+    run.summary = run_scene(scene, device, options, &all);
+    if (watcher) run.replaced_script_faults = watcher->replaced_script_faults();
+  }
+  std::vector<std::string> log_lines;
+  status.drain_log(&log_lines);
+  for (const std::string& line : log_lines) std::fprintf(stderr, "%s\n", printable(line).c_str());
+  run.reloads = exchange.swaps();
+  return run;
+}
+
+// A script disabled by a fault (in the version running at the end, or in one a reload
+// replaced) is a fault the run saw: the run exits 1.
+template <int N>
+bool script_faulted(const WatchedRun<N>& run) {
+  if (run.replaced_script_faults > 0) return true;
+  for (const ScriptReport& script : run.summary.scripts) {
+    if (script.disabled) return true;
+  }
+  return false;
+}
+
+// Ends `hapscene run` with 1 when `failed` (else 0). A reload load that never finished may
+// still hold a thread: then the process ends at once, without running static destructors
+// under it, after flushing its output.
+inline int end_run(bool failed) {
+  if (ReloadWatcher::abandoned_loads() > 0) {
+    const bool output_ok = report_stdout_failure();
+    std::fflush(stderr);
+    std::_Exit(failed || !output_ok ? kExitFailure : kExitOk);
+  }
+  return failed ? kExitFailure : kExitOk;
+}
+
+}  // namespace hapscene
