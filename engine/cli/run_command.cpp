@@ -102,8 +102,10 @@ int run_command(std::vector<std::string> args) {
     if (!problem.empty()) arguments.fail(problem);
   }
 
-  // Ctrl-C ends the run at the next tick, whatever its axes.
+  // Ctrl-C or SIGTERM ends the run at the next tick, whatever its axes: the device is
+  // closed the normal way (zero force, then the summary).
   std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
   settings.options.stop_requested = &g_stop_requested;
 
   // A 2-DOF environment runs alone, on its own path (run_planar.cpp).

@@ -16,6 +16,7 @@
 #include "engine/cli/run_session.hpp"
 #include "engine/cli/run_summary.hpp"
 #include "engine/cli/standard_output.hpp"
+#include "engine/devices/open_device.hpp"
 #include "engine/devices/planar/planar_hand.hpp"
 #include "engine/devices/planar/simulated_planar.hpp"
 #include "engine/harness/planar_figure.hpp"
@@ -64,27 +65,38 @@ PlanarHandConfig planar_hand(const Arguments& arguments, const RunSettings& sett
 }  // namespace
 
 int run_planar(const Arguments& arguments, const RunSettings& settings, const std::string& file) {
-  if (settings.device != "sim") {
-    arguments.fail("--device " + settings.device +
-                   ": a 2-DOF environment runs on the simulated device only (--device sim) so far");
-  }
   // (Output paths were checked by run_command: none overwrites an input or another.)
   if (settings.noise_counts >= 0.0) arguments.fail("--noise: not yet for a 2-DOF environment");
   const PlanarScene scene = load_planar_environment_file(file);
+  const bool simulated = settings.device == "sim";
+  if (!simulated && (settings.hand_text || settings.hold_text || settings.start_text)) {
+    arguments.fail(std::string(settings.hand_text ? "--hand" : settings.hold_text ? "--hold" : "--start") +
+                   ": the simulated device's option; --device " + settings.device + " is a real one");
+  }
+  if (!simulated && settings.options.pacing == Pacing::simulated_time) {
+    arguments.fail("--sim-time: --device " + settings.device + " is a real device, which runs in real time");
+  }
 
   // Where the handle starts: --start, else the profile's home.
   const Vec2 start_m =
       settings.start_text ? parse_planar_point(arguments, "start", *settings.start_text, option::run_start) : scene.device.home_m;
   PlanarSimulationConfig simulation;
-  simulation.hand = planar_hand(arguments, settings, scene, start_m);
+  if (simulated) simulation.hand = planar_hand(arguments, settings, scene, start_m);
   simulation.noise_seed = settings.simulation.noise_seed;
-  std::unique_ptr<SimulatedPlanar> device;
-  try {
-    simulation.start_q_rad = planar_joint_angles_at(scene.device, start_m);
-    device = std::make_unique<SimulatedPlanar>(scene.device, simulation);
-  } catch (const InputError& error) {
-    arguments.fail(std::string("--start: ") + error.what());
+  std::unique_ptr<DeviceOf<2>> device;
+  if (simulated) {
+    try {
+      simulation.start_q_rad = planar_joint_angles_at(scene.device, start_m);
+    } catch (const InputError& error) {
+      arguments.fail(std::string("--start: ") + error.what());
+    }
   }
+  try {
+    device = open_planar_device(settings.device, scene.device, simulation);
+  } catch (const InputError& error) {
+    arguments.fail(error.what());
+  }
+  const auto* simulated_device = dynamic_cast<const SimulatedPlanar*>(device.get());
 
   const std::unique_ptr<TelemetryLogOf<2>> log = open_telemetry_log<2>(settings, scene.rate_hz);
   // The figure's trace (allocated before the run): the handle and the proxy of the shape
@@ -101,7 +113,8 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
   const WatchedRun<2> run =
       run_watched<2>(scene, *device, file, settings, show_status, {log.get(), trace.get(), &fault_places});
   const RunSummaryOf<2>& summary = run.summary;
-  const std::string hand(kPlanarHandMotionNames[static_cast<int>(simulation.hand.motion)]);
+  const std::string hand = simulated ? std::string(kPlanarHandMotionNames[static_cast<int>(simulation.hand.motion)])
+                                     : std::string("yours");
   print_run_summary<2>(scene, settings, hand, summary, &fault_places);
   if (run.reloads > 0) print_out("  reloads          %llu\n", static_cast<unsigned long long>(run.reloads));
   const bool write_failed = log && !finish_telemetry_log(*log, *settings.log_path);
@@ -118,12 +131,16 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
                                                              proxy_label));
     print_out("  plot             %s\n", printable(*settings.plot_path).c_str());
   }
-  // The simulated device's report.
-  print_out("  plant            %llu linkage faults (the five-bar at the edge of closing)\n",
-            static_cast<unsigned long long>(device->plant().linkage_faults()));
+  // The device's report: the simulated plant's, or a real device's link.
+  if (simulated_device != nullptr) {
+    print_out("  plant            %llu linkage faults (the linkage at the edge of closing)\n",
+              static_cast<unsigned long long>(simulated_device->plant().linkage_faults()));
+  }
+  write_out(device->report());
   flush_out();
-  // A script disabled by a fault is a fault the run saw (exit 1), as in 1-D.
-  const bool faulted = summary.overrun_fault || summary.safety.nonfinite_faults > 0 || script_faulted(run);
+  // A script disabled by a fault, or a fault the device saw, fails the run (exit 1), as in 1-D.
+  const bool faulted = summary.overrun_fault || summary.safety.nonfinite_faults > 0 || device->fault_seen() ||
+                       script_faulted(run);
   return end_run(faulted || write_failed);
 }
 

@@ -21,14 +21,14 @@ static_assert(sizeof(SafetyConfig) == 8 * sizeof(double), "SafetyConfig changed:
 // The same for a planar profile (sizes on x86-64, where the suite runs).
 static_assert(sizeof(PlanarSensor) == 72, "PlanarSensor changed: update compare_profiles (planar)");
 static_assert(sizeof(PlanarDrive) == 56, "PlanarDrive changed: update compare_profiles (planar)");
-static_assert(sizeof(PlanarJoint) == 136, "PlanarJoint changed: update compare_profiles (planar)");
+static_assert(sizeof(PlanarJoint) == 144, "PlanarJoint changed: update compare_profiles (planar)");
 static_assert(sizeof(SerialArmGeometry) == 48 && sizeof(FiveBarGeometry) == 72 && sizeof(Linkage) == 128,
               "a linkage geometry changed: update compare_profiles (planar)");
 static_assert(sizeof(PlanarWorkspace) == 64 && sizeof(PlanarLimits) == 104,
               "PlanarLimits changed: update compare_profiles (planar)");
 static_assert(sizeof(PlanarLinkMass) == 24 && sizeof(PlanarPlantEstimates) == 208,
               "PlanarPlantEstimates changed: update compare_profiles (planar)");
-static_assert(sizeof(PlanarProfile) == 864, "PlanarProfile changed: update compare_profiles (planar)");
+static_assert(sizeof(PlanarProfile) == 880, "PlanarProfile changed: update compare_profiles (planar)");
 
 struct Changes {
   std::vector<std::string> items;
@@ -118,6 +118,7 @@ void compare_profiles(const PlanarProfile& a, const PlanarProfile& b, Changes* c
     number("sensor.board_offset_rad", ra.board_offset_rad, rb.board_offset_rad);
     number("sensor.board_counter_clockwise", ra.board_counter_clockwise, rb.board_counter_clockwise);
     number("transmission_ratio", a.joints[j].transmission_ratio, b.joints[j].transmission_ratio);
+    number("board_port", a.joints[j].board_port, b.joints[j].board_port);
     const PlanarDrive& da = a.joints[j].drive;
     const PlanarDrive& db = b.joints[j].drive;
     number("drive.law (0 sqrt, 1 linear, 2 torque)", static_cast<int>(da.law), static_cast<int>(db.law));

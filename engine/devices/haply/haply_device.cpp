@@ -76,12 +76,13 @@ bool HaplyDevice::fault_seen() const noexcept {
 std::string HaplyDevice::report() const {
   std::string text = link_.report(start_ns_);
   if (handshake_resyncs_ > 0) {
-    text += printf_string("\n  %llu of the resyncs were before the first reply (opening)",
+    text += printf_string("  opening          %llu of the resyncs were before the first reply\n",
                           static_cast<unsigned long long>(handshake_resyncs_));
   }
   if (watchdog_) {
-    text += printf_string("\n  zero-torque watchdog (pid %d): fired %llu times on a stalled loop", watchdog_->pid(),
-                          static_cast<unsigned long long>(watchdog_->fired()));
+    text += printf_string("  watchdog         zero-torque process %d: fired %llu times on a stalled loop (%llu restarts)\n",
+                          watchdog_->pid(), static_cast<unsigned long long>(watchdog_->fired()),
+                          static_cast<unsigned long long>(watchdog_restarts_));
   }
   return text;
 }

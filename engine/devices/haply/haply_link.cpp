@@ -228,7 +228,7 @@ void HaplyLink::send(const Vec2& joint_torque_N_m, std::int64_t now_ns) noexcept
 
 std::string HaplyLink::report(std::int64_t start_ns) const {
   const HaplyLinkCounters& c = counters_;
-  std::string text = printf_string("haply link: %llu frames sent, %llu replies; %llu resyncs",
+  std::string text = printf_string("  haply link       %llu frames sent, %llu replies; %llu resyncs",
                                    static_cast<unsigned long long>(c.frames_sent),
                                    static_cast<unsigned long long>(c.replies),
                                    static_cast<unsigned long long>(c.resyncs));
@@ -244,15 +244,16 @@ std::string HaplyLink::report(std::int64_t start_ns) const {
                                            static_cast<double>(c.first_resync_ns - start_ns) * 1e-9,
                                            haply_resync_reason_name(c.first_reason));
   }
-  text += printf_string("\n  %llu ticks with no position, %llu with a stale one; %llu bytes dropped; %llu setups "
-                        "retried (replies that did not come back exactly twice in a row)",
+  text += printf_string("\n  position         %llu ticks with no position, %llu with a stale one (older than %.1f ms); "
+                        "%llu bytes dropped; %llu setups retried (replies not back exactly twice in a row)\n",
                         static_cast<unsigned long long>(c.unmeasured_polls),
                         static_cast<unsigned long long>(c.stale_polls),
+                        static_cast<double>(config_.max_angle_age_ns) * 1e-6,
                         static_cast<unsigned long long>(c.bytes_dropped),
                         static_cast<unsigned long long>(c.setup_retries));
   if (c.resyncs > 0 && ever_running_) {
-    text += printf_string("\n  angles carried across the resyncs by a correction of (%.3f, %.3f) deg: if the arm "
-                          "moved while the link was down, stop, put it at its reference pose and start again",
+    text += printf_string("  angles           carried across the resyncs by a correction of (%.3f, %.3f) deg: if the "
+                          "arm moved while the link was down, stop, put it at its reference pose and start again\n",
                           correction_deg_[0], correction_deg_[1]);
   }
   return text;
