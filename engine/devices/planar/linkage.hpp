@@ -71,8 +71,13 @@ LinkagePose solve_five_bar(const FiveBarGeometry& g, const Vec2& q_rad) noexcept
   const double sin_a = std::sin(a), cos_a = std::cos(a);
   const double sin_ab = std::sin(ab), cos_ab = std::cos(ab);
   pose->valid = true;
-  pose->elbow_1_m = g.base_m + Vec2{{-g.link_a_m * sin_a, g.link_a_m * cos_a}};
-  pose->handle_m = pose->elbow_1_m + Vec2{{-g.link_b_m * sin_ab, g.link_b_m * cos_ab}};
+  // Component by component (as Vec2's + adds): GCC left the operator as a call here.
+  const double elbow_x = g.base_m[0] + -g.link_a_m * sin_a;
+  const double elbow_y = g.base_m[1] + g.link_a_m * cos_a;
+  const double handle_x = elbow_x + -g.link_b_m * sin_ab;
+  const double handle_y = elbow_y + g.link_b_m * cos_ab;
+  pose->elbow_1_m = Vec2{{elbow_x, elbow_y}};
+  pose->handle_m = Vec2{{handle_x, handle_y}};
   pose->elbow_2_m = pose->handle_m;
   // Columns: d p / d q1 moves both links, d p / d q2 only link b.
   pose->jacobian.m[0][0] = -g.link_a_m * cos_a - g.link_b_m * cos_ab;
