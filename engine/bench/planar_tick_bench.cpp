@@ -7,6 +7,7 @@
 #include "engine/bench/tick_loop_of.hpp"
 #include "engine/devices/planar/planar_hand.hpp"
 #include "engine/devices/planar/simulated_planar.hpp"
+#include "engine/load/environment.hpp"
 #include "engine/scene/step.hpp"
 
 namespace hapscene {
@@ -18,6 +19,36 @@ struct PlanarSceneTick {
   const PlanarReading* readings;
   TickStateOf<2> state;
   void operator()(std::int32_t index) { step(*scene, readings[index], &state); }
+};
+
+class PlanarSceneTickLoop final : public TickLoopOf<PlanarSceneTick> {
+ public:
+  PlanarSceneTickLoop(const PlanarScene& scene, const std::vector<PlanarReading>& readings)
+      : TickLoopOf(PlanarSceneTick{&scene, readings.data(), make_tick_state(scene)}) {}
+  double script_calls_per_tick() const override {
+    const TickStateOf<2>& state = tick_.state;
+    return state.tick == 0 ? 0.0 : static_cast<double>(state.script_calls) / static_cast<double>(state.tick);
+  }
+  const ScriptList* scripts() const override { return &tick_.state.scripts; }
+};
+
+// The engine's 1-DOF step() on the index-th recorded count.
+struct IndexedSceneTick {
+  const Scene* scene;
+  const std::int32_t* counts;
+  TickState state;
+  void operator()(std::int32_t index) { step(*scene, counts[index], &state); }
+};
+
+class IndexedSceneTickLoop final : public TickLoopOf<IndexedSceneTick> {
+ public:
+  IndexedSceneTickLoop(const Scene& scene, const std::vector<std::int32_t>& counts)
+      : TickLoopOf(IndexedSceneTick{&scene, counts.data(), make_tick_state(scene)}) {}
+  double script_calls_per_tick() const override {
+    const TickState& state = tick_.state;
+    return state.tick == 0 ? 0.0 : static_cast<double>(state.script_calls) / static_cast<double>(state.tick);
+  }
+  const ScriptList* scripts() const override { return &tick_.state.scripts; }
 };
 
 // The hand-written program on the index-th recorded reading (a direct call, as step() is).
@@ -74,7 +105,44 @@ std::vector<std::int32_t> reading_indices(std::size_t n) {
 
 std::unique_ptr<TickLoop> planar_scene_tick_loop(const PlanarScene& scene,
                                                  const std::vector<PlanarReading>& readings) {
-  return std::make_unique<TickLoopOf<PlanarSceneTick>>(PlanarSceneTick{&scene, readings.data(), make_tick_state(scene)});
+  return std::make_unique<PlanarSceneTickLoop>(scene, readings);
+}
+
+std::unique_ptr<TickLoop> indexed_scene_tick_loop(const Scene& scene, const std::vector<std::int32_t>& counts) {
+  return std::make_unique<IndexedSceneTickLoop>(scene, counts);
+}
+
+std::string planar_lua_spring_environment(const std::string& name, const std::string& device,
+                                          double stiffness_N_per_m, const Vec2& center_m) {
+  char source[400];
+  std::snprintf(source, sizeof source,
+                "needs = { velocity = false, time = false }\\n"
+                "local K, cx, cy = %.17g, %.17g, %.17g\\n"
+                "function force(s)\\n"
+                "  return -K * (s.x - cx), -K * (s.y - cy)\\n"
+                "end\\n",
+                stiffness_N_per_m, center_m[0], center_m[1]);
+  return "{\"name\": \"" + name + "\", \"device\": \"" + device +
+         "\", \"effects\": [{\"type\": \"script\", \"source\": \"" + source + "\"}]}";
+}
+
+std::optional<PlanarScene> planar_lua_equivalent(const PlanarScene& scene) {
+  if (scene.effects.size() != 1) return std::nullopt;
+  const auto* spring = std::get_if<PlanarSpring>(&scene.effects[0]);
+  if (spring == nullptr) return std::nullopt;
+  // Loaded on a shipped profile, then given the scene's device, rate and safety: only the
+  // effects stage differs.
+  PlanarScene lua = load_planar_environment_text(
+      planar_lua_spring_environment(scene.name + " (Lua)", "haplink", spring->stiffness_N_per_m, spring->center_m),
+      scene.name + ".lua.json", ".");
+  lua.device = scene.device;
+  lua.device_file = scene.device_file;
+  lua.device_model = scene.device_model;
+  lua.safety = scene.safety;
+  lua.velocity = scene.velocity;
+  lua.rate_hz = scene.rate_hz;
+  lua.period_s = scene.period_s;
+  return lua;
 }
 
 std::unique_ptr<TickLoop> planar_baseline_tick_loop(const PlanarScene& scene,

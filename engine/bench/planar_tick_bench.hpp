@@ -6,6 +6,7 @@
 // so both implementations pay the same one load per tick.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,20 @@ std::unique_ptr<TickLoop> planar_scene_tick_loop(const PlanarScene& scene,
 // the baseline is written for (planar_baseline_for).
 std::unique_ptr<TickLoop> planar_baseline_tick_loop(const PlanarScene& scene,
                                                     const std::vector<PlanarReading>& readings);
+
+// The engine's step() on a 1-DOF `scene`, fed counts[index] for each index the loop is
+// given, so it can share a group (and its rounds) with 2-DOF loops. Both must outlive it.
+std::unique_ptr<TickLoop> indexed_scene_tick_loop(const Scene& scene, const std::vector<std::int32_t>& counts);
+
+// A 2-D spring written in Lua, the twin of scripts/spring.lua (F = -K (p - c), as
+// `return -K * (s.x - cx), -K * (s.y - cy)`, needing neither velocity nor time): an
+// environment's JSON text.
+std::string planar_lua_spring_environment(const std::string& name, const std::string& device,
+                                          double stiffness_N_per_m, const Vec2& center_m);
+
+// The Lua twin of a scene that is one built-in 2-D spring (same device, safety and rate);
+// nothing for any other scene.
+std::optional<PlanarScene> planar_lua_equivalent(const PlanarScene& scene);
 
 // A regular polygon of `edges` edges (solid inside, 200 N/m) around the middle of the
 // workspace box of `empty` (a scene of the device), radius a fifth of the box's smaller

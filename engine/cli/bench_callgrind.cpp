@@ -5,7 +5,10 @@
 // are the difference of two tick counts divided by the difference of the counts (the
 // set-up cancels): tests/bench/callgrind_per_tick.sh does that for every lab environment.
 #include <cstdio>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/bench/lab_baseline.hpp"
 #include "engine/bench/lua_equivalent.hpp"
@@ -20,14 +23,35 @@
 namespace hapscene {
 namespace {
 
+// The run's last line, then each script a fault disabled (it ran 0 N: the profile is not
+// the script's), which makes the exit status 1.
+int report_callgrind_run(const std::string& scene, const std::string& impl, long long ticks, double checksum,
+                         const ScriptList& scripts) {
+  print_out("callgrind mode: %s, %s, %lld ticks, checksum %.17g\n", scene.c_str(), impl.c_str(), ticks, checksum);
+  flush_out();
+  bool faulted = false;
+  for (const auto& script : scripts) {
+    if (!script->disabled()) continue;
+    std::fprintf(stderr, "%s (script disabled: the ticks ran 0 N)\n", std::string(script->fault_message()).c_str());
+    faulted = true;
+  }
+  return faulted ? 1 : 0;
+}
+
 // A 2-DOF environment: the hand-written 2-D code or step<2>() over 1 s of readings.
 int planar_callgrind(Arguments& arguments, const std::string& file, const std::string& impl, long long ticks) {
-  if (impl == "lua") arguments.fail("--impl lua: not for a 2-DOF environment yet (the bench has no 2-D script row)");
-  const PlanarScene scene = load_planar_environment_file(file);
+  const PlanarScene loaded = load_planar_environment_file(file);
+  std::optional<PlanarScene> lua;
+  if (impl == "lua") {
+    lua = planar_lua_equivalent(loaded);
+    if (!lua) arguments.fail(file + ": --impl lua: a 2-DOF environment needs to be one spring (its Lua twin is timed)");
+  }
+  const PlanarScene& scene = lua ? *lua : loaded;
   const std::vector<PlanarReading> readings = record_planar_readings(scene, 1.0);
   const auto n = static_cast<long long>(readings.size());
   if (n == 0) arguments.fail(file + ": no readings recorded");
   double checksum = 0.0;
+  ScriptList scripts;
   if (impl == "baseline") {
     PlanarBaselineKind kind{};
     PlanarBaselineConstants constants;
@@ -47,10 +71,9 @@ int planar_callgrind(Arguments& arguments, const std::string& file, const std::s
       step(scene, readings[static_cast<std::size_t>(i % n)], &state);
       checksum += state.command.motor[0].duty + state.command.motor[1].duty;
     }
+    scripts = std::move(state.scripts);
   }
-  print_out("callgrind mode: %s, %s, %lld ticks, checksum %.17g\n", scene.name.c_str(), impl.c_str(), ticks, checksum);
-  flush_out();
-  return 0;
+  return report_callgrind_run(scene.name, impl, ticks, checksum, scripts);
 }
 
 }  // namespace
@@ -72,7 +95,7 @@ int bench_callgrind(Arguments& arguments) {
   const std::vector<std::int32_t> counts = record_sensor_counts(scene, 1.0);
   const auto n = static_cast<long long>(counts.size());
   double checksum = 0.0;
-  std::vector<std::string> faulted;
+  ScriptList scripts;
   if (impl == "baseline") {
     LabBaselineKind kind{};
     LabBaselineConstants constants;
@@ -98,15 +121,9 @@ int bench_callgrind(Arguments& arguments) {
       step(run, counts[static_cast<std::size_t>(i % n)], &state);
       checksum += state.command.duty;
     }
-    // A script a fault disabled ran 0 N: the profile is not the script's.
-    for (const auto& script : state.scripts) {
-      if (script->disabled()) faulted.emplace_back(script->fault_message());
-    }
+    scripts = std::move(state.scripts);
   }
-  print_out("callgrind mode: %s, %s, %lld ticks, checksum %.17g\n", scene.name.c_str(), impl.c_str(), ticks, checksum);
-  flush_out();
-  for (const std::string& fault : faulted) std::fprintf(stderr, "%s (script disabled: the ticks ran 0 N)\n", fault.c_str());
-  return faulted.empty() ? 0 : 1;
+  return report_callgrind_run(scene.name, impl, ticks, checksum, scripts);
 }
 
 }  // namespace hapscene

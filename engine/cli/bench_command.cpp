@@ -114,7 +114,15 @@ void print_planar_row(const std::string& scene, const char* implementation, cons
   print_out(" %6.2f\n", cost.median_ns > 0.0 ? cost.p999_ns / cost.median_ns : 0.0);
 }
 
-void print_planar_table(const std::vector<PlanarRow>& rows) {
+// The Lua spring in 1-D and in 2-D, timed in one group (the 2-D one's ratio is against
+// the 1-D one, round by round).
+struct LuaSpringRows {
+  std::string planar_name;
+  TickCost one_axis;
+  TickCost two_axes;
+};
+
+void print_planar_table(const std::vector<PlanarRow>& rows, const LuaSpringRows* lua) {
   print_out("\n2-DOF (planar): the same measure, each scene's readings from a simulated run with the hand "
             "sweeping its workspace; ratios against the hand-written 2-D code, same rounds\n\n");
   print_out("%-24s %-18s %8s %8s %8s %9s %7s %8s %11s\n", "environment", "implementation", "median", "p99", "p99.9",
@@ -139,10 +147,17 @@ void print_planar_table(const std::vector<PlanarRow>& rows) {
       goals.push_back(goal);
     }
   }
+  if (lua != nullptr) {
+    TickCost one_axis = lua->one_axis;
+    one_axis.ratio = 1.0;
+    print_planar_row("spring (1-D)", "Lua script", one_axis);
+    print_planar_row(lua->planar_name, "Lua script", lua->two_axes);
+    std::snprintf(goal, sizeof goal, "%s: Lua %.2fx the Lua 1-D spring (goal <= %.1fx): %s", lua->planar_name.c_str(),
+                  lua->two_axes.ratio, kLuaPlanarGoalRatio, lua->two_axes.ratio <= kLuaPlanarGoalRatio ? "met" : "NOT met");
+    goals.push_back(goal);
+  }
   print_out("\n2-DOF goals\n");
   for (const std::string& line : goals) print_out("  %s\n", line.c_str());
-  // The 2-D Lua row joins here when 2-D scripts exist: a 2-D Lua spring against the 1-D one.
-  print_out("  Lua 2-D spring <= %.1fx the Lua 1-D spring: not measured yet (no 2-D script row in the bench)\n", kLuaPlanarGoalRatio);
 }
 
 // What a scene's engine row runs: built-in effects only, scripts only (a .lua
@@ -163,7 +178,7 @@ constexpr double kMaxBenchBytes = 1024.0 * 1024.0 * 1024.0;  // 1 GiB
 std::string mebibytes(double bytes) { return format_number(std::round(bytes / (1024.0 * 1024.0))) + " MiB"; }
 
 void check_bench_memory(const Arguments& arguments, const std::vector<Scene>& scenes,
-                        const std::vector<PlanarScene>& planar_scenes, double seconds, int passes) {
+                        const std::vector<PlanarScene>& planar_scenes, bool defaults, double seconds, int passes) {
   double longest_ticks = std::floor(seconds * 1000.0);  // the parts group runs at the default 1 kHz
   double readings = longest_ticks;
   for (const Scene& scene : scenes) {
@@ -178,8 +193,10 @@ void check_bench_memory(const Arguments& arguments, const std::vector<Scene>& sc
     readings += kPlanarReadingWeight * ticks;
     longest_ticks = std::max(longest_ticks, ticks);
   }
+  // The default rows add the Lua spring in 1-D and 2-D: a 2-D recording and two loops.
+  if (defaults) readings += kPlanarReadingWeight * std::floor(seconds * 1000.0);
   const double loops = 3.0 * static_cast<double>(scenes.size()) + 2.0 * static_cast<double>(planar_scenes.size()) +
-                       static_cast<double>(std::size(kPartScenes));
+                       static_cast<double>(std::size(kPartScenes)) + (defaults ? 2.0 : 0.0);
   const double slices = std::max(1.0, std::floor(longest_ticks / static_cast<double>(kSliceTicks)));
   const double readings_bytes = 4.0 * readings;
   const double rounds_bytes = 2.0 * 8.0 * static_cast<double>(passes) * slices * loops;
@@ -230,7 +247,7 @@ int bench_command(std::vector<std::string> args) {
         load_planar_environment_text(regular_polygon_environment(empty, kPolygonDevice, kPolygonEdges), "bench"));
   }
 
-  check_bench_memory(arguments, scenes, planar_scenes, seconds, passes);
+  check_bench_memory(arguments, scenes, planar_scenes, defaults, seconds, passes);
 
   TickTimer timer;
   InstructionCounter counter;
@@ -302,6 +319,30 @@ int bench_command(std::vector<std::string> args) {
     groups.push_back(std::move(group));
   }
 
+  // The Lua spring in 1-D (the spring row's Lua scene on its readings) and in 2-D (on the
+  // Haplink, its own readings), in one group of indices into both recordings.
+  std::optional<PlanarScene> lua_planar;
+  std::vector<PlanarReading> lua_planar_readings;
+  std::vector<std::int32_t> lua_indices;
+  std::unique_ptr<TickLoop> lua_one_axis, lua_two_axes;
+  std::size_t lua_group = 0;
+  const auto spring = std::find_if(scenes.begin(), scenes.end(), [](const Scene& scene) { return scene.name == "spring"; });
+  if (defaults && spring != scenes.end() && lua_scenes[static_cast<std::size_t>(spring - scenes.begin())]) {
+    const std::size_t i = static_cast<std::size_t>(spring - scenes.begin());
+    const Spring& spring_effect = std::get<Spring>(spring->effects[0]);
+    const PlanarScene empty =
+        load_planar_environment_text(std::string(R"({"device": ")") + kPolygonDevice + R"(", "effects": []})", "bench");
+    const Vec2 middle = (empty.safety.workspace_min_m + empty.safety.workspace_max_m) * 0.5;
+    lua_planar = load_planar_environment_text(
+        planar_lua_spring_environment("spring_lua_2d", kPolygonDevice, spring_effect.stiffness_N_per_m, middle), "bench");
+    lua_planar_readings = record_planar_readings(*lua_planar, seconds);
+    lua_indices = reading_indices(std::min(lua_planar_readings.size(), environments[i].counts.size()));
+    lua_one_axis = indexed_scene_tick_loop(*lua_scenes[i], environments[i].counts);
+    lua_two_axes = planar_scene_tick_loop(*lua_planar, lua_planar_readings);
+    lua_group = groups.size();
+    groups.push_back(TickLoopGroup{&lua_indices, {lua_one_axis.get(), lua_two_axes.get()}});
+  }
+
   // Everything measured in one interleaved run, then printed.
   const std::vector<std::vector<TickCost>> costs = compare_tick_loops(groups, passes, &timer, &counter);
 
@@ -360,7 +401,9 @@ int bench_command(std::vector<std::string> args) {
       rows.push_back(PlanarRow{&planar_scenes[i], costs[scenes.size() + 1 + i], planar[i].baseline != nullptr,
                                defaults && i + 1 == planar_scenes.size()});
     }
-    print_planar_table(rows);
+    std::optional<LuaSpringRows> lua;
+    if (lua_two_axes) lua = LuaSpringRows{lua_planar->name, costs[lua_group][0], costs[lua_group][1]};
+    print_planar_table(rows, lua ? &*lua : nullptr);
   }
 
   // A script that faulted was disabled and its row timed the 0 N left behind: the
@@ -379,6 +422,8 @@ int bench_command(std::vector<std::string> args) {
   for (std::size_t i = 0; i < part_loops.size(); ++i) {
     collect(part_loops[i].get(), std::string("the part \"") + kPartScenes[i][0] + "\"");
   }
+  collect(lua_one_axis.get(), "spring (1-D), Lua script");
+  collect(lua_two_axes.get(), "spring_lua_2d, Lua script");
   flush_out();
   for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
   if (faults.omitted()) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/effects/damper.hpp"
+#include "engine/effects/effect_groups.hpp"
 #include "engine/effects/effect_input.hpp"
 #include "engine/effects/script_effect.hpp"
 #include "engine/effects/spring.hpp"
@@ -32,14 +33,7 @@ struct EffectTypeList {
   // for the groups it has (an empty group costs a comparison). Within a group effects
   // keep their order in the file; the groups add up in the order of the list, then the
   // scene adds its scripts.
-  struct Bank {
-    std::tuple<std::vector<Types>...> groups;
-
-    template <typename T>
-    std::vector<T>& group() noexcept { return std::get<std::vector<T>>(groups); }
-    template <typename T>
-    const std::vector<T>& group() const noexcept { return std::get<std::vector<T>>(groups); }
-
+  struct Bank : EffectGroups<Types...> {
     // What a run keeps of these effects: nothing (the 1-D lab effects are fields). A list
     // of shapes keeps their proxies here (engine/effects/planar/planar_effect_types.hpp).
     struct RunState {};
@@ -63,7 +57,7 @@ struct EffectTypeList {
    private:
     template <typename T>
     [[gnu::always_inline]] void add_group_N(const Input& input, Axes<N>* force_N) const noexcept {
-      for (const T& e : std::get<std::vector<T>>(groups)) *force_N += e.force_N(input);
+      for (const T& e : this->template group<T>()) *force_N += e.force_N(input);
     }
   };
 };

@@ -99,6 +99,27 @@ inline bool within_workspace(const SafetyConfigOf<N>& config, const AxisVector<N
   return config.workspace_polygon_m.empty() || inside_polygon(config.workspace_polygon_m, x_m);
 }
 
+// norm(value) <= limit, decided exactly as that expression decides it, but with the square
+// root of a vector's length taken only near the limit: a squared length clearly below the
+// squared limit (by more than rounding can move it, a relative 1e-15) is within it.
+inline bool within_magnitude(double value, double limit) noexcept { return norm(value) <= limit; }
+template <int N>
+inline bool within_magnitude(const AxisVector<N>& value, double limit) noexcept {
+  constexpr double kClearlyBelow = 1.0 - 1e-15;
+  const double length_sq = dot(value, value);
+  if (length_sq <= limit * limit * kClearlyBelow) [[likely]] return true;
+  return norm(value) <= limit;
+}
+// norm(value) > limit, likewise (for a finite value the negation of the above).
+inline bool exceeds_magnitude(double value, double limit) noexcept { return norm(value) > limit; }
+template <int N>
+inline bool exceeds_magnitude(const AxisVector<N>& value, double limit) noexcept {
+  constexpr double kClearlyBelow = 1.0 - 1e-15;
+  const double length_sq = dot(value, value);
+  if (length_sq <= limit * limit * kClearlyBelow) [[likely]] return false;
+  return norm(value) > limit;
+}
+
 // `value` with its magnitude limited to `limit` (> 0), keeping its sign or direction.
 inline double limit_magnitude(double value, double limit) noexcept { return std::copysign(limit, value); }
 template <int N>
@@ -109,12 +130,12 @@ inline AxisVector<N> limit_magnitude(const AxisVector<N>& value, double limit) n
 // Rules 1, 2 and 4: what a static probe shows as the output for a requested force.
 // (Inline: it runs every tick.)
 template <int N>
-inline Axes<N> apply_static_safety(const SafetyConfigOf<N>& config, const Axes<N>& x_m,
+[[gnu::always_inline]] inline Axes<N> apply_static_safety(const SafetyConfigOf<N>& config, const Axes<N>& x_m,
                                    const Axes<N>& force_N, SafetyCounters* counters) noexcept {
   // The common case in three comparisons (per axis): a force within the limit (so finite:
   // NaN and infinities fail it) inside the workspace passes unchanged.
   const bool inside = within_workspace(config, x_m);
-  if (norm(force_N) <= config.max_force_N && inside) [[likely]] {
+  if (within_magnitude(force_N, config.max_force_N) && inside) [[likely]] {
     return force_N;
   }
   // 1. Non-finite force: a fault, rendered as nothing.
@@ -144,7 +165,7 @@ template <int N>
 
 // All five rules, for one tick of a run. (Inline: it runs every tick.)
 template <int N>
-inline Axes<N> apply_safety(const SafetyConfigOf<N>& config, const Axes<N>& x_m,
+[[gnu::always_inline]] inline Axes<N> apply_safety(const SafetyConfigOf<N>& config, const Axes<N>& x_m,
                             const Axes<N>& force_N, SafetyStateOf<N>* state) noexcept {
   Axes<N> output_N = apply_static_safety(config, x_m, force_N, &state->counters);
 
@@ -155,7 +176,7 @@ inline Axes<N> apply_safety(const SafetyConfigOf<N>& config, const Axes<N>& x_m,
 
   // 5. Slew limit against the previous output.
   const Axes<N> step_N = output_N - state->previous_output_N;
-  if (norm(step_N) > config.max_step_N) {
+  if (exceeds_magnitude(step_N, config.max_step_N)) {
     output_N = state->previous_output_N + limit_magnitude(step_N, config.max_step_N);
     ++state->counters.slew_limited_ticks;
   }

@@ -79,7 +79,8 @@ using PlanarScene = SceneOf<2>;
 
 // Appends `effect` to the scene's list and, when it can act inside the workspace (safety
 // must be set first), to its bank (or its script count) and needs.
-void add_effect(Scene* scene, Effect effect);
-void add_effect(PlanarScene* scene, PlanarEffect effect);
+// (Compiled for the axis counts of step.cpp.)
+template <int N>
+void add_effect(SceneOf<N>* scene, typename SceneParts<N>::Effects::Variant effect);
 
 }  // namespace hapscene

@@ -4,34 +4,13 @@
 
 namespace hapscene {
 
-void add_effect(Scene* scene, Effect effect) {
-  const double min_m = scene->safety.workspace_min_m;
-  const double max_m = scene->safety.workspace_max_m;
+template <int N>
+void add_effect(SceneOf<N>* scene, typename SceneParts<N>::Effects::Variant effect) {
+  const Axes<N> min_m = scene->safety.workspace_min_m;
+  const Axes<N> max_m = scene->safety.workspace_max_m;
   // A built-in effect that cannot act inside the workspace (zero gain, or a wall whose
   // solid side lies beyond it) is listed but not compiled: it costs the tick nothing and
   // adds no needs.
-  const auto add_built_in = [&](auto& group, const auto& e) {
-    if (!e.can_act_within(min_m, max_m)) return;
-    group.push_back(e);
-    scene->needs |= std::decay_t<decltype(e)>::kNeeds;
-  };
-  std::visit(
-      [&](auto& e) {
-        using Type = std::decay_t<decltype(e)>;
-        if constexpr (std::is_same_v<Type, ScriptEffect>) {
-          e.instance_index = scene->script_count++;
-          scene->needs |= e.needs;
-        } else {
-          add_built_in(scene->bank.group<Type>(), e);
-        }
-      },
-      effect);
-  scene->effects.push_back(std::move(effect));
-}
-
-void add_effect(PlanarScene* scene, PlanarEffect effect) {
-  const Vec2 min_m = scene->safety.workspace_min_m;
-  const Vec2 max_m = scene->safety.workspace_max_m;
   std::visit(
       [&](auto& e) {
         using Type = std::decay_t<decltype(e)>;
@@ -189,6 +168,7 @@ void step(const SceneOf<N>& scene, const typename SceneParts<N>::Reading& readin
 
 // The axis counts scenes are compiled for.
 #define HAPSCENE_SCENE_FUNCTIONS(N)                                                           \
+  template void add_effect<N>(SceneOf<N>*, SceneParts<N>::Effects::Variant);                   \
   template ScriptList make_script_instances<N>(const SceneOf<N>&);                             \
   template TickStateOf<N> make_tick_state<N>(const SceneOf<N>&);                               \
   template Axes<N> sum_effects_N<N>(const SceneOf<N>&, const EffectInputOf<N>&, ScriptList&) noexcept; \

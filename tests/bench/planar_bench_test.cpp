@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -148,7 +149,16 @@ TEST_CASE("planar bench: the command prints the 2-D table and goals after the 1-
   CHECK(out.find("haplink_box_inside: built-in ") != std::string::npos);
   CHECK(out.find("haply2diy_v3_box_inside: built-in ") != std::string::npos);
   CHECK(out.find("polygon_1000: built-in median ") != std::string::npos);
-  CHECK(out.find("Lua 2-D spring <= 1.2x the Lua 1-D spring: not measured") != std::string::npos);
+  // The Lua spring in 1-D and in 2-D, side by side in the 2-D table, and its goal.
+  const std::size_t lua_1d = out.find("spring (1-D)             Lua script");
+  const std::size_t lua_2d = out.find("spring_lua_2d            Lua script");
+  REQUIRE(lua_1d != std::string::npos);
+  REQUIRE(lua_2d != std::string::npos);
+  CHECK(table < lua_1d);
+  CHECK(lua_1d < lua_2d);
+  CHECK(out.find("spring_lua_2d: Lua ") != std::string::npos);
+  CHECK(out.find("the Lua 1-D spring (goal <= 1.2x): ") != std::string::npos);
+  CHECK(out.find("not measured") == std::string::npos);
 
   // Planar files given: only they are benched, in the 2-D table.
   const test::CliOutcome one =
@@ -158,7 +168,7 @@ TEST_CASE("planar bench: the command prints the 2-D table and goals after the 1-
   CHECK(one.out.find("polygon_1000") == std::string::npos);
 }
 
-TEST_CASE("planar bench: --callgrind runs the 2-D baseline and the built-in scene; Lua and no baseline are refused") {
+TEST_CASE("planar bench: --callgrind runs the 2-D baseline and the built-in scene; Lua but for a spring, and no baseline, are refused") {
   const test::CliOutcome baseline = test::run_cli(
       "bench --callgrind environments/planar/haplink_box_inside.json --impl baseline --ticks 2000");
   CHECK(baseline.exit_code == 0);
@@ -169,10 +179,38 @@ TEST_CASE("planar bench: --callgrind runs the 2-D baseline and the built-in scen
   CHECK(builtin.out.find("callgrind mode: haply2diy_v3_box_inside, builtin, 2000 ticks") != std::string::npos);
   const test::CliOutcome lua = test::run_cli("bench --callgrind environments/planar/haplink_box_inside.json --impl lua");
   CHECK(lua.exit_code == 2);
-  CHECK(lua.err.find("the bench has no 2-D script row") != std::string::npos);
+  CHECK(lua.err.find("--impl lua: a 2-DOF environment needs to be one spring") != std::string::npos);
   const test::CliOutcome none = test::run_cli(
       "bench --callgrind environments/planar/haplink_circle_outside.json --impl baseline --ticks 10");
   CHECK(none.exit_code == 2);
+}
+
+
+TEST_CASE("planar bench: the Lua 2-D spring is the built-in 2-D spring's twin, to the bit") {
+  const PlanarScene spring = load_planar_environment_text(
+      R"({"name": "s", "device": "haplink", "effects": [{"type": "spring", "stiffness": "100 N/m", "center": ["-15 mm", "127.5 mm"]}]})",
+      "spring");
+  const std::optional<PlanarScene> lua = planar_lua_equivalent(spring);
+  REQUIRE(lua);
+  CHECK(lua->script_count == 1);
+  CHECK(lua->needs.velocity == false);
+  CHECK(lua->safety.max_force_N == spring.safety.max_force_N);
+  CHECK(lua->period_s == spring.period_s);
+  ScriptList scripts = make_script_instances(*lua);
+  ScriptList none;
+  for (double x = -0.07; x <= 0.04; x += 0.0037) {
+    for (double y = 0.09; y <= 0.165; y += 0.0041) {
+      EffectInputOf<2> input;
+      input.x_m = Vec2{{x, y}};
+      input.dt_s = spring.period_s;
+      const Vec2 built_in = sum_effects_N(spring, input, none);
+      const Vec2 scripted = sum_effects_N(*lua, input, scripts);
+      CHECK(scripted[0] == built_in[0]);
+      CHECK(scripted[1] == built_in[1]);
+    }
+  }
+  // Nothing else has a Lua twin here.
+  CHECK_FALSE(planar_lua_equivalent(load_planar_environment_file("environments/planar/haplink_box_inside.json")));
 }
 
 }  // namespace

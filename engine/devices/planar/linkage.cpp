@@ -4,26 +4,6 @@
 #include <limits>
 
 namespace hapscene {
-namespace {
-
-LinkagePose solve_serial(const SerialArmGeometry& g, const Vec2& q_rad) noexcept {
-  const double a = q_rad[0] + g.offset_a_rad;
-  const double ab = a + q_rad[1] + g.offset_b_rad;
-  const double sin_a = std::sin(a), cos_a = std::cos(a);
-  const double sin_ab = std::sin(ab), cos_ab = std::cos(ab);
-  LinkagePose pose;
-  pose.valid = true;
-  pose.elbow_1_m = g.base_m + Vec2{{-g.link_a_m * sin_a, g.link_a_m * cos_a}};
-  pose.handle_m = pose.elbow_1_m + Vec2{{-g.link_b_m * sin_ab, g.link_b_m * cos_ab}};
-  pose.elbow_2_m = pose.handle_m;
-  // Columns: d p / d q1 moves both links, d p / d q2 only link b.
-  pose.jacobian.m[0][0] = -g.link_a_m * cos_a - g.link_b_m * cos_ab;
-  pose.jacobian.m[1][0] = -g.link_a_m * sin_a - g.link_b_m * sin_ab;
-  pose.jacobian.m[0][1] = -g.link_b_m * cos_ab;
-  pose.jacobian.m[1][1] = -g.link_b_m * sin_ab;
-  return pose;
-}
-
 // The handle is where the circles of the distal links (centred on the elbows) meet. Its
 // Jacobian follows from differentiating the two closure constraints |p - e_i|^2 = L_i^2:
 // (p - e_i) . (dp - de_i) = 0, so M dp = diag((p - e_i) . de_i/dq_i) dq with the rows of M
@@ -70,14 +50,6 @@ LinkagePose solve_five_bar(const FiveBarGeometry& g, const Vec2& q_rad) noexcept
     pose.jacobian = Jacobian2{};
   }
   return pose;
-}
-
-}  // namespace
-
-LinkagePose solve_linkage(const Linkage& linkage, const Vec2& q_rad) noexcept {
-  if (!all_finite(q_rad)) return LinkagePose{};
-  return linkage.family == LinkageFamily::serial_2r ? solve_serial(linkage.serial, q_rad)
-                                                    : solve_five_bar(linkage.five_bar, q_rad);
 }
 
 // For a 2x2 matrix the singular values follow from the Frobenius norm and the determinant:

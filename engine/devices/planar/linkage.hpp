@@ -10,6 +10,7 @@
 //     points, two distal links meeting at the handle; the handle is the circle-circle
 //     intersection on the side the profile names (the assembly mode).
 // Facts and check values: ../shared/REFERENCE-2D.md.
+#include <cmath>
 #include <cstdint>
 
 #include "engine/base/axes.hpp"
@@ -59,8 +60,49 @@ struct LinkagePose {
   Jacobian2 jacobian{};
 };
 
-// Forward kinematics and the Jacobian at joint angles q (rad). No allocation, no throw.
-LinkagePose solve_linkage(const Linkage& linkage, const Vec2& q_rad) noexcept;
+// The five-bar's solve (linkage.cpp): out of line, as it is long.
+LinkagePose solve_five_bar(const FiveBarGeometry& g, const Vec2& q_rad) noexcept;
+
+// The serial arm's solve, inline: the tick's sensor stage runs it every tick.
+[[gnu::always_inline]] inline void solve_serial(const SerialArmGeometry& g, const Vec2& q_rad,
+                                                LinkagePose* pose) noexcept {
+  const double a = q_rad[0] + g.offset_a_rad;
+  const double ab = a + q_rad[1] + g.offset_b_rad;
+  const double sin_a = std::sin(a), cos_a = std::cos(a);
+  const double sin_ab = std::sin(ab), cos_ab = std::cos(ab);
+  pose->valid = true;
+  // Component by component (as Vec2's + adds): GCC left the operator as a call here.
+  const double elbow_x = g.base_m[0] + -g.link_a_m * sin_a;
+  const double elbow_y = g.base_m[1] + g.link_a_m * cos_a;
+  const double handle_x = elbow_x + -g.link_b_m * sin_ab;
+  const double handle_y = elbow_y + g.link_b_m * cos_ab;
+  pose->elbow_1_m = Vec2{{elbow_x, elbow_y}};
+  pose->handle_m = Vec2{{handle_x, handle_y}};
+  pose->elbow_2_m = pose->handle_m;
+  // Columns: d p / d q1 moves both links, d p / d q2 only link b.
+  pose->jacobian.m[0][0] = -g.link_a_m * cos_a - g.link_b_m * cos_ab;
+  pose->jacobian.m[1][0] = -g.link_a_m * sin_a - g.link_b_m * sin_ab;
+  pose->jacobian.m[0][1] = -g.link_b_m * cos_ab;
+  pose->jacobian.m[1][1] = -g.link_b_m * sin_ab;
+}
+
+// Forward kinematics and the Jacobian at joint angles q (rad), written to `pose`. No
+// allocation, no throw.
+[[gnu::always_inline]] inline void solve_linkage(const Linkage& linkage, const Vec2& q_rad,
+                                                 LinkagePose* pose) noexcept {
+  if (!all_finite(q_rad)) {
+    *pose = LinkagePose{};
+  } else if (linkage.family == LinkageFamily::serial_2r) {
+    solve_serial(linkage.serial, q_rad, pose);
+  } else {
+    *pose = solve_five_bar(linkage.five_bar, q_rad);
+  }
+}
+inline LinkagePose solve_linkage(const Linkage& linkage, const Vec2& q_rad) noexcept {
+  LinkagePose pose;
+  solve_linkage(linkage, q_rad, &pose);
+  return pose;
+}
 
 // tau = J^T F.
 inline Vec2 joint_torques_N_m(const Jacobian2& j, const Vec2& force_N) noexcept {

@@ -63,6 +63,27 @@ PlanarSensorState make_planar_sensor_state(const PlanarModel& model) noexcept {
   return state;
 }
 
+void scale_to_drives(const PlanarModel& model, Vec2* torque_N_m, PlanarMotorCommand* command) noexcept {
+  Vec2& torque = *torque_N_m;
+  // One factor for both motors: the smallest that brings each within its drive.
+  double scale = 1.0;
+  for (int i = 0; i < 2; ++i) {
+    const double needed = std::fabs(torque[i]);
+    const double available = model.joints[static_cast<std::size_t>(i)].motor_torque_max_N_m;
+    if (needed > available) scale = std::fmin(scale, available / needed);
+  }
+  if (scale < 1.0) {
+    torque *= scale;
+    // The limiting motor lands on its limit up to rounding: never past it.
+    for (int i = 0; i < 2; ++i) {
+      const double available = model.joints[static_cast<std::size_t>(i)].motor_torque_max_N_m;
+      torque[i] = std::fmax(-available, std::fmin(torque[i], available));
+    }
+    command->saturated = true;
+    command->scale = scale;
+  }
+}
+
 Vec2 planar_command_torques_N_m(const PlanarModel& model, const PlanarMotorCommand& command) noexcept {
   Vec2 torque{};
   for (int i = 0; i < 2; ++i) {

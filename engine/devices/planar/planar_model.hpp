@@ -69,24 +69,35 @@ struct PlanarSensorState {
 // A fresh sensor stage for a run (an encoder's counter is set never to flip).
 PlanarSensorState make_planar_sensor_state(const PlanarModel& model) noexcept;
 
-// Sensor stage: raw readings to joint angles (kept in `state->q_rad`), then the pose.
-inline LinkagePose sense_planar(const PlanarModel& model, const PlanarReading& reading,
-                                PlanarSensorState* state) noexcept {
+// Sensor stage: raw readings to joint angles (kept in `state->q_rad`), then the pose,
+// written to `pose`.
+[[gnu::always_inline]] inline void sense_planar(const PlanarModel& model, const PlanarReading& reading,
+                                                PlanarSensorState* state, LinkagePose* pose) noexcept {
   Vec2 q{};
   for (int i = 0; i < 2; ++i) {
     const PlanarJointModel& joint = model.joints[static_cast<std::size_t>(i)];
     if (joint.reads_angle) {
       q[i] = reading.angle_deg[i] * (std::numbers::pi / 180.0) + joint.offset_rad;
     } else {
+      // Only an MR sensor wraps: an encoder's count is already unwrapped (its flip
+      // counter could never flip), so it skips the counter's work.
       const std::size_t k = static_cast<std::size_t>(i);
-      state->raw_counts[k] = reading.counts[k];
-      state->unwrapped_counts[k] = state->flip_counter[k].update(reading.counts[k]);
-      q[i] = joint.rad_per_count * state->unwrapped_counts[k] + joint.offset_rad;
+      const std::int32_t raw = reading.counts[k];
+      const std::int32_t unwrapped = joint.unwraps ? state->flip_counter[k].update(raw) : raw;
+      state->raw_counts[k] = raw;
+      state->unwrapped_counts[k] = unwrapped;
+      q[i] = joint.rad_per_count * unwrapped + joint.offset_rad;
     }
   }
   q[1] += model.coupling * q[0];
   state->q_rad = q;
-  return solve_linkage(model.linkage, q);
+  solve_linkage(model.linkage, q, pose);
+}
+inline LinkagePose sense_planar(const PlanarModel& model, const PlanarReading& reading,
+                                PlanarSensorState* state) noexcept {
+  LinkagePose pose;
+  sense_planar(model, reading, state, &pose);
+  return pose;
 }
 
 // What the host sends both motors, and what happened on the way.
@@ -115,28 +126,22 @@ inline Vec2 joint_torques_from_motor_N_m(const PlanarModel& model, const Vec2& m
   return Vec2{{through_1 - model.coupling * tau_2, tau_2}};
 }
 
+// Both motor torques scaled by the one factor that brings each within its drive (the
+// limiting motor lands on its limit, never past it); out of line, as it is rare.
+[[gnu::noinline]] void scale_to_drives(const PlanarModel& model, Vec2* torque_N_m,
+                                       PlanarMotorCommand* command) noexcept;
+
 // Command stage: the force on the handle at the pose whose Jacobian is `jacobian`.
-inline PlanarMotorCommand planar_motor_command(const PlanarModel& model, const Jacobian2& jacobian,
-                                               const Vec2& force_N) noexcept {
+[[gnu::always_inline]] inline PlanarMotorCommand planar_motor_command(const PlanarModel& model,
+                                                                      const Jacobian2& jacobian,
+                                                                      const Vec2& force_N) noexcept {
   PlanarMotorCommand command;
   Vec2 torque = motor_torques_from_joint_N_m(model, joint_torques_N_m(jacobian, force_N));
   if (!all_finite(torque)) torque = Vec2{};
-  // One factor for both motors: the smallest that brings each within its drive.
-  double scale = 1.0;
-  for (int i = 0; i < 2; ++i) {
-    const double needed = std::fabs(torque[i]);
-    const double available = model.joints[static_cast<std::size_t>(i)].motor_torque_max_N_m;
-    if (needed > available) scale = std::fmin(scale, available / needed);
-  }
-  if (scale < 1.0) {
-    torque *= scale;
-    // The limiting motor lands on its limit up to rounding: never past it.
-    for (int i = 0; i < 2; ++i) {
-      const double available = model.joints[static_cast<std::size_t>(i)].motor_torque_max_N_m;
-      torque[i] = std::fmax(-available, std::fmin(torque[i], available));
-    }
-    command.saturated = true;
-    command.scale = scale;
+  // The common case in two comparisons: both motors within their drives (NaN cannot be).
+  if (!(std::fabs(torque[0]) <= model.joints[0].motor_torque_max_N_m &&
+        std::fabs(torque[1]) <= model.joints[1].motor_torque_max_N_m)) [[unlikely]] {
+    scale_to_drives(model, &torque, &command);
   }
   command.torque_N_m = torque;
   for (int i = 0; i < 2; ++i) {
@@ -144,15 +149,16 @@ inline PlanarMotorCommand planar_motor_command(const PlanarModel& model, const J
     MotorCommand& motor = command.motor[static_cast<std::size_t>(i)];
     const double magnitude = std::fabs(torque[i]);
     double duty;
-    if (joint.law == PlanarDriveLaw::sqrt) {
-      duty = std::sqrt(magnitude * joint.inverse_motor_constant);
-    } else if (joint.law == PlanarDriveLaw::linear) {
+    if (joint.law == PlanarDriveLaw::linear) {
       duty = magnitude * joint.duty_per_N_m;
+    } else if (joint.law == PlanarDriveLaw::sqrt) {
+      duty = std::sqrt(magnitude * joint.inverse_motor_constant);
     } else {
       duty = magnitude / joint.motor_torque_max_N_m;
     }
-    // Rounding at the limit: never above the drive's maximum.
-    motor.duty = std::fmin(duty, joint.law == PlanarDriveLaw::torque ? 1.0 : joint.duty_max);
+    // Rounding at the limit: never above the drive's maximum (the torque law's is 1).
+    // (Written out: std::fmin is a library call, and neither can be NaN here.)
+    motor.duty = duty < joint.duty_max ? duty : joint.duty_max;
     motor.direction_high = torque[i] > 0.0;
   }
   return command;

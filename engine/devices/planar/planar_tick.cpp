@@ -6,6 +6,7 @@ PlanarTickModel compile_planar_tick_model(const PlanarProfile& profile) noexcept
   PlanarTickModel model;
   model.model = compile_planar_model(profile);
   model.condition_limit = profile.limits.condition_limit;
+  model.condition_bound = model.condition_limit + 1.0 / model.condition_limit;
   return model;
 }
 

@@ -26,42 +26,53 @@ struct DeviceIo<2> {
 struct PlanarTickModel {
   PlanarModel model;
   double condition_limit{};  // the Jacobian's condition number past which force ramps out
+  // condition_limit + 1 / condition_limit: the test of the limit without a square root
+  // (see pose_trust).
+  double condition_bound{};
 };
 
 PlanarTickModel compile_planar_tick_model(const PlanarProfile& profile) noexcept;
 
 // The sensor stage's per-run state: the joints' unwrapping and the pose of this tick (its
-// Jacobian is what the command stage needs).
+// Jacobian is what the command stage needs; its condition number, when wanted, is
+// condition_number(pose.jacobian)).
 struct PlanarTickSensor {
   PlanarSensorState joints;
   LinkagePose pose;
-  double condition{};  // the pose's Jacobian condition number (infinity when invalid)
 };
 
 PlanarTickSensor make_sensor_state(const PlanarTickModel& model) noexcept;
 
 // Sensor stage: the joints' readings to the handle position (task frame, m).
-inline Vec2 sense_position_m(const PlanarTickModel& model, const PlanarReading& reading,
+[[gnu::always_inline]] inline Vec2 sense_position_m(const PlanarTickModel& model, const PlanarReading& reading,
                              PlanarTickSensor* sensor) noexcept {
-  sensor->pose = sense_planar(model.model, reading, &sensor->joints);
-  sensor->condition = sensor->pose.valid ? condition_number(sensor->pose.jacobian)
-                                         : std::numeric_limits<double>::infinity();
+  sense_planar(model.model, reading, &sensor->joints, &sensor->pose);
   return sensor->pose.handle_m;
 }
 
 // Whether the pose lets force be rendered: a linkage that cannot close at the sensed
 // angles (or a non-finite reading) renders nothing; a pose whose Jacobian is worse
-// conditioned than the profile's limit (near a singularity, where a small force needs a
+// conditioned than the profile's limit L (near a singularity, where a small force needs a
 // huge torque and the position is ill-sensed) ramps force out.
-inline PoseTrust pose_trust(const PlanarTickModel& model, const PlanarTickSensor& sensor) noexcept {
+// The test needs no square root: with s1 >= s2 the singular values of J, its condition
+// number k = s1 / s2 has k + 1 / k = (s1^2 + s2^2) / (s1 s2) = |J|_F^2 / |det J|, which
+// grows with k for k >= 1, so k <= L (L >= 1) exactly when |J|_F^2 <= (L + 1/L) |det J|.
+// A singular J (det 0) or a non-finite one fails it, as an infinite condition number does.
+[[gnu::always_inline]] inline PoseTrust pose_trust(const PlanarTickModel& model,
+                                                   const PlanarTickSensor& sensor) noexcept {
   if (!sensor.pose.valid) return PoseTrust::invalid;
-  if (!(sensor.condition <= model.condition_limit)) return PoseTrust::near_singular;
-  return PoseTrust::trusted;
+  const Jacobian2& j = sensor.pose.jacobian;
+  const double a = j.m[0][0], b = j.m[0][1], c = j.m[1][0], d = j.m[1][1];
+  const double frobenius_sq = a * a + b * b + c * c + d * d;
+  const double det = std::fabs(a * d - b * c);
+  const bool within = frobenius_sq <= model.condition_bound * det && det > 0.0 &&
+                      frobenius_sq < std::numeric_limits<double>::infinity();
+  return within ? PoseTrust::trusted : PoseTrust::near_singular;
 }
 
 // Command stage: J^T F at this tick's pose, to each motor's command (both scaled alike
 // when one saturates).
-inline PlanarMotorCommand motor_command(const PlanarTickModel& model, const PlanarTickSensor& sensor,
+[[gnu::always_inline]] inline PlanarMotorCommand motor_command(const PlanarTickModel& model, const PlanarTickSensor& sensor,
                                         const Vec2& force_N) noexcept {
   return planar_motor_command(model.model, sensor.pose.jacobian, force_N);
 }

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "engine/effects/effect_groups.hpp"
 #include "engine/effects/planar/planar_fields.hpp"
 #include "engine/effects/planar/planar_input.hpp"
 #include "engine/effects/planar/planar_shapes.hpp"
@@ -36,31 +37,23 @@ struct PlanarEffectTypeList {
   // the order of the file). The shapes' proxies live outside, in the run: one
   // PlanarProxyState per shape effect, in the order the groups list them
   // (proxy_count() of them, value-initialised when a run starts).
-  struct Bank {
-    std::tuple<std::vector<Types>...> groups;
-
-    template <typename T>
-    std::vector<T>& group() noexcept { return std::get<std::vector<T>>(groups); }
-    template <typename T>
-    const std::vector<T>& group() const noexcept { return std::get<std::vector<T>>(groups); }
-
+  struct Bank : EffectGroups<Types...> {
     std::size_t proxy_count() const noexcept {
-      return (std::size_t{0} + ... + (Types::kUsesProxy ? group<Types>().size() : std::size_t{0}));
+      return (std::size_t{0} + ... + (Types::kUsesProxy ? this->template group<Types>().size() : std::size_t{0}));
     }
 
     // What a run keeps of the effects: the shapes' proxies (TickStateOf<2>::effect_runs).
     using RunState = std::vector<PlanarProxyState>;
     RunState make_run_state() const { return RunState(proxy_count()); }
-    Vec2 force_N(const PlanarInput& input, RunState& runs) const noexcept {
-      return force_N(input, std::span<PlanarProxyState>(runs));
-    }
 
-    // Closed loop: the sum of every effect's force, moving the shapes' proxies.
-    // `proxies` holds proxy_count() states.
-    Vec2 force_N(const PlanarInput& input, std::span<PlanarProxyState> proxies) const noexcept {
+    // Closed loop: the sum of every effect's force, moving the shapes' proxies (`runs`
+    // holds proxy_count() states). Inlined into the tick, loops and all, as in 1-D.
+    [[gnu::always_inline]] Vec2 force_N(const PlanarInput& input, RunState& runs) const noexcept {
+      return force_N(input, runs.data());
+    }
+    [[gnu::always_inline]] Vec2 force_N(const PlanarInput& input, PlanarProxyState* proxies) const noexcept {
       Vec2 force_N{};
-      std::size_t next_proxy = 0;
-      (add_group_N<Types>(input, proxies, &next_proxy, &force_N), ...);
+      (add_group_N<Types>(input, &proxies, &force_N), ...);
       return force_N;
     }
 
@@ -73,12 +66,13 @@ struct PlanarEffectTypeList {
     }
 
    private:
+    // A group's forces; a shape takes the next proxy (`*proxy` moves past the group's).
     template <typename T>
-    void add_group_N(const PlanarInput& input, std::span<PlanarProxyState> proxies, std::size_t* next_proxy,
-                     Vec2* force_N) const noexcept {
-      for (const T& e : group<T>()) {
+    [[gnu::always_inline]] void add_group_N(const PlanarInput& input, PlanarProxyState** proxy,
+                                            Vec2* force_N) const noexcept {
+      for (const T& e : this->template group<T>()) {
         if constexpr (T::kUsesProxy) {
-          *force_N += e.force_N(input, proxies[(*next_proxy)++]);
+          *force_N += e.force_N(input, *(*proxy)++);
         } else {
           *force_N += e.force_N(input);
         }
@@ -86,19 +80,12 @@ struct PlanarEffectTypeList {
     }
     template <typename T>
     void add_open_group_N(const PlanarInput& input, Vec2* force_N) const noexcept {
-      for (const T& e : group<T>()) *force_N += e.open_loop_force_N(input);
+      for (const T& e : this->template group<T>()) *force_N += e.open_loop_force_N(input);
     }
   };
 
   // Adds one built-in effect to its group (a script effect is not in the bank).
-  static void add(Bank& bank, Variant effect) {
-    std::visit(
-        [&](auto&& e) {
-          using Type = std::decay_t<decltype(e)>;
-          if constexpr (!std::is_same_v<Type, ScriptEffect>) bank.template group<Type>().push_back(std::move(e));
-        },
-        std::move(effect));
-  }
+  static void add(Bank& bank, Variant effect) { bank.add(std::move(effect)); }
 };
 
 // The 2-D built-in effects, in the order the tick adds them up.

@@ -91,7 +91,8 @@ struct PlanarBox {
   Vec2 open_loop_force_N(const PlanarInput& in) const noexcept {
     return proxy_force_N(stiffness_N_per_m, open_loop_proxy_m(in.x_m), in.x_m);
   }
-  Vec2 force_N(const PlanarInput& in, PlanarProxyState& state) const noexcept {
+  // (Inlined into the tick with the outline's fast paths.)
+  [[gnu::always_inline]] Vec2 force_N(const PlanarInput& in, PlanarProxyState& state) const noexcept {
     if (!all_finite(in.x_m)) return Vec2{};
     outline.step_proxy(in.x_m, FrictionCoefficients{}, state);
     return proxy_force_N(stiffness_N_per_m, state.proxy_m, in.x_m);
@@ -146,7 +147,8 @@ struct PlanarPolygon {
   Vec2 open_loop_force_N(const PlanarInput& in) const noexcept {
     return proxy_force_N(stiffness_N_per_m, open_loop_proxy_m(in.x_m), in.x_m);
   }
-  Vec2 force_N(const PlanarInput& in, PlanarProxyState& state) const noexcept {
+  // (Inlined into the tick with the outline's fast paths.)
+  [[gnu::always_inline]] Vec2 force_N(const PlanarInput& in, PlanarProxyState& state) const noexcept {
     if (!all_finite(in.x_m)) return Vec2{};
     outline.step_proxy(in.x_m, friction, state);
     return proxy_force_N(stiffness_N_per_m, state.proxy_m, in.x_m);

@@ -6,9 +6,7 @@
 namespace hapscene {
 namespace {
 
-// A hit or a slide within this fraction of an edge's length of one of its ends lands on
-// the vertex there (a nanometre on a metre-long edge: far below any sensor's resolution).
-constexpr double kVertexSnap = 1e-9;
+constexpr double kVertexSnap = PolygonOutline::kVertexSnap;
 // Work per tick at most: steps (a straight move, a slide along an edge or a decision on
 // a vertex) and straight moves (each a query of the grid along the path). A proxy left
 // far behind the handle (which went through the solid) catches up over the next ticks;
@@ -305,6 +303,21 @@ PolygonOutline::PolygonOutline(const std::vector<Vec2>& points, bool solid_insid
   columns_ = grid.columns;
   rows_ = grid.rows;
   build_grid(points, grid, &cell_start_, &cell_edges_);
+  // The grid spans the vertices' bounding box; its margin is a billionth of a cell and an
+  // edge's snap a billionth of its length (at most the box's diagonal), so 4 billionths
+  // of the larger side covers both.
+  const Vec2 high{{grid.origin_m[0] + grid.cell_width_m * grid.columns, grid.origin_m[1] + grid.cell_height_m * grid.rows}};
+  const double reach_m = 4e-9 * std::max(high[0] - grid.origin_m[0], high[1] - grid.origin_m[1]);
+  for (int k = 0; k < 2; ++k) {
+    double low = grid.origin_m[k];
+    double top = high[k];
+    for (const Vec2& p : points) {
+      low = std::min(low, p[k]);
+      top = std::max(top, p[k]);
+    }
+    reach_low_m_[k] = low - reach_m;
+    reach_high_m_[k] = top + reach_m;
+  }
 }
 
 int PolygonOutline::most_edges_per_cell() const noexcept {
@@ -361,8 +374,8 @@ void PolygonOutline::place(const Hit& hit, Vec2* proxy, ProxyContact* contact, i
   }
 }
 
-void PolygonOutline::step_proxy(const Vec2& x_m, const FrictionCoefficients& friction,
-                                PlanarProxyState& state) const noexcept {
+void PolygonOutline::step_proxy_full(const Vec2& x_m, const FrictionCoefficients& friction,
+                                     PlanarProxyState& state) const noexcept {
   if (!all_finite(x_m) || vertices_.empty()) return;
   if (!state.started) {
     state = PlanarProxyState{};
