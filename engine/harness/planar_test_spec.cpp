@@ -209,7 +209,8 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
     for (std::size_t i = 0; i < log.lines().size(); ++i) add_fault(log.messages()[i], log.lines()[i]);
   };
 
-  // Forces at given points and velocities, each from fresh instances.
+  // Forces at given points and velocities, each from fresh instances. One open loop (one
+  // creation budget) for them and the region checks.
   PlanarOpenLoop open_loop(scene);
   for (const PlanarForceExpectation& e : spec.forces) {
     Vec2 got_N{};
@@ -220,7 +221,6 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
             vector_text(e.force_N, "N") + printf_string(" +/- %g N, got ", e.tolerance_N) +
             vector_text(got_N, "N", "%.6g") + printf_string(" (off by %.3g N)", off_N));
   }
-  add_faults(open_loop.faults());
 
   // The region checks scan the workspace grid once per velocity.
   const std::vector<Vec2> grid = planar_workspace_grid(scene, kPlanarSpecGridStep_m);
@@ -230,12 +230,10 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
     std::string largest_where;
     const PlanarRegion region = spec.zero_outside_m.value_or(PlanarRegion{});
     for (const Vec2& v : region_velocities(scene)) {
-      PlanarOpenLoop scan_loop(scene);
       PlanarOpenLoopScan scan;
-      located([&] { scan = scan_loop.scan(grid, v); });
-      add_faults(scan_loop.faults());
+      located([&] { scan = open_loop.scan(grid, v); });
       for (std::size_t i = 0; i < grid.size(); ++i) {
-        const Vec2 out_N = scan_loop.output_N(grid[i], scan.force_N[i]);
+        const Vec2 out_N = open_loop.output_N(grid[i], scan.force_N[i]);
         const double magnitude_N = norm(out_N);
         if (spec.zero_outside_m && first_nonzero.empty() && !region.contains(grid[i]) && magnitude_N != 0.0) {
           first_nonzero = vector_text(out_N, "N", "%.6g") + " at " + mm_pair(grid[i]) + ", v " + vector_text(v, "m/s");
@@ -259,6 +257,8 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
               (largest_where.empty() ? "" : " at " + largest_where));
     }
   }
+
+  add_faults(open_loop.faults());
 
   // Faults anywhere in the workspace, at rest, in motion and later in time.
   if (scene.script_count > 0) {

@@ -98,10 +98,15 @@ local function move(gx, gy)
       else enter_y, leave_y = huge, -huge end
       local enter = enter_x > enter_y and enter_x or enter_y
       local leave = leave_x < leave_y and leave_x or leave_y
-      -- A hit: the move really enters (not grazing a face or a corner), from outside.
-      if enter < leave and enter >= 0 and enter < t_hit then
-        t_hit = enter
-        if enter_x >= enter_y then hit_x, face = true, face_x else hit_x, face = false, face_y end
+      -- A hit: the move really goes into the wall (not grazing a face or a corner, not
+      -- moving off a face it sits on). A proxy a rounding error inside a wall (it stopped
+      -- exactly at a corner) counts as on the face it is nearest to crossing: t = 0.
+      if enter < leave and leave > 0 then
+        local t = enter > 0 and enter or 0
+        if t < t_hit then
+          t_hit = t
+          if enter_x >= enter_y then hit_x, face = true, face_x else hit_x, face = false, face_y end
+        end
       end
     end
     if t_hit >= 1 then
