@@ -86,10 +86,15 @@ PlanarScenarioExpectation parse_scenario(ObjectReader& r) {
   PlanarScenarioExpectation e;
   e.pointer = r.pointer();
   e.scenario = r.string("scenario");
+  // Absent keys are still asked for, so a misspelt one gets a "did you mean".
   if (r.has("min_half_cycles")) e.min_half_cycles = static_cast<int>(r.integer("min_half_cycles", 0, 100000));
+  else r.get("min_half_cycles");
   if (r.has("max_half_cycles")) e.max_half_cycles = static_cast<int>(r.integer("max_half_cycles", 0, 100000));
+  else r.get("max_half_cycles");
   if (r.has("frequency")) e.frequency_Hz = r.range("frequency", Quantity::frequency_Hz);
+  else r.get("frequency");
   if (r.has("max_force")) e.max_force_N = r.quantity("max_force", Quantity::force_N, Bound::positive);
+  else r.get("max_force");
   e.pass = optional_bool(r, "pass");
   if (const nlohmann::json* fail = r.get("fail")) {
     if (!fail->is_array()) r.fail("fail", "expected an array of check names, got " + json_type_name(*fail));
@@ -113,6 +118,7 @@ PlanarSpec parse_planar_spec(const std::string& path) {
   if (const nlohmann::json* options = r.get("options")) {
     ObjectReader o(*options, r.pointer_to("options"), path);
     parse_hand_options(o, &spec.closed_loop.options);
+    if (!o.has("start")) o.get("start");
     if (o.has("start")) {
       const nlohmann::json* start = o.get("start");
       if (!start->is_array()) {
@@ -130,7 +136,9 @@ PlanarSpec parse_planar_spec(const std::string& path) {
     }
   }
   if (r.has("zero_outside")) spec.zero_outside_m = parse_region(r, "zero_outside");
+  else r.get("zero_outside");
   if (r.has("never_exceeds")) spec.never_exceeds_N = r.quantity("never_exceeds", Quantity::force_N, Bound::positive);
+  else r.get("never_exceeds");
   spec.closed_loop.passes_validate = optional_bool(r, "passes_validate");
   if (const nlohmann::json* scenarios = r.get("scenarios")) {
     if (!scenarios->is_array()) r.fail("scenarios", "expected an array, got " + json_type_name(*scenarios));

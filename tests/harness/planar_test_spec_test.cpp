@@ -162,6 +162,9 @@ TEST_CASE("planar spec: closed-loop expectations are parsed and fail as not judg
   // Their keys are still checked.
   folder.write("box.test.json", R"({"scenarios": [{"scenario": "press", "passs": true}]})");
   CHECK(spec_error(path).starts_with(path + ": /scenarios/0/passs: "));
+  CHECK(spec_error(path).find("did you mean \"pass\"") != std::string::npos);
+  folder.write("box.test.json", R"({"never_exceed": "1 N"})");
+  CHECK(spec_error(path).find("did you mean \"never_exceeds\"") != std::string::npos);
 }
 
 TEST_CASE("planar spec: script faults anywhere in the workspace fail the spec, at rest and in motion") {
