@@ -48,9 +48,13 @@ struct Spec {
   std::vector<ScenarioExpectation> scenarios;
 };
 
+// Defined below parse_options' first use.
+void refuse_planar_form(ObjectReader& r, std::string_view key, const char* expected);
+
 HarnessOptions parse_options(ObjectReader& r) {
   HarnessOptions o;
   parse_hand_options(r, &o);
+  refuse_planar_form(r, "start", "a number in m (or a string with a unit)");
   o.free_start_m = quantity_in(r, "start", value_range::free_start, o.free_start_m);
   r.finish();
   return o;

@@ -137,6 +137,9 @@ TEST_CASE("planar spec: a 2-D form in a 1-D spec is refused with its place and t
   CHECK(error_of(R"({"forces": [{"x": "10 mm", "force": ["1 N", "0 N"]}]})") ==
         spec + ": /forces/0/force: a 2-D spec's form (an array): this spec's environment is 1-DOF, so \"force\" "
                "takes a number in N (or a string with a unit)");
+  CHECK(error_of(R"({"options": {"start": ["1 mm", "2 mm"]}})") ==
+        spec + ": /options/start: a 2-D spec's form (an array): this spec's environment is 1-DOF, so \"start\" "
+               "takes a number in m (or a string with a unit)");
   CHECK(error_of(R"({"zero_outside": {"min": [0, 0], "max": [1, 1]}})") ==
         spec + ": /zero_outside: a 2-D spec's form (an object): this spec's environment is 1-DOF, so "
                "\"zero_outside\" takes [a, b], an interval of lengths");
