@@ -22,6 +22,7 @@
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/harness/open_loop.hpp"
+#include "engine/harness/planar_open_loop.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/scene/step.hpp"
 
@@ -95,7 +96,7 @@ Vec2 parse_planar_velocity(const Arguments& arguments, const std::string& text) 
 }
 
 // A planar environment's grid: x outer, y inner. The built-in 2-D effects are evaluated
-// open loop (Scene bank, no history); planar scenes hold no scripts.
+// open loop (no history: each shape's proxy at the nearest point of its boundary).
 int probe_planar(const Arguments& arguments, const std::string& file, const std::string& x_text,
                  const std::optional<std::string>& y_text, const std::optional<std::string>& v_text, double t_s) {
   if (!y_text) arguments.fail("--y START:STOP:STEP is required for a 2-DOF environment");
@@ -109,35 +110,31 @@ int probe_planar(const Arguments& arguments, const std::string& file, const std:
   const PlanarScene scene = load_planar_environment_file(file);
   const std::vector<double> x_m = range_positions_m(x_range);
   const std::vector<double> y_m = range_positions_m(y_range);
-  // Scripts: every point from fresh, reset instances at run time t (as the 1-D probe's
-  // OpenLoop does), so a point never depends on the ones before; each fault once, with
-  // the first point (in the order of the output) that met it.
-  ScriptFaultLog faults;
-  double point_index = 0.0;
-  std::string out = "x_m,y_m,vx_m_per_s,vy_m_per_s,force_x_N,force_y_N,output_x_N,output_y_N\n";
+  // Every point as fresh, reset instances give it at run time t (as the 1-D probe's
+  // OpenLoop), within the same CPU budget for creating them; each fault once, with the
+  // first point (in the order of the output) that met it.
+  std::vector<Vec2> points;
+  points.reserve(x_m.size() * y_m.size());
   for (const double x : x_m) {
-    for (const double y : y_m) {
-      EffectInputOf<2> input;
-      input.x_m = Vec2{{x, y}};
-      input.v_m_per_s = v_m_per_s;
-      input.t_s = t_s;
-      input.dt_s = scene.period_s;
-      ScriptList scripts = make_script_instances(scene);
-      const Vec2 force_N = sum_effects_N(scene, input, scripts);
-      faults.collect(scripts,
-                     printf_string("x %.2f mm, y %.2f mm, v (%g, %g) m/s, t %g s", x * 1e3, y * 1e3,
-                                   v_m_per_s[0], v_m_per_s[1], t_s),
-                     point_index);
-      point_index += 1.0;
-      SafetyCounters counters;
-      const Vec2 output_N = apply_static_safety(scene.safety, input.x_m, force_N, &counters);
-      out += shortest(x) + "," + shortest(y) + "," + shortest(v_m_per_s[0]) + "," + shortest(v_m_per_s[1]) + "," +
-             shortest(force_N[0]) + "," + shortest(force_N[1]) + "," + shortest(output_N[0]) + "," +
-             shortest(output_N[1]) + "\n";
-    }
+    for (const double y : y_m) points.push_back(Vec2{{x, y}});
+  }
+  PlanarOpenLoop open_loop(scene, t_s);
+  const PlanarOpenLoopScan scan = open_loop.scan(points, v_m_per_s);
+  std::string out = "x_m,y_m,vx_m_per_s,vy_m_per_s,force_x_N,force_y_N,output_x_N,output_y_N\n";
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec2& force_N = scan.force_N[i];
+    const Vec2 output_N = open_loop.output_N(points[i], force_N);
+    out += shortest(points[i][0]) + "," + shortest(points[i][1]) + "," + shortest(v_m_per_s[0]) + "," +
+           shortest(v_m_per_s[1]) + "," + shortest(force_N[0]) + "," + shortest(force_N[1]) + "," +
+           shortest(output_N[0]) + "," + shortest(output_N[1]) + "\n";
   }
   write_out(out);
   flush_out();
+  if (!scan.behaviour.static_field()) {
+    std::fprintf(stderr, "note: %s; each point is from fresh instances at t = %g s\n", scan.behaviour.note.c_str(),
+                 t_s);
+  }
+  const ScriptFaultLog& faults = open_loop.faults();
   for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
   if (faults.omitted()) {
     std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the grid are shown)\n",

@@ -14,16 +14,6 @@ namespace {
 // Two forces are the same when bit-equal or both NaN (a script is deterministic).
 bool same_force(double a_N, double b_N) { return a_N == b_N || (std::isnan(a_N) && std::isnan(b_N)); }
 
-// The script effects of the scene by name, for notes.
-std::string script_names(const Scene& scene) {
-  std::string names;
-  for (const Effect& effect : scene.effects) {
-    if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
-      names += (names.empty() ? "" : ", ") + script->program->display_name;
-    }
-  }
-  return names;
-}
 
 }  // namespace
 
@@ -97,7 +87,7 @@ void ScriptFaultLog::merge(const ScriptFaultLog& other) {
   omitted_ = omitted_ || other.omitted_;
 }
 
-OpenLoop::OpenLoop(const Scene& scene, double t_s) : scene_(scene), t_s_(t_s) {}
+OpenLoop::OpenLoop(const Scene& scene, double t_s) : scene_(scene), t_s_(t_s), budget_(scene) {}
 
 double OpenLoop::fresh_force_N(double x_m, double v_m_per_s, double t_s, bool record) {
   EffectInput input;
@@ -113,36 +103,16 @@ double OpenLoop::fresh_force_N(double x_m, double v_m_per_s, double t_s, bool re
   return force_N;
 }
 
-void OpenLoop::require_creations(std::size_t count) const {
-  if (create_cpu_s_ < 0.0 || count == 0) return;
-  const double needed_s = spent_cpu_s_ + static_cast<double>(count) * create_cpu_s_;
-  if (needed_s <= kOpenLoopCreateBudget_s) return;
-  // The environment file, then its scripts (once when the environment is a script).
-  const std::string scripts = script_names(scene_);
-  const std::string where = scripts == scene_.source_path ? scripts : scene_.source_path + ": " + scripts;
-  throw InputError(printf_string(
-      "%s: creating a fresh instance takes %.3g s of CPU time (its top-level code runs every time); "
-      "this open-loop evaluation of %zu point%s needs %zu more after the %zu made, about %.3g s in all, over the "
-      "%g s budget: fewer points (probe --x), or a cheaper top level",
-      where.c_str(), create_cpu_s_, points_, points_ == 1 ? "" : "s",
-      count, created_, needed_s, kOpenLoopCreateBudget_s));
-}
-
 ScriptList OpenLoop::create_instances() {
-  require_creations(1);
+  budget_.require(1);
   const double start_s = thread_cpu_time_s();
   ScriptList scripts = make_script_instances(scene_);
-  const double used_s = thread_cpu_time_s() - start_s;
-  // The estimate for planned creations: the cheapest so far (the first is often slowed
-  // by cold caches); what is really spent is charged in full.
-  if (create_cpu_s_ < 0.0 || used_s < create_cpu_s_) create_cpu_s_ = used_s;
-  spent_cpu_s_ += used_s;
-  ++created_;
+  budget_.charge(thread_cpu_time_s() - start_s);
   return scripts;
 }
 
 double OpenLoop::force_N(double x_m, double v_m_per_s) {
-  points_ = 1;
+  budget_.set_points(1);
   return fresh_force_N(x_m, v_m_per_s, t_s_, true);
 }
 
@@ -174,11 +144,11 @@ std::vector<double> OpenLoop::sequential_N(const std::vector<double>& x_m, doubl
 
 void OpenLoop::scan_faults(const std::vector<double>& x_m, double v_m_per_s) {
   if (!has_scripts() || x_m.empty()) return;
-  points_ = x_m.size();
+  budget_.set_points(x_m.size());
   std::vector<bool> live;
   sequential_N(x_m, v_m_per_s, true, &live);
   if (live.back()) return;
-  require_creations(x_m.size());
+  budget_.require(x_m.size());
   for (const double x : x_m) fresh_force_N(x, v_m_per_s, t_s_, true);
 }
 
@@ -222,7 +192,7 @@ OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bo
 
   // State: one instance upwards, one downwards, fresh ones at up to 9 spread points.
   // Points after a script faulted are not compared (a disabled script answers 0).
-  points_ = n;
+  budget_.set_points(n);
   std::vector<bool> live_up;
   std::vector<bool> live_down;
   std::vector<double> up_N = sequential_N(x_m, v_m_per_s, true, &live_up);
@@ -232,7 +202,7 @@ OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bo
   if (spread.back() != n - 1) spread.push_back(n - 1);
   // The creations the comparisons below need at most (the downward pass, and per spread
   // point one fresh instance, plus five at other times), now that one has been timed.
-  require_creations(1 + spread.size() * (scene_.needs.time ? 6 : 1));
+  budget_.require(1 + spread.size() * (scene_.needs.time ? 6 : 1));
   const std::vector<double> down_N = sequential_N(x_m, v_m_per_s, false, &live_down);
   bool faulted = false;
   for (std::size_t i = 0; i < n; ++i) {
@@ -272,7 +242,7 @@ OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bo
   if (!faulted && !result.behaviour.stateful) {
     result.force_N = std::move(up_N);
   } else if (faulted || values_if_not_static) {
-    require_creations(n);
+    budget_.require(n);
     result.force_N.resize(n);
     for (std::size_t i = 0; i < n; ++i) result.force_N[i] = fresh_force_N(x_m[i], v_m_per_s, t_s_, true);
   }

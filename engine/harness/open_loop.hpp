@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/harness/script_budget.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/scene/tick_state.hpp"
 
@@ -68,9 +69,6 @@ struct OpenLoopScan {
   ScriptBehaviour behaviour;
 };
 
-// CPU time an OpenLoop may spend creating fresh script instances.
-inline constexpr double kOpenLoopCreateBudget_s = 20.0;
-
 class OpenLoop {
  public:
   // `t_s`: the run time every point is evaluated at (s.t of scripts that read time).
@@ -107,9 +105,6 @@ class OpenLoop {
   // New, reset instances of the scene's scripts, charged to the creation budget (throws
   // InputError before a creation that would exceed it).
   ScriptList create_instances();
-  // Throws InputError when `count` more creations would exceed the budget (no-op until
-  // the first creation has been timed).
-  void require_creations(std::size_t count) const;
   // One instance per script called at the points in the given order; `live[i]` is false
   // where a script had faulted before or at that call.
   std::vector<double> sequential_N(const std::vector<double>& x_m, double v_m_per_s, bool upward,
@@ -119,10 +114,7 @@ class OpenLoop {
   double t_s_{};
   ScriptList none_;
   ScriptFaultLog faults_;
-  double create_cpu_s_{-1.0};  // CPU time of the cheapest creation so far (-1: none yet)
-  double spent_cpu_s_{};       // CPU time of all creations so far
-  std::size_t created_{};
-  std::size_t points_{};  // size of the current evaluation, for the message
+  ScriptCreationBudget budget_;
 };
 
 // The script faults met in motion and over time, which a scan at rest (v = 0, t = 0)

@@ -11,7 +11,8 @@ namespace {
 
 // "too slow for the 1000 Hz loop: force() took 48.2 ms of CPU time per call on average
 // over the first 5 calls (the tick period is 1 ms)".
-CheckResult pace_failure(const Scene& scene, const char* what, const char* per, double cpu_s, std::uint64_t count,
+template <int N>
+CheckResult pace_failure(const SceneOf<N>& scene, const char* what, const char* per, double cpu_s, std::uint64_t count,
                          const std::string& over) {
   const double average_s = cpu_s / static_cast<double>(count);
   CheckResult check;
@@ -34,16 +35,21 @@ double thread_cpu_time_s() noexcept {
   return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
-std::optional<CheckResult> check_script_pace(const Scene& scene) {
+namespace {
+
+// The scripts' calls along the workspace: in 1-D from its low to its high end, in 2-D
+// along the diagonal of its box.
+template <int N>
+std::optional<CheckResult> check_script_pace_of(const SceneOf<N>& scene) {
   if (scene.script_count == 0) return std::nullopt;
   ScriptList scripts = make_script_instances(scene);
   const double allowed_s = static_cast<double>(kPaceWindowCalls) * scene.period_s;
-  const double span_m = scene.safety.workspace_max_m - scene.safety.workspace_min_m;
-  EffectInput input;
+  const Axes<N> span_m = scene.safety.workspace_max_m - scene.safety.workspace_min_m;
+  EffectInputOf<N> input;
   input.dt_s = scene.period_s;
   double cpu_s = 0.0;
   for (std::uint64_t k = 0; k < kPaceWindowCalls; ++k) {
-    input.x_m = scene.safety.workspace_min_m + span_m * (static_cast<double>(k) + 0.5) / kPaceWindowCalls;
+    input.x_m = scene.safety.workspace_min_m + span_m * (static_cast<double>(k) + 0.5) / static_cast<double>(kPaceWindowCalls);
     input.t_s = static_cast<double>(k) * scene.period_s;
     const double start_s = thread_cpu_time_s();
     sum_effects_N(scene, input, scripts);
@@ -55,6 +61,11 @@ std::optional<CheckResult> check_script_pace(const Scene& scene) {
   }
   return std::nullopt;
 }
+
+}  // namespace
+
+std::optional<CheckResult> check_script_pace(const Scene& scene) { return check_script_pace_of(scene); }
+std::optional<CheckResult> check_script_pace(const PlanarScene& scene) { return check_script_pace_of(scene); }
 
 bool PaceWatch::tick() noexcept {
   if (too_slow_) return false;

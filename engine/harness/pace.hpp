@@ -26,6 +26,8 @@ double thread_cpu_time_s() noexcept;
 // stopping as soon as their CPU time exceeds what the window allows at the tick period.
 // Empty when the scene has no scripts or they keep up, else the failed "pace" check.
 std::optional<CheckResult> check_script_pace(const Scene& scene);
+// The same for a planar scene, x along the diagonal of its workspace box.
+std::optional<CheckResult> check_script_pace(const PlanarScene& scene);
 
 // The same during a closed-loop run, per window of kPaceWindowCalls ticks (the CPU time
 // of whole ticks, which the scripts dominate when they are slow): tick() is called once

@@ -12,6 +12,8 @@
 #include "engine/harness/open_loop.hpp"
 #include "engine/harness/option_ranges.hpp"
 #include "engine/harness/pace.hpp"
+#include "engine/harness/planar_test_spec.hpp"
+#include "engine/harness/test_spec_parts.hpp"
 #include "engine/harness/validate.hpp"
 #include "engine/load/environment.hpp"
 
@@ -46,35 +48,28 @@ struct Spec {
   std::vector<ScenarioExpectation> scenarios;
 };
 
-// A quantity from the spec, refused (with the spec file and JSON pointer) outside the
-// range the command line accepts for the same value; `fallback` when absent.
-double quantity_in(ObjectReader& r, std::string_view key, const ValueRange& range, std::optional<double> fallback) {
-  const double value = fallback ? r.quantity_or(key, range.quantity, *fallback) : r.quantity(key, range.quantity);
-  if (r.has(key)) {
-    const std::string problem = range_problem(range, value);
-    if (!problem.empty()) r.fail(key, problem);
-  }
-  return value;
-}
+// Defined below parse_options' first use.
+void refuse_planar_form(ObjectReader& r, std::string_view key, const char* expected);
 
 HarnessOptions parse_options(ObjectReader& r) {
   HarnessOptions o;
-  o.hand_stiffness_N_per_m = quantity_in(r, "hand_stiffness", value_range::hand_stiffness, o.hand_stiffness_N_per_m);
-  o.hand_damping_N_s_per_m = quantity_in(r, "hand_damping", value_range::hand_damping, o.hand_damping_N_s_per_m);
-  o.hand_mass_kg = quantity_in(r, "hand_mass", value_range::hand_mass, o.hand_mass_kg);
-  o.noise_counts = quantity_in(r, "noise", value_range::noise, o.noise_counts);
-  if (r.has("seed")) o.seed = static_cast<std::uint64_t>(r.integer("seed", 0, 1LL << 53));
-  else r.get("seed");
+  parse_hand_options(r, &o);
+  refuse_planar_form(r, "start", "a number in m (or a string with a unit)");
   o.free_start_m = quantity_in(r, "start", value_range::free_start, o.free_start_m);
   r.finish();
   return o;
 }
 
-std::optional<bool> optional_bool(ObjectReader& r, std::string_view key) {
+// A 2-D spec's form of a key (a vector or a region) in a spec for a 1-DOF environment:
+// refused naming the 1-D form, before the generic "expected a number" would.
+void refuse_planar_form(ObjectReader& r, std::string_view key, const char* expected) {
   const nlohmann::json* value = r.get(key);
-  if (value == nullptr) return std::nullopt;
-  if (!value->is_boolean()) r.fail(key, "expected true or false, got " + json_type_name(*value));
-  return value->get<bool>();
+  const bool planar_form = key == "zero_outside" ? value != nullptr && value->is_object()
+                                                 : value != nullptr && value->is_array();
+  if (planar_form) {
+    r.fail(key, std::string("a 2-D spec's form (") + (value->is_array() ? "an array" : "an object") +
+                    "): this spec's environment is 1-DOF, so \"" + std::string(key) + "\" takes " + expected);
+  }
 }
 
 ScenarioExpectation parse_scenario(ObjectReader& r) {
@@ -115,12 +110,7 @@ Spec parse_spec(const std::string& path) {
   const nlohmann::json root = read_json_file(path);
   ObjectReader r(root, "", path);
   Spec spec;
-  // The environment: given, or the spec's name without ".test.json", next to it.
-  const std::filesystem::path spec_path(path);
-  std::string name = spec_path.filename().string();
-  name = name.substr(0, name.size() - std::string(".test.json").size()) + ".json";
-  const std::string environment = r.string_or("environment", name);
-  spec.environment_path = (spec_path.parent_path() / environment).lexically_normal().string();
+  spec.environment_path = spec_environment_path(r, path);
   r.string_or("description", "");
 
   if (const nlohmann::json* options = r.get("options")) {
@@ -134,6 +124,13 @@ Spec parse_spec(const std::string& path) {
       ObjectReader f((*forces)[i], json_pointer_append(r.pointer_to("forces"), i), path);
       ForceExpectation e;
       e.pointer = f.pointer();
+      if (f.has("at")) {
+        f.fail("at", "a 2-D spec's form: this spec's environment is 1-DOF, so a point is \"x\": X (a number in m "
+                     "or a string with a unit)");
+      }
+      refuse_planar_form(f, "x", "a number in m (or a string with a unit)");
+      refuse_planar_form(f, "v", "a number in m/s (or a string with a unit)");
+      refuse_planar_form(f, "force", "a number in N (or a string with a unit)");
       e.x_m = quantity_in(f, "x", value_range::probe_position, std::nullopt);
       e.v_m_per_s = quantity_in(f, "v", value_range::probe_velocity, 0.0);
       e.force_N = f.quantity("force", Quantity::force_N);
@@ -142,6 +139,7 @@ Spec parse_spec(const std::string& path) {
       spec.forces.push_back(e);
     }
   }
+  refuse_planar_form(r, "zero_outside", "[a, b], an interval of lengths");
   if (r.has("zero_outside")) spec.zero_outside_m = r.range("zero_outside", Quantity::length_m);
   else r.get("zero_outside");
   if (r.has("never_exceeds")) spec.never_exceeds_N = r.quantity("never_exceeds", Quantity::force_N, Bound::positive);
@@ -165,9 +163,56 @@ const ScenarioResult* find_result(const ValidationReport& report, ScenarioKind k
   return nullptr;
 }
 
+// The spec's environment has two axes (a planar profile). Anything that cannot be read
+// here is left to the 1-D path, which reports it as it always has.
+bool names_planar_environment(const std::string& spec_path) {
+  try {
+    const nlohmann::json root = read_json_file(spec_path);
+    ObjectReader r(root, "", spec_path);
+    return environment_axes(spec_environment_path(r, spec_path)) == 2;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
 }  // namespace
 
+std::string spec_environment_path(ObjectReader& spec, const std::string& spec_path) {
+  const std::filesystem::path path(spec_path);
+  std::string name = path.filename().string();
+  name = name.substr(0, name.size() - std::string(".test.json").size()) + ".json";
+  const std::string environment = spec.string_or("environment", name);
+  return (path.parent_path() / environment).lexically_normal().string();
+}
+
+double quantity_in(ObjectReader& r, std::string_view key, const ValueRange& range, std::optional<double> fallback) {
+  const double value = fallback ? r.quantity_or(key, range.quantity, *fallback) : r.quantity(key, range.quantity);
+  if (r.has(key)) {
+    const std::string problem = range_problem(range, value);
+    if (!problem.empty()) r.fail(key, problem);
+  }
+  return value;
+}
+
+std::optional<bool> optional_bool(ObjectReader& r, std::string_view key) {
+  const nlohmann::json* value = r.get(key);
+  if (value == nullptr) return std::nullopt;
+  if (!value->is_boolean()) r.fail(key, "expected true or false, got " + json_type_name(*value));
+  return value->get<bool>();
+}
+
+void parse_hand_options(ObjectReader& r, HarnessOptions* o) {
+  o->hand_stiffness_N_per_m = quantity_in(r, "hand_stiffness", value_range::hand_stiffness, o->hand_stiffness_N_per_m);
+  o->hand_damping_N_s_per_m = quantity_in(r, "hand_damping", value_range::hand_damping, o->hand_damping_N_s_per_m);
+  o->hand_mass_kg = quantity_in(r, "hand_mass", value_range::hand_mass, o->hand_mass_kg);
+  o->noise_counts = quantity_in(r, "noise", value_range::noise, o->noise_counts);
+  if (r.has("seed")) o->seed = static_cast<std::uint64_t>(r.integer("seed", 0, 1LL << 53));
+  else r.get("seed");
+}
+
 SpecResult run_test_spec(const std::string& spec_path) {
+  // A spec for a 2-DOF environment: its own format (planar_test_spec.cpp).
+  if (names_planar_environment(spec_path)) return run_planar_test_spec(spec_path);
   const Spec spec = parse_spec(spec_path);
   SpecResult result;
   result.spec_path = spec_path;

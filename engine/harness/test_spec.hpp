@@ -21,7 +21,8 @@ struct SpecResult {
 };
 
 // Loads the spec and its environment (InputError, located, for anything invalid), then
-// probes, validates and compares.
+// probes, validates and compares. A spec whose environment is a 2-DOF scene is run by
+// run_planar_test_spec (planar_test_spec.hpp: README "Test specs in 2-D").
 SpecResult run_test_spec(const std::string& spec_path);
 
 // Every *.test.json under the given folders (recursively), sorted.

@@ -1,0 +1,289 @@
+#include "engine/harness/planar_test_spec.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
+#include "engine/base/json_source.hpp"
+#include "engine/base/object_reader.hpp"
+#include "engine/effects/planar/planar_reader.hpp"
+#include "engine/harness/pace.hpp"
+#include "engine/harness/planar_open_loop.hpp"
+#include "engine/harness/test_spec_parts.hpp"
+#include "engine/load/environment.hpp"
+
+namespace hapscene {
+namespace {
+
+// The velocities of the region checks (zero_outside, never_exceeds) besides rest, as the
+// 1-D spec's +/-0.1 m/s, along each axis (only when the scene reads velocity).
+constexpr double kRegionScanSpeed_m_per_s = 0.1;
+
+struct PlanarForceExpectation {
+  std::string pointer;
+  Vec2 x_m{}, v_m_per_s{}, force_N{};
+  double tolerance_N{};
+};
+struct PlanarRegion {
+  Vec2 min_m{}, max_m{};
+  bool contains(const Vec2& p) const {
+    return p[0] >= min_m[0] && p[0] <= max_m[0] && p[1] >= min_m[1] && p[1] <= max_m[1];
+  }
+};
+struct PlanarSpec {
+  std::string environment_path;
+  std::vector<PlanarForceExpectation> forces;
+  std::optional<PlanarRegion> zero_outside_m;
+  std::optional<double> never_exceeds_N;
+  PlanarClosedLoopExpectations closed_loop;
+};
+
+Range range_of(const ValueRange& range) { return Range{range.min, range.max, range.min_exclusive}; }
+// Any finite force component a spec may state.
+constexpr Range kForceComponent_N{-1e9, 1e9};
+constexpr Range kRegionComponent_m{-1000.0, 1000.0};
+
+// A 1-D spec's form of a key in a 2-D spec: refused naming the 2-D form.
+void refuse_axis_form(ObjectReader& r, std::string_view key, const std::string& expected) {
+  const nlohmann::json* value = r.get(key);
+  if (value != nullptr) {
+    r.fail(key, "a 1-D spec's form: this spec's environment is 2-DOF (a planar profile), so " + expected);
+  }
+}
+
+PlanarForceExpectation parse_force(ObjectReader& f) {
+  PlanarForceExpectation e;
+  e.pointer = f.pointer();
+  refuse_axis_form(f, "x", "a point is \"at\": [x, y] (lengths in m, or strings with a unit)");
+  e.x_m = read_vector(f, "at", Quantity::length_m, range_of(value_range::probe_position));
+  e.v_m_per_s = read_vector_or(f, "v", Quantity::velocity_m_per_s, Vec2{}, range_of(value_range::probe_velocity));
+  e.force_N = read_vector(f, "force", Quantity::force_N, kForceComponent_N);
+  e.tolerance_N = f.quantity_or("tolerance", Quantity::force_N, 1e-6, Bound::non_negative);
+  f.finish();
+  return e;
+}
+
+PlanarRegion parse_region(ObjectReader& r, std::string_view key) {
+  const nlohmann::json* value = r.get(key);
+  if (!value->is_object()) {
+    r.fail(key, "expected a region {\"min\": [x, y], \"max\": [x, y]} in a 2-D spec, got " + json_type_name(*value) +
+                    (value->is_array() ? " (the 1-D form [a, b])" : ""));
+  }
+  ObjectReader region(*value, r.pointer_to(key), r.file());
+  PlanarRegion result;
+  result.min_m = read_vector(region, "min", Quantity::length_m, kRegionComponent_m);
+  result.max_m = read_vector(region, "max", Quantity::length_m, kRegionComponent_m);
+  if (!(result.min_m[0] <= result.max_m[0] && result.min_m[1] <= result.max_m[1])) {
+    region.fail("max", "must not be below \"min\" on either axis");
+  }
+  region.finish();
+  return result;
+}
+
+PlanarScenarioExpectation parse_scenario(ObjectReader& r) {
+  PlanarScenarioExpectation e;
+  e.pointer = r.pointer();
+  e.scenario = r.string("scenario");
+  // Absent keys are still asked for, so a misspelt one gets a "did you mean".
+  if (r.has("min_half_cycles")) e.min_half_cycles = static_cast<int>(r.integer("min_half_cycles", 0, 100000));
+  else r.get("min_half_cycles");
+  if (r.has("max_half_cycles")) e.max_half_cycles = static_cast<int>(r.integer("max_half_cycles", 0, 100000));
+  else r.get("max_half_cycles");
+  if (r.has("frequency")) e.frequency_Hz = r.range("frequency", Quantity::frequency_Hz);
+  else r.get("frequency");
+  if (r.has("max_force")) e.max_force_N = r.quantity("max_force", Quantity::force_N, Bound::positive);
+  else r.get("max_force");
+  e.pass = optional_bool(r, "pass");
+  if (const nlohmann::json* fail = r.get("fail")) {
+    if (!fail->is_array()) r.fail("fail", "expected an array of check names, got " + json_type_name(*fail));
+    for (std::size_t i = 0; i < fail->size(); ++i) {
+      if (!(*fail)[i].is_string()) {
+        throw InputError(located_message(r.file(), json_pointer_append(r.pointer_to("fail"), i), "expected a check name"));
+      }
+      e.fail.push_back((*fail)[i].get<std::string>());
+    }
+  }
+  r.finish();
+  return e;
+}
+
+PlanarSpec parse_planar_spec(const std::string& path) {
+  const nlohmann::json root = read_json_file(path);
+  ObjectReader r(root, "", path);
+  PlanarSpec spec;
+  spec.environment_path = spec_environment_path(r, path);
+  r.string_or("description", "");
+  if (const nlohmann::json* options = r.get("options")) {
+    ObjectReader o(*options, r.pointer_to("options"), path);
+    parse_hand_options(o, &spec.closed_loop.options);
+    if (!o.has("start")) o.get("start");
+    if (o.has("start")) {
+      const nlohmann::json* start = o.get("start");
+      if (!start->is_array()) {
+        o.fail("start", "a 1-D spec's form: this spec's environment is 2-DOF, so \"start\" is [x, y]");
+      }
+      spec.closed_loop.start_m = read_vector(o, "start", Quantity::length_m, range_of(value_range::free_start));
+    }
+    o.finish();
+  }
+  if (const nlohmann::json* forces = r.get("forces")) {
+    if (!forces->is_array()) r.fail("forces", "expected an array, got " + json_type_name(*forces));
+    for (std::size_t i = 0; i < forces->size(); ++i) {
+      ObjectReader f((*forces)[i], json_pointer_append(r.pointer_to("forces"), i), path);
+      spec.forces.push_back(parse_force(f));
+    }
+  }
+  if (r.has("zero_outside")) spec.zero_outside_m = parse_region(r, "zero_outside");
+  else r.get("zero_outside");
+  if (r.has("never_exceeds")) spec.never_exceeds_N = r.quantity("never_exceeds", Quantity::force_N, Bound::positive);
+  else r.get("never_exceeds");
+  spec.closed_loop.passes_validate = optional_bool(r, "passes_validate");
+  if (const nlohmann::json* scenarios = r.get("scenarios")) {
+    if (!scenarios->is_array()) r.fail("scenarios", "expected an array, got " + json_type_name(*scenarios));
+    for (std::size_t i = 0; i < scenarios->size(); ++i) {
+      ObjectReader s((*scenarios)[i], json_pointer_append(r.pointer_to("scenarios"), i), path);
+      spec.closed_loop.scenarios.push_back(parse_scenario(s));
+    }
+  }
+  r.finish();
+  return spec;
+}
+
+std::string mm_pair(const Vec2& x_m) { return printf_string("(%g, %g) mm", x_m[0] * 1e3, x_m[1] * 1e3); }
+std::string vector_text(const Vec2& v, const char* unit, const char* format = "%g") {
+  return "(" + printf_string(format, v[0]) + ", " + printf_string(format, v[1]) + ") " + unit;
+}
+
+// The velocities of a region check: rest, and +/-0.1 m/s along each axis when the scene
+// reads velocity.
+std::vector<Vec2> region_velocities(const PlanarScene& scene) {
+  std::vector<Vec2> velocities{Vec2{}};
+  if (!scene.needs.velocity) return velocities;
+  for (const double s : {kRegionScanSpeed_m_per_s, -kRegionScanSpeed_m_per_s}) {
+    velocities.push_back(Vec2{{s, 0.0}});
+    velocities.push_back(Vec2{{0.0, s}});
+  }
+  return velocities;
+}
+
+}  // namespace
+
+SpecResult run_planar_test_spec(const std::string& spec_path) {
+  const PlanarSpec spec = parse_planar_spec(spec_path);
+  SpecResult result;
+  result.spec_path = spec_path;
+  result.environment_path = spec.environment_path;
+  const std::string referrer = spec_path + ": /environment: ";
+  std::optional<PlanarScene> loaded;
+  try {
+    loaded.emplace(load_planar_environment_file(spec.environment_path));
+  } catch (const InputError& error) {
+    throw InputError(referrer + error.what());
+  }
+  const PlanarScene& scene = *loaded;
+  const auto add = [&](std::string what, bool pass, std::string message) {
+    result.outcomes.push_back({std::move(what), pass, std::move(message)});
+    result.pass = result.pass && pass;
+  };
+  // Budget errors (a script whose top level is slow) name the spec's environment.
+  const auto located = [&](auto&& work) {
+    try {
+      work();
+    } catch (const InputError& error) {
+      throw InputError(referrer + error.what());
+    }
+  };
+
+  // Scripts too slow for the loop: nothing else is evaluated.
+  if (const std::optional<CheckResult> pace = check_script_pace(scene)) {
+    add("/environment", false, pace->detail);
+    return result;
+  }
+
+  // A script fault fails the spec unless a scenario expects the "script" check to fail.
+  bool faults_expected = false;
+  for (const PlanarScenarioExpectation& e : spec.closed_loop.scenarios) {
+    faults_expected = faults_expected || std::find(e.fail.begin(), e.fail.end(), "script") != e.fail.end();
+  }
+  ScriptFaultLog seen;
+  const auto add_fault = [&](const std::string& message, const std::string& line) {
+    const std::size_t before = seen.lines().size();
+    seen.add(message, "");
+    if (seen.lines().size() > before && !faults_expected) add("/environment", false, "script fault: " + line);
+  };
+  const auto add_faults = [&](const ScriptFaultLog& log) {
+    for (std::size_t i = 0; i < log.lines().size(); ++i) add_fault(log.messages()[i], log.lines()[i]);
+  };
+
+  // Forces at given points and velocities, each from fresh instances. One open loop (one
+  // creation budget) for them and the region checks.
+  PlanarOpenLoop open_loop(scene);
+  for (const PlanarForceExpectation& e : spec.forces) {
+    Vec2 got_N{};
+    located([&] { got_N = open_loop.output_N(e.x_m, open_loop.force_N(e.x_m, e.v_m_per_s)); });
+    const double off_N = norm(got_N - e.force_N);
+    add(e.pointer, off_N <= e.tolerance_N,
+        "force at " + mm_pair(e.x_m) + ", v " + vector_text(e.v_m_per_s, "m/s") + ": expected " +
+            vector_text(e.force_N, "N") + printf_string(" +/- %g N, got ", e.tolerance_N) +
+            vector_text(got_N, "N", "%.6g") + printf_string(" (off by %.3g N)", off_N));
+  }
+
+  // The region checks scan the workspace grid once per velocity.
+  const std::vector<Vec2> grid = planar_workspace_grid(scene, kPlanarSpecGridStep_m);
+  if (spec.zero_outside_m || spec.never_exceeds_N) {
+    std::string first_nonzero;
+    double largest_N = 0.0;
+    std::string largest_where;
+    const PlanarRegion region = spec.zero_outside_m.value_or(PlanarRegion{});
+    for (const Vec2& v : region_velocities(scene)) {
+      PlanarOpenLoopScan scan;
+      located([&] { scan = open_loop.scan(grid, v); });
+      for (std::size_t i = 0; i < grid.size(); ++i) {
+        const Vec2 out_N = open_loop.output_N(grid[i], scan.force_N[i]);
+        const double magnitude_N = norm(out_N);
+        if (spec.zero_outside_m && first_nonzero.empty() && !region.contains(grid[i]) && magnitude_N != 0.0) {
+          first_nonzero = vector_text(out_N, "N", "%.6g") + " at " + mm_pair(grid[i]) + ", v " + vector_text(v, "m/s");
+        }
+        if (magnitude_N > largest_N) {
+          largest_N = magnitude_N;
+          largest_where = mm_pair(grid[i]) + ", v " + vector_text(v, "m/s");
+        }
+      }
+    }
+    if (spec.zero_outside_m) {
+      add("/zero_outside", first_nonzero.empty(),
+          "force zero outside the box from " + mm_pair(region.min_m) + " to " + mm_pair(region.max_m) +
+              printf_string(" (every %g mm of the workspace): ", kPlanarSpecGridStep_m * 1e3) +
+              (first_nonzero.empty() ? std::string("yes") : "no, " + first_nonzero));
+    }
+    if (spec.never_exceeds_N) {
+      add("/never_exceeds", largest_N <= *spec.never_exceeds_N,
+          printf_string("never exceeds %g N (every %g mm of the workspace): largest %.4g N", *spec.never_exceeds_N,
+                        kPlanarSpecGridStep_m * 1e3, largest_N) +
+              (largest_where.empty() ? "" : " at " + largest_where));
+    }
+  }
+
+  add_faults(open_loop.faults());
+
+  // Faults anywhere in the workspace, at rest, in motion and later in time.
+  if (scene.script_count > 0) {
+    ScriptFaultLog motion;
+    located([&] { motion = scan_planar_faults_in_motion(scene, grid); });
+    add_faults(motion);
+  }
+
+  // Closed-loop expectations (2-D validate).
+  if (!spec.closed_loop.empty()) {
+    std::vector<std::pair<std::string, std::string>> run_faults;
+    std::vector<SpecOutcome> outcomes;
+    located([&] { outcomes = closed_loop_outcomes_2d(scene, spec.environment_path, spec.closed_loop, &run_faults); });
+    for (const auto& [message, line] : run_faults) add_fault(message, line);
+    for (SpecOutcome& o : outcomes) add(std::move(o.what), o.pass, std::move(o.message));
+  }
+  return result;
+}
+
+}  // namespace hapscene
