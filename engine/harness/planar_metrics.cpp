@@ -153,7 +153,8 @@ void PlanarValidateRecorder::on_tick(const TickStateOf<2>& s) noexcept {
     r.requested_N = s.effects_force_N;
     r.output_N = s.output_N;
     r.hand_N = device_->hand_force_N();
-    r.condition = s.sensor.condition;
+    // The tick decides on a square-root-free test; the record keeps the number itself.
+    r.condition = s.sensor.pose.valid ? condition_number(s.sensor.pose.jacobian) : INFINITY;
     r.pose_held = s.safety.counters.pose_hold_ticks != pose_holds_seen_;
     records.push_back(r);
     for (std::size_t i = 0; i < shapes; ++i) {
