@@ -51,12 +51,14 @@ PlanarReading HaplyDevice::read() noexcept {
 }
 
 void HaplyDevice::write(const PlanarMotorCommand& command) noexcept {
-  link_.send(command.torque_N_m, monotonic_now_ns());
+  // The watchdog hears of a torque before the board does: a process stopped between the
+  // two must not leave a torque on that the watchdog thinks is off.
   if (watchdog_) {
     const bool torque_on = link_.state() == HaplyLinkState::running &&
                            (command.torque_N_m[0] != 0.0 || command.torque_N_m[1] != 0.0);
     watchdog_->beat(torque_on);
   }
+  link_.send(command.torque_N_m, monotonic_now_ns());
 }
 
 bool HaplyDevice::take_restart() noexcept {
