@@ -8,9 +8,12 @@
 #include "engine/base/format.hpp"
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
+#include "engine/base/units.hpp"
 #include "engine/effects/planar/planar_reader.hpp"
 #include "engine/harness/pace.hpp"
+#include "engine/harness/planar_checks.hpp"
 #include "engine/harness/planar_open_loop.hpp"
+#include "engine/harness/planar_validate_scenario.hpp"
 #include "engine/harness/test_spec_parts.hpp"
 #include "engine/load/environment.hpp"
 
@@ -86,6 +89,11 @@ PlanarScenarioExpectation parse_scenario(ObjectReader& r) {
   PlanarScenarioExpectation e;
   e.pointer = r.pointer();
   e.scenario = r.string("scenario");
+  if (!planar_validate_kind_named(e.scenario)) {
+    const std::string suggestion = nearest_name(e.scenario, kPlanarValidateNames);
+    r.fail("scenario", "unknown 2-D scenario \"" + e.scenario + "\"" +
+                           (suggestion.empty() ? "" : " (did you mean \"" + suggestion + "\"?)"));
+  }
   // Absent keys are still asked for, so a misspelt one gets a "did you mean".
   if (r.has("min_half_cycles")) e.min_half_cycles = static_cast<int>(r.integer("min_half_cycles", 0, 100000));
   else r.get("min_half_cycles");
@@ -102,7 +110,15 @@ PlanarScenarioExpectation parse_scenario(ObjectReader& r) {
       if (!(*fail)[i].is_string()) {
         throw InputError(located_message(r.file(), json_pointer_append(r.pointer_to("fail"), i), "expected a check name"));
       }
-      e.fail.push_back((*fail)[i].get<std::string>());
+      const std::string check = (*fail)[i].get<std::string>();
+      if (std::find_if(std::begin(kPlanarCheckNames), std::end(kPlanarCheckNames),
+                       [&](const char* n) { return check == n; }) == std::end(kPlanarCheckNames)) {
+        const std::string suggestion = nearest_name(check, kPlanarCheckNames);
+        throw InputError(located_message(r.file(), json_pointer_append(r.pointer_to("fail"), i),
+                                         "unknown 2-D check \"" + check + "\"" +
+                                             (suggestion.empty() ? "" : " (did you mean \"" + suggestion + "\"?)")));
+      }
+      e.fail.push_back(check);
     }
   }
   r.finish();

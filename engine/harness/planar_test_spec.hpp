@@ -46,8 +46,8 @@ struct PlanarClosedLoopExpectations {
 // Judges the closed-loop expectations of a 2-D spec on its scene (loaded from
 // `environment_path`): one outcome per expectation ("/passes_validate",
 // "/scenarios/N/..."), and each script fault met in the runs in `faults` (message, then
-// the line to print). Until 2-D validate is wired in, each expectation is an outcome that
-// FAILS saying it cannot be judged yet (never a silent pass).
+// the line to print): one run of 2-D validate (all seven scenarios) with the spec's options
+// and the environment's "validate" thresholds.
 std::vector<SpecOutcome> closed_loop_outcomes_2d(const PlanarScene& scene, const std::string& environment_path,
                                                  const PlanarClosedLoopExpectations& expectations,
                                                  std::vector<std::pair<std::string, std::string>>* faults);

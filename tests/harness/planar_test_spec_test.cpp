@@ -145,23 +145,39 @@ TEST_CASE("planar spec: a 2-D form in a 1-D spec is refused with its place and t
                "\"zero_outside\" takes [a, b], an interval of lengths");
 }
 
-TEST_CASE("planar spec: closed-loop expectations are parsed and fail as not judged yet") {
+TEST_CASE("planar spec: closed-loop expectations are judged by 2-D validate") {
   const test::ScratchFolder folder("planar_spec_closed_loop");
   folder.write("box.json", kBoxEnvironment);
   const std::string path = folder.write("box.test.json", R"({
     "options": {"hand_stiffness": "300 N/m", "start": ["-16 mm", "142 mm"]},
     "forces": [{"at": ["-20 mm", "140 mm"], "force": [0, 0]}],
     "passes_validate": true,
-    "scenarios": [{"scenario": "press", "pass": true, "fail": ["pop_through"]}]})").string();
+    "scenarios": [{"scenario": "press", "pass": true, "max_force": "2.5 N"},
+                  {"scenario": "release", "fail": ["pop_through"]},
+                  {"scenario": "swipe", "pass": true}]})").string();
   const SpecResult result = run_test_spec(path);
   CHECK_FALSE(result.pass);
-  REQUIRE(result.outcomes.size() == 3);
+  REQUIRE(result.outcomes.size() == 6);
   CHECK(result.outcomes[0].pass);
   CHECK(result.outcomes[1].what == "/passes_validate");
-  CHECK_FALSE(result.outcomes[1].pass);
-  CHECK(result.outcomes[1].message.find("passes validate: cannot be judged yet") == 0);
-  CHECK(result.outcomes[2].what == "/scenarios/0");
-  CHECK_FALSE(result.outcomes[2].pass);
+  CHECK(result.outcomes[1].pass);
+  CHECK(result.outcomes[1].message == "passes validate: every check passed");
+  CHECK(result.outcomes[2].what == "/scenarios/0/max_force");
+  CHECK(result.outcomes[2].pass);
+  CHECK(result.outcomes[3].what == "/scenarios/0/pass");
+  CHECK(result.outcomes[3].pass);
+  // A check expected to fail that passes, and a scenario this scene has nothing for.
+  CHECK(result.outcomes[4].what == "/scenarios/1/fail");
+  CHECK_FALSE(result.outcomes[4].pass);
+  CHECK(result.outcomes[4].message.find("release: check pop_through fails: no, ") == 0);
+  CHECK(result.outcomes[5].what == "/scenarios/2");
+  CHECK_FALSE(result.outcomes[5].pass);
+  CHECK(result.outcomes[5].message == "swipe: not applicable to this environment");
+  // 2-D names only, each refused where it is written.
+  folder.write("box.test.json", R"({"scenarios": [{"scenario": "line"}]})");
+  CHECK(spec_error(path).starts_with(path + ": /scenarios/0/scenario: unknown 2-D scenario \"line\""));
+  folder.write("box.test.json", R"({"scenarios": [{"scenario": "press", "fail": ["slip"]}]})");
+  CHECK(spec_error(path).starts_with(path + ": /scenarios/0/fail/0: unknown 2-D check \"slip\""));
   // Their keys are still checked.
   folder.write("box.test.json", R"({"scenarios": [{"scenario": "press", "passs": true}]})");
   CHECK(spec_error(path).starts_with(path + ": /scenarios/0/passs: "));
