@@ -61,6 +61,10 @@ std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile
                      "libsimavr-dev and the AVR toolchain when building; see .ci/install-deps)");
 #endif
   }
+  if (spec == "haply" || spec.starts_with("haply:")) {
+    throw InputError("--device haply: a Haply board drives a 2-DOF scene (a haply2diy_v1..v3 profile); this "
+                     "scene's device \"" + profile.name + "\" is 1-DOF (available: " + kDeviceSpecs + ")");
+  }
   throw InputError("--device: unknown device \"" + spec + "\" (available: " + kDeviceSpecs + ")");
 }
 

@@ -44,6 +44,7 @@ class FakeHaplyBoard {
   std::uint8_t motor_mask{0}, encoder_mask{0};
   std::array<std::uint8_t, 4> motor_direction{}, encoder_direction{};
   std::array<float, 4> torque_N_m{};  // per port, as last applied
+  float peak_torque_N_m{0.0f};        // the largest |torque| ever applied
   std::array<double, 4> offset_deg_{}, cpr_{};
 
  private:
@@ -117,6 +118,7 @@ class FakeHaplyBoard {
     for (int port = 1; port <= 4; ++port) {
       if (!(motor_mask & (1u << (port - 1)))) continue;
       torque_N_m[index(port)] = std::fmax(-0.123f, std::fmin(0.123f, get_float_le(&f[n])));
+      peak_torque_N_m = std::fmax(peak_torque_N_m, std::fabs(torque_N_m[index(port)]));
       n += 4;
     }
     if (muted) return;

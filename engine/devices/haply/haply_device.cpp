@@ -10,8 +10,8 @@
 namespace hapscene {
 
 HaplyDevice::HaplyDevice(const PlanarProfile& profile, const HaplyConfig& config)
-    : port_(config.path, 115200, "--device haply:" + config.path),
-      setup_(haply_setup_for(profile, config.id)),
+    : setup_(haply_setup_for(profile, config.id)),
+      port_(config.path, 115200, "--device haply:" + config.path),
       link_(port_, setup_, config.link, monotonic_now_ns()),
       start_ns_(monotonic_now_ns()) {
   // The first reply, before the loop starts (the board answers within a millisecond).

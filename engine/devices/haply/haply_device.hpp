@@ -45,8 +45,8 @@ class HaplyDevice final : public DeviceOf<2> {
   pid_t watchdog_pid() const noexcept { return watchdog_ ? watchdog_->pid() : -1; }
 
  private:
+  HaplySetup setup_;  // first: a profile that is not a Haply device is refused before the port opens
   SerialPort port_;
-  HaplySetup setup_;
   HaplyLink link_;
   std::unique_ptr<ZeroTorqueWatchdog> watchdog_;
   std::int64_t start_ns_{};
