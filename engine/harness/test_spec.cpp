@@ -12,6 +12,7 @@
 #include "engine/harness/open_loop.hpp"
 #include "engine/harness/option_ranges.hpp"
 #include "engine/harness/pace.hpp"
+#include "engine/harness/spec_judging.hpp"
 #include "engine/harness/planar_test_spec.hpp"
 #include "engine/harness/test_spec_parts.hpp"
 #include "engine/harness/validate.hpp"
@@ -344,15 +345,7 @@ SpecResult run_test_spec(const std::string& spec_path) {
             (where.empty() ? "" : " (" + where + ")"));
   }
   if (spec.passes_validate) {
-    std::string failed;
-    for (const CheckResult& c : report.scene_checks) {
-      if (!c.pass) failed += std::string(failed.empty() ? "" : ", ") + "scene/" + c.name;
-    }
-    for (const ScenarioResult& s : report.scenarios) {
-      for (const CheckResult& c : s.checks) {
-        if (!c.pass) failed += (failed.empty() ? "" : ", ") + s.scenario.name + "/" + c.name;
-      }
-    }
+    const std::string failed = failed_checks_text(report.scene_checks, report.scenarios);
     add("/passes_validate", report.pass == *spec.passes_validate,
         std::string(*spec.passes_validate ? "passes validate: " : "fails validate: ") +
             (failed.empty() ? "every check passed" : "failed " + failed));
@@ -366,37 +359,7 @@ SpecResult run_test_spec(const std::string& spec_path) {
       add(e.pointer, false, name + ": not applicable to this environment");
       continue;
     }
-    const std::optional<OscillationMetrics>& o = s->metrics.oscillation;
-    const int half_cycles = o ? o->half_cycles : 0;
-    if (e.min_half_cycles) {
-      add(e.pointer + "/min_half_cycles", half_cycles >= *e.min_half_cycles,
-          printf_string("%s: at least %d half-cycles, got %d", name.c_str(), *e.min_half_cycles, half_cycles));
-    }
-    if (e.max_half_cycles) {
-      add(e.pointer + "/max_half_cycles", half_cycles <= *e.max_half_cycles,
-          printf_string("%s: at most %d half-cycles, got %d", name.c_str(), *e.max_half_cycles, half_cycles));
-    }
-    if (e.frequency_Hz) {
-      const double f_Hz = o ? o->frequency_Hz : 0.0;
-      add(e.pointer + "/frequency", f_Hz >= e.frequency_Hz->first && f_Hz <= e.frequency_Hz->second,
-          printf_string("%s: frequency in [%g, %g] Hz, got %.3f Hz", name.c_str(), e.frequency_Hz->first,
-                        e.frequency_Hz->second, f_Hz));
-    }
-    if (e.max_force_N) {
-      add(e.pointer + "/max_force", s->metrics.max_output_N <= *e.max_force_N,
-          printf_string("%s: force at most %g N, got %.4g N", name.c_str(), *e.max_force_N, s->metrics.max_output_N));
-    }
-    if (e.pass) {
-      add(e.pointer + "/pass", s->pass == *e.pass,
-          name + (*e.pass ? ": every check passes" : ": some check fails") + (s->pass ? " (all passed)" : " (some failed)"));
-    }
-    for (const std::string& check : e.fail) {
-      const auto found = std::find_if(s->checks.begin(), s->checks.end(),
-                                      [&](const CheckResult& c) { return c.name == check; });
-      const bool failed = found != s->checks.end() && !found->pass;
-      add(e.pointer + "/fail", failed,
-          name + ": check " + check + " fails: " + (found == s->checks.end() ? "not run" : (failed ? "yes, " : "no, ") + found->detail));
-    }
+    judge_scenario_expectation(e, name, ScenarioSeen{s->metrics.oscillation, s->metrics.max_output_N, s->pass, s->checks}, add);
   }
   return result;
 }
