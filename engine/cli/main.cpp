@@ -33,7 +33,7 @@ usage:
                                           untimed ticks for valgrind --tool=callgrind
   hapscene validate ENV [ENV...] [options]
                                           check an environment with virtual-hand scenarios
-  hapscene test [SPEC...]                 run environment test specs (*.test.json)
+  hapscene test [SPEC|FOLDER...]          run environment test specs (*.test.json; a folder: all under it)
   hapscene plot ENV [--scenario NAME] [--output FILE.svg]
                                           draw force-displacement and time series as SVG
                                           (2-DOF: the force field, a run's paths and

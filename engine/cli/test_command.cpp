@@ -1,8 +1,9 @@
-// `hapscene test [SPEC...]`: runs environment test specs (default: every *.test.json
-// under environments/ and scripts/). Prints PASS/FAIL per spec and each unmet
-// expectation. Exit 0 when all pass, 1 when any fails, 2 when any spec (or its
+// `hapscene test [SPEC|FOLDER...]`: runs environment test specs (a folder: every
+// *.test.json under it; default: every *.test.json under environments/ and scripts/).
+// Prints PASS/FAIL per spec and each unmet expectation. Exit 0 when all pass, 1 when any fails, 2 when any spec (or its
 // environment) is invalid input; the other specs still run.
 #include <cstdio>
+#include <filesystem>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
@@ -17,8 +18,19 @@ namespace hapscene {
 int test_command(std::vector<std::string> args) {
   Arguments arguments(std::move(args), "hapscene test");
   const bool verbose = arguments.take_flag("verbose");
-  std::vector<std::string> specs = arguments.positionals();
-  if (specs.empty()) {
+  // Spec files as given; a folder stands for every *.test.json under it.
+  std::vector<std::string> specs;
+  for (const std::string& given : arguments.positionals()) {
+    std::error_code error;
+    if (!std::filesystem::is_directory(given, error)) {
+      specs.push_back(given);
+      continue;
+    }
+    const std::vector<std::string> found = find_test_specs({given});
+    if (found.empty()) arguments.fail("no *.test.json under " + given);
+    specs.insert(specs.end(), found.begin(), found.end());
+  }
+  if (arguments.positionals().empty()) {
     specs = find_test_specs({"environments", "scripts"});
     if (specs.empty()) arguments.fail("no *.test.json under environments/ or scripts/");
   }

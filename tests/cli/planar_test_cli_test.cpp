@@ -144,4 +144,15 @@ TEST_CASE("planar test cli: a slow top level without state still probes; a slow 
   CHECK(outcome.out.find("  FAIL /environment: too slow for the 1000 Hz loop: force() took ") != std::string::npos);
 }
 
+TEST_CASE("planar test cli: a folder stands for every spec under it") {
+  const test::CliOutcome folder = test::run_cli("test environments/planar scripts/planar");
+  CHECK(folder.exit_code == 0);
+  CHECK(folder.out.find("24 specs, ") != std::string::npos);
+  CHECK(folder.out.find("PASS environments/planar/haplink_maze.test.json") != std::string::npos);
+  const test::ScratchFolder empty("planar_test_cli_empty_folder");
+  const test::CliOutcome none = test::run_cli("test '" + empty.dir.string() + "'");
+  CHECK(none.exit_code == 2);
+  CHECK(none.err.find("no *.test.json under ") != std::string::npos);
+}
+
 }  // namespace hapscene
