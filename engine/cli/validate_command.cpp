@@ -65,6 +65,8 @@ int validate_command(std::vector<std::string> args) {
     kinds = parse_scenarios(arguments, scenario_text);
   }
   if (any_planar) {
+    // The planar simulator's sensors have no noise model yet: refused rather than ignored.
+    if (options.noise_counts >= 0.0) arguments.fail("--noise: not yet for a 2-DOF environment");
     if (start_text) options.free_start_planar_m = parse_planar_point(arguments, "start", *start_text, option::run_start);
     planar_kinds = parse_planar_scenarios(arguments, scenario_text);
   }

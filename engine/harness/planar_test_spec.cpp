@@ -134,6 +134,8 @@ PlanarSpec parse_planar_spec(const std::string& path) {
   if (const nlohmann::json* options = r.get("options")) {
     ObjectReader o(*options, r.pointer_to("options"), path);
     parse_hand_options(o, &spec.closed_loop.options);
+    // The planar simulator's sensors have no noise model yet (validate refuses --noise too).
+    if (o.has("noise")) o.fail("noise", "not yet for a 2-DOF environment");
     if (!o.has("start")) o.get("start");
     if (o.has("start")) {
       const nlohmann::json* start = o.get("start");

@@ -14,6 +14,7 @@ constexpr double kApproachGap_m = 0.003;             // press: start this far in
 constexpr double kPressSpeeds_m_per_s[] = {0.02, 0.08, 0.2};
 constexpr double kPressHold_s = 0.3;
 constexpr std::size_t kMaxPressPlaces = 16;
+constexpr std::size_t kMaxOutlineCandidates = 64;  // edges of one outline measured for places
 constexpr double kMinPressDepth_m = 0.001;           // a place the workspace leaves less of is skipped
 constexpr double kWorkspaceMargin_m = 0.003;         // the hand's path stays this far inside the box
 constexpr double kSwipeGap_m = 0.010;                // swipe: from this far in front, to this far beyond
@@ -201,16 +202,18 @@ std::vector<PlanarPressPlace> planar_press_places(const std::vector<PlanarShapeG
         break;
       case PlanarShapeKind::box:
       case PlanarShapeKind::polygon: {
+        // Every edge and corner of a small outline; of a large one, kMaxOutlineCandidates
+        // spread round it (measuring each costs a scan of the outline, so all of a 10 000-point
+        // polygon's would take minutes, and at most kMaxPressPlaces are pressed anyway).
         const std::size_t n = shape.points_m.size();
-        std::vector<Vec2> edge_out(n);
-        for (std::size_t i = 0; i < n; ++i) {
-          const Vec2 middle = (shape.points_m[i] + shape.points_m[(i + 1) % n]) * 0.5;
-          edge_out[i] = outward_at(shape, middle);
-        }
-        for (std::size_t i = 0; i < n; ++i) {
-          const Vec2& before = edge_out[(i + n - 1) % n];
-          add(shape.points_m[i], unit_or(before + edge_out[i], edge_out[i]), "corner", false);
-          add((shape.points_m[i] + shape.points_m[(i + 1) % n]) * 0.5, edge_out[i], "edge", true);
+        const std::size_t stride = std::max<std::size_t>(1, n / kMaxOutlineCandidates);
+        const auto edge_out = [&](std::size_t i) {
+          return outward_at(shape, (shape.points_m[i] + shape.points_m[(i + 1) % n]) * 0.5);
+        };
+        for (std::size_t i = 0; i < n; i += stride) {
+          const Vec2 out = edge_out(i);
+          add(shape.points_m[i], unit_or(edge_out((i + n - 1) % n) + out, out), "corner", false);
+          add((shape.points_m[i] + shape.points_m[(i + 1) % n]) * 0.5, out, "edge", true);
         }
         break;
       }
@@ -262,6 +265,13 @@ PlanarValidateScenario build_planar_validate_scenario(PlanarValidateKind kind, c
     case PlanarValidateKind::press:
     case PlanarValidateKind::swipe: {
       const bool press = kind == PlanarValidateKind::press;
+      if (press && !shapes.empty() && press_depth_m < kMinPressDepth_m) {
+        s.applicable = false;
+        s.description = printf_string("the press depth, press_force / hand stiffness = %g mm, is under the %g mm a "
+                                      "press needs (raise press_force or lower the hand's stiffness)",
+                                      press_depth_m * 1e3, kMinPressDepth_m * 1e3);
+        return s;
+      }
       std::vector<PlanarPressPlace> places = planar_press_places(shapes, s.start_m);
       if (!press) {
         std::erase_if(places, [](const PlanarPressPlace& p) { return !(p.thickness_m <= kThinWidth_m); });

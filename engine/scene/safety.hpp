@@ -122,9 +122,22 @@ inline bool exceeds_magnitude(const AxisVector<N>& value, double limit) noexcept
 
 // `value` with its magnitude limited to `limit` (> 0), keeping its sign or direction.
 inline double limit_magnitude(double value, double limit) noexcept { return std::copysign(limit, value); }
+// A vector too long for its squared length to be a double (past about 1e154) is scaled
+// down by its largest component first, so it is clamped, not zeroed; and rounding never
+// leaves the result past the limit (a last step down by an ulp when it would).
 template <int N>
 inline AxisVector<N> limit_magnitude(const AxisVector<N>& value, double limit) noexcept {
-  return value * (limit / norm(value));
+  double length = norm(value);
+  AxisVector<N> direction = value;
+  if (!std::isfinite(length)) [[unlikely]] {
+    double largest = 0.0;
+    for (int i = 0; i < N; ++i) largest = std::fmax(largest, std::fabs(value[i]));
+    direction = value * (1.0 / largest);
+    length = norm(direction);
+  }
+  AxisVector<N> limited = direction * (limit / length);
+  while (norm(limited) > limit) [[unlikely]] limited *= 1.0 - 0x1p-53;
+  return limited;
 }
 
 // Rules 1, 2 and 4: what a static probe shows as the output for a requested force.

@@ -3,6 +3,7 @@
 // of the other dimension, an unknown scenario or an unreachable start refused with exit 2.
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -91,4 +92,32 @@ TEST_CASE("planar validate cli: options of the other dimension and bad input, ex
   const CliOutcome far = run_cli("validate " + kBox + " --scenario free --start=0.5,0.5");
   CHECK(far.exit_code == 2);
   CHECK(far.err.find(kBox + ": a scenario cannot start where it asks") != std::string::npos);
+}
+
+TEST_CASE("planar validate cli: what the planar simulator cannot do is refused, and a huge polygon stays quick") {
+  // No sensor-noise model for planar sensors yet: --noise is refused, not ignored.
+  const CliOutcome noise = run_cli("validate environments/planar/haplink_box_inside.json --noise 5");
+  CHECK(noise.exit_code == 2);
+  CHECK(noise.err.find("--noise: not yet for a 2-DOF environment") != std::string::npos);
+  // A press too shallow to make: not applicable, and saying why.
+  const CliOutcome shallow =
+      run_cli("validate environments/planar/haplink_box_inside.json --scenario press --hand-stiffness 100000");
+  CHECK(shallow.out.find("the press depth, press_force / hand stiffness = 0.03 mm, is under the 1 mm") !=
+        std::string::npos);
+  // A 5000-point polygon: the press and swipe places are found from a spread of its edges.
+  const ScratchFolder folder("planar_validate_cli_big_polygon");
+  std::string points;
+  for (int i = 0; i < 5000; ++i) {
+    const double a = 6.283185307179586 * i / 5000.0;
+    points += (i ? ", " : "") + std::string("[") + std::to_string(-0.015 + 0.02 * std::cos(a)) + ", " +
+              std::to_string(0.125 + 0.02 * std::sin(a)) + "]";
+  }
+  const auto path = folder.write("big.json", "{\"name\": \"big\", \"device\": \"" HAPSCENE_SOURCE_DIR
+                                              "/environments/devices/haplink.json\", \"effects\": [{\"type\": \"polygon\", "
+                                              "\"stiffness\": \"200 N/m\", \"solid\": \"inside\", \"points\": [" + points + "]}]}");
+  const auto start = std::chrono::steady_clock::now();
+  const CliOutcome big = run_cli("validate --quiet --scenario press,swipe '" + path.string() + "'");
+  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 60.0);
+  CHECK(big.exit_code != 2);
+  CHECK(big.out.find("big (") != std::string::npos);
 }

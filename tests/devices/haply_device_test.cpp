@@ -84,6 +84,7 @@ TEST_CASE("haply device: opens on a serial port, renders, and leaves zero torque
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     CHECK(board.wait_for([](auto& b) { return b.torque_N_m[1] == 0.04f; }, 500));
+    CAPTURE(device.report());
     CHECK(device.position_status() == PositionStatus::fresh);
     CHECK_FALSE(device.fault_seen());
     CHECK(device.report().find("0 resyncs") != std::string::npos);

@@ -45,3 +45,25 @@ TEST_CASE("safety: the squared magnitude test decides as the norm does, at the l
   CHECK(within_magnitude(Vec2{}, 0.0));
   CHECK_FALSE(exceeds_magnitude(Vec2{}, 0.0));
 }
+
+TEST_CASE("safety: a clamped vector is never past the limit, and a huge finite one is clamped, not zeroed") {
+  std::mt19937_64 random(29);
+  std::uniform_real_distribution<double> angle(0.0, 6.283185307179586);
+  std::uniform_real_distribution<double> exponent(0.0, 300.0);
+  for (const double limit : {0.5, 2.0, 3.0, 7.3}) {
+    for (int k = 0; k < 20000; ++k) {
+      const double a = angle(random);
+      const double length = limit * std::pow(10.0, exponent(random));  // from the limit to 1e300 times it
+      const Vec2 v{{length * std::cos(a), length * std::sin(a)}};
+      const Vec2 limited = limit_magnitude(v, limit);
+      CHECK(norm(limited) <= limit);
+      CHECK(norm(limited) >= limit * (1.0 - 1e-12));
+      // The direction is kept.
+      CHECK(std::fabs(limited[0] * v[1] - limited[1] * v[0]) <= 1e-12 * norm(limited) * norm(v));
+    }
+  }
+  // A script's 1e300 N on both axes: 2 N along the diagonal (its squared length overflows).
+  const Vec2 huge = limit_magnitude(Vec2{{1e300, 1e300}}, 2.0);
+  CHECK(huge[0] == doctest::Approx(std::sqrt(2.0)));
+  CHECK(huge[1] == doctest::Approx(std::sqrt(2.0)));
+}

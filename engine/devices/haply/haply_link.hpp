@@ -10,7 +10,7 @@
 //   a reply begun but not completed in short_reply_ns "short reply"  resync
 //   no reply at all for silence_ns                    "silence"      resync (again every
 //                                                                    silence_ns until one comes)
-//   more than a buffer of unread bytes                "overflow"     resync
+//   more than 64 replies' worth of unread bytes       "overflow"     resync
 //   a read or write error (unplugged)                 "vanished"     reopen every
 //                                                                    reopen_retry_ns, then resync
 // A resync: a zero-torque frame, a reset, the setup again, a quiet time in which every
@@ -35,6 +35,8 @@
 #include "engine/devices/haply/haply_protocol.hpp"
 
 namespace hapscene {
+
+inline constexpr std::size_t kHaplyRxReplies = 64;  // replies the link can hold unread
 
 struct HaplyLinkConfig {
   std::int64_t max_angle_age_ns{5'000'000};    // older: stale (force ramps out)
@@ -109,7 +111,9 @@ class HaplyLink {
   PositionStatus status_{PositionStatus::unmeasured};
   HaplyLinkCounters counters_;
 
-  std::array<std::uint8_t, 4 * kHaplyReplyBytes> rx_{};
+  // Room for a burst of replies (a board or a USB adapter that delivers several at once):
+  // all are judged and the newest is used; more than this unread is an overflow.
+  std::array<std::uint8_t, kHaplyRxReplies * kHaplyReplyBytes> rx_{};
   std::size_t rx_size_{};
   std::int64_t rx_partial_since_ns_{-1};   // when the pending partial reply began
 
