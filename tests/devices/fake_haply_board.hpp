@@ -166,6 +166,7 @@ class FakeHaplyWire final : public ByteLink {
   }
   long write_some(const std::uint8_t* data, std::size_t size) noexcept override {
     if (unplugged) return -1;
+    if (takes_at_most >= 0) size = std::min(size, static_cast<std::size_t>(takes_at_most));
     board_->receive(data, size, &to_host_);
     written.insert(written.end(), data, data + size);
     return static_cast<long>(size);
@@ -173,6 +174,7 @@ class FakeHaplyWire final : public ByteLink {
   bool reopen() noexcept override { return !unplugged; }
 
   bool unplugged{false};
+  long takes_at_most{-1};             // >= 0: a port that takes at most this many bytes a write
   std::vector<std::uint8_t> written;  // every byte the host sent
 
  private:

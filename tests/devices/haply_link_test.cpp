@@ -193,6 +193,29 @@ TEST_CASE("haply link: a burst of replies at once is judged reply by reply, not 
   CHECK(within_a_count(rig.link.angles_deg()[0], 169.0));  // the newest of the burst
 }
 
+TEST_CASE("haply link: a port that takes frames in part still delivers them whole and in order") {
+  Rig rig;
+  REQUIRE(rig.until_running() > 0);
+  // 7 bytes a write: every 10-byte torque frame is split, and the rest must go out first.
+  const int resets_before = rig.board.resets;
+  rig.wire.takes_at_most = 7;
+  for (int i = 0; i < 20; ++i) rig.tick(Vec2{{0.01 * (i % 5), -0.02}});
+  CHECK(rig.link.counters().partial_writes > 0);
+  CHECK(rig.link.counters().resyncs == 0);
+  CHECK(rig.board.resets == resets_before);  // no torque bytes read as a command
+  CHECK(rig.board.torque_N_m[1] == doctest::Approx(0.04));  // the last frame: 0.01 * (19 % 5)
+  CHECK(rig.board.torque_N_m[0] == doctest::Approx(-0.02));
+  // A port that takes nothing: frames queue, then are dropped whole, never cut.
+  rig.wire.takes_at_most = 0;
+  for (int i = 0; i < 100; ++i) rig.link.send(kTorque, rig.now_ns);
+  CHECK(rig.link.counters().frames_dropped > 0);
+  rig.wire.takes_at_most = -1;
+  const int frames_before = rig.board.torque_frames;
+  rig.link.send(Vec2{{0.03, 0.03}}, rig.now_ns);
+  CHECK(rig.board.torque_frames > frames_before);
+  CHECK(rig.board.torque_N_m[1] == doctest::Approx(0.03));
+}
+
 TEST_CASE("haply link: a board that stays silent is retried, each time counted") {
   Rig rig;
   REQUIRE(rig.until_running() > 0);

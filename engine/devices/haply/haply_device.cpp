@@ -37,9 +37,12 @@ HaplyDevice::HaplyDevice(const PlanarProfile& profile, const HaplyConfig& config
 }
 
 HaplyDevice::~HaplyDevice() {
-  // Twice: a board whose parser was mid-frame takes the first as the frame's end.
+  // Twice: a board whose parser was mid-frame takes the first as the frame's end. Then
+  // wait (up to 200 ms) until the port has taken every byte: the board keeps the last
+  // torque it got.
   link_.send_zero();
   link_.send_zero();
+  (void)link_.drain_tx(200);
   // Destroying the watchdog tells it this was a clean end.
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <numbers>
 
 #include "engine/base/format.hpp"
@@ -27,10 +28,42 @@ HaplyLink::HaplyLink(ByteLink& link, const HaplySetup& setup, const HaplyLinkCon
   restart_setup(now_ns);
 }
 
+// Frames go out whole or not at all: a port that takes part of one keeps the rest queued
+// and sent before anything else, because the board, which has no framing, would read the
+// next frame's bytes as the rest of this one (torques made of the wrong bytes). A frame
+// that finds the queue full is dropped whole and counted.
 void HaplyLink::send_frame(const HaplyFrame& frame) noexcept {
   if (state_ == HaplyLinkState::vanished) return;
-  if (link_.write_some(frame.bytes.data(), frame.size) < 0) return;  // the next poll sees the link gone
+  flush_tx();
+  if (tx_size_ + frame.size > tx_.size()) {
+    ++counters_.frames_dropped;
+    return;
+  }
+  std::memcpy(tx_.data() + tx_size_, frame.bytes.data(), frame.size);
+  tx_size_ += frame.size;
   ++counters_.frames_sent;
+  flush_tx();
+}
+
+bool HaplyLink::flush_tx() noexcept {
+  while (tx_size_ > 0) {
+    const long n = link_.write_some(tx_.data(), tx_size_);
+    if (n <= 0) return false;  // would block (or gone: the next poll sees it)
+    const auto written = static_cast<std::size_t>(n);
+    std::memmove(tx_.data(), tx_.data() + written, tx_size_ - written);
+    tx_size_ -= written;
+    if (tx_size_ > 0) ++counters_.partial_writes;
+  }
+  return true;
+}
+
+bool HaplyLink::drain_tx(int attempts) noexcept {
+  for (int i = 0; i < attempts; ++i) {
+    if (flush_tx()) return true;
+    timespec pause{0, 1'000'000};
+    nanosleep(&pause, nullptr);
+  }
+  return tx_size_ == 0;
 }
 
 // One zero-torque frame whose reply the setup waits for.
@@ -244,6 +277,9 @@ std::string HaplyLink::report(std::int64_t start_ns) const {
                                            static_cast<double>(c.first_resync_ns - start_ns) * 1e-9,
                                            haply_resync_reason_name(c.first_reason));
   }
+  text += printf_string("; %llu frames the port took in part (the rest sent next), %llu dropped whole (queue full)",
+                        static_cast<unsigned long long>(c.partial_writes),
+                        static_cast<unsigned long long>(c.frames_dropped));
   text += printf_string("\n  position         %llu ticks with no position, %llu with a stale one (older than %.1f ms); "
                         "%llu bytes dropped; %llu setups retried (replies not back exactly twice in a row)\n",
                         static_cast<unsigned long long>(c.unmeasured_polls),

@@ -58,6 +58,8 @@ enum class HaplyLinkState : std::uint8_t { configuring, running, vanished };
 
 struct HaplyLinkCounters {
   std::uint64_t frames_sent{};
+  std::uint64_t frames_dropped{};     // found the send queue full: not sent at all
+  std::uint64_t partial_writes{};     // writes the port took only in part (the rest queued)
   std::uint64_t replies{};            // whole replies accepted
   std::uint64_t bytes_dropped{};      // dropped while resynchronising or after a fault
   std::uint64_t resyncs{};
@@ -80,6 +82,9 @@ class HaplyLink {
   void send(const Vec2& joint_torque_N_m, std::int64_t now_ns) noexcept;
   // A zero-torque frame now, whatever the state (the end of a run).
   void send_zero() noexcept;
+  // Outside the loop (the end of a run): waits up to `attempts` ms for the port to take
+  // every queued byte; true when it did.
+  bool drain_tx(int attempts) noexcept;
 
   Vec2 angles_deg() const noexcept { return angles_deg_; }   // with the correction
   PositionStatus position_status() const noexcept { return status_; }
@@ -102,6 +107,7 @@ class HaplyLink {
   void send_request(std::int64_t now_ns) noexcept;
   bool plausible_move(const Vec2& move_deg, std::int64_t elapsed_ns) const noexcept;
   void send_frame(const HaplyFrame& frame) noexcept;
+  bool flush_tx() noexcept;  // true when nothing is left queued
   void accept(const Vec2& board_deg, std::int64_t now_ns) noexcept;
 
   ByteLink& link_;
@@ -114,6 +120,8 @@ class HaplyLink {
   // Room for a burst of replies (a board or a USB adapter that delivers several at once):
   // all are judged and the newest is used; more than this unread is an overflow.
   std::array<std::uint8_t, kHaplyRxReplies * kHaplyReplyBytes> rx_{};
+  std::array<std::uint8_t, 16 * kHaplyMaxSetupBytes> tx_{};  // bytes queued for the port
+  std::size_t tx_size_{};
   std::size_t rx_size_{};
   std::int64_t rx_partial_since_ns_{-1};   // when the pending partial reply began
 
