@@ -92,7 +92,7 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
     }
   }
   try {
-    device = open_planar_device(settings.device, scene.device, simulation);
+    device = open_planar_device(settings.device, scene.device, simulation, settings.link);
   } catch (const InputError& error) {
     arguments.fail(error.what());
   }

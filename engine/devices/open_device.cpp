@@ -2,6 +2,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/devices/haply/haply_device.hpp"
+#include "engine/devices/planar/hapkit_pair.hpp"
 #include "engine/devices/serial_hapkit.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
 #if HAPSCENE_HAVE_HIL
@@ -43,6 +44,10 @@ std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile
   if (spec.starts_with("serial:") || spec == "serial") {
     const std::string path = spec.size() > 7 ? spec.substr(7) : std::string();
     if (path.empty()) throw InputError("--device serial: needs a port path, e.g. serial:/dev/ttyACM0");
+    if (path.find(',') != std::string::npos) {
+      throw InputError("--device serial:" + path + ": two ports drive a 2-DOF scene (two Hapkit boards as one "
+                       "device); this scene's device \"" + profile.name + "\" is 1-DOF and takes one port");
+    }
     SerialConfig config;
     config.path = path;
     config.baud = link.baud;
@@ -69,8 +74,15 @@ std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile
 }
 
 std::unique_ptr<DeviceOf<2>> open_planar_device(const std::string& spec, const PlanarProfile& profile,
-                                                const PlanarSimulationConfig& simulation) {
+                                                const PlanarSimulationConfig& simulation, const LinkOptions& link) {
   if (spec == "sim") return std::make_unique<SimulatedPlanar>(profile, simulation);
+  // serial:PATH1,PATH2: joint 1's board, then joint 2's
+  if (spec == "serial" || spec.starts_with("serial:")) {
+    HapkitPairConfig config;
+    config.paths = parse_board_pair(spec.size() > 7 ? spec.substr(7) : std::string());
+    config.baud = link.baud;
+    return std::make_unique<HapkitPair>(profile, config);
+  }
   if (spec == "haply" || spec.starts_with("haply:")) {
     const std::string path = spec.size() > 6 ? spec.substr(6) : std::string();
     if (path.empty()) throw InputError("--device haply: needs a port path, e.g. haply:/dev/ttyACM0");
@@ -79,9 +91,9 @@ std::unique_ptr<DeviceOf<2>> open_planar_device(const std::string& spec, const P
     return std::make_unique<HaplyDevice>(profile, config);
   }
   const std::string device = spec.substr(0, spec.find(':'));
-  if (device == "serial" || device == "hil") {
-    throw InputError("--device " + device + ": a 2-DOF scene runs on " + kPlanarDeviceSpecs +
-                     " so far (two Hapkit boards as one device are not built yet)");
+  if (device == "hil") {
+    throw InputError("--device hil: a 2-DOF scene runs on " + std::string(kPlanarDeviceSpecs) +
+                     " so far (two simulated boards in lock-step are not built yet)");
   }
   throw InputError("--device: unknown device \"" + spec + "\" for a 2-DOF scene (available: " +
                    kPlanarDeviceSpecs + ")");

@@ -29,14 +29,17 @@ std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile
                                     const LinkOptions& link = {});
 
 // The device specs a 2-DOF (planar) scene can run on, for messages.
-inline constexpr const char* kPlanarDeviceSpecs = "sim, haply:PATH";
+inline constexpr const char* kPlanarDeviceSpecs = "sim, serial:PATH1,PATH2, haply:PATH";
 
 // Opens a 2-DOF device for a planar scene:
 //   sim         the simulated linkage of the scene's profile
+//   serial:PATH1,PATH2  two Hapkit boards running the hapscene firmware, joint 1's and
+//               joint 2's (profiles with Hapkit-style joints: hapkit_pantograph, haplink)
 //   haply:PATH  a board running Haply's stock firmware (haply2diy_v1..v3 profiles)
 // Throws as open_device does.
 std::unique_ptr<DeviceOf<2>> open_planar_device(const std::string& spec, const PlanarProfile& profile,
-                                                const PlanarSimulationConfig& simulation);
+                                                const PlanarSimulationConfig& simulation,
+                                                const LinkOptions& link = {});
 
 // The firmware `--device hil` loads when no ELF is named (empty when this build has none).
 std::string default_firmware_elf();

@@ -14,63 +14,13 @@
 #include <vector>
 
 #include "engine/devices/serial_hapkit.hpp"
-#include "tests/devices/fake_board.hpp"
+#include "tests/devices/pty_board.hpp"
 #include "tests/support.hpp"
 
 using namespace hapscene;
+using hapscene::test::PtyBoard;
 
 namespace {
-
-// The board's side of the pseudo-terminal, answering in its own thread.
-class PtyBoard {
- public:
-  PtyBoard() {
-    master_ = posix_openpt(O_RDWR | O_NOCTTY);
-    REQUIRE(master_ >= 0);
-    REQUIRE(grantpt(master_) == 0);
-    REQUIRE(unlockpt(master_) == 0);
-    path_ = ptsname(master_);
-    thread_ = std::thread([this] { serve(); });
-  }
-  ~PtyBoard() { unplug(); }
-
-  // Closes the master: the device's next read fails as if the cable were pulled.
-  void unplug() {
-    stop_.store(true);
-    if (thread_.joinable()) thread_.join();
-    if (master_ >= 0) close(master_);
-    master_ = -1;
-  }
-
-  const std::string& path() const { return path_; }
-  std::atomic<bool> muted{false};
-  std::atomic<int> commands{0};
-  std::atomic<int> last_duty{-1};
-
- private:
-  void serve() {
-    test::FakeBoard board;
-    std::vector<std::uint8_t> out;
-    std::uint8_t buffer[256];
-    while (!stop_.load()) {
-      pollfd fd{master_, POLLIN, 0};
-      if (poll(&fd, 1, 1) <= 0) continue;
-      const ssize_t n = read(master_, buffer, sizeof buffer);
-      if (n <= 0) continue;
-      board.muted = muted.load();
-      out.clear();
-      board.receive(buffer, static_cast<std::size_t>(n), &out);
-      commands.store(board.commands);
-      last_duty.store(board.last_command.duty);
-      if (!out.empty()) (void)!write(master_, out.data(), out.size());
-    }
-  }
-
-  int master_{-1};
-  std::string path_;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-};
 
 DeviceProfile hapkit3() { return test::scene_from(R"({"effects": []})").device; }
 
