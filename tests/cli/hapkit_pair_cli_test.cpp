@@ -7,16 +7,30 @@
 
 #include "tests/cli/cli_support.hpp"
 #include "tests/devices/pty_board.hpp"
+#include "tests/scratch_folder.hpp"
 
 using namespace hapscene;
 using namespace hapscene::test;
 
+namespace {
+
+// A box in a Hapkit pantograph's workspace (two Hapkit boards, MR sensors: what the
+// hapscene firmware drives), written to a scratch folder; returns its path.
+std::string pantograph_scene(const ScratchFolder& folder) {
+  return folder
+      .write("pantograph_box.json",
+             R"({"name": "pantograph_box", "device": "hapkit_pantograph", "effects": [{"type": "box",
+                "min": ["40 mm", "140 mm"], "max": ["60 mm", "150 mm"], "stiffness": "200 N/m", "solid": "inside"}]})")
+      .string();
+}
+
+}  // namespace
+
 TEST_SUITE("threaded") {
 TEST_CASE("hapkit pair cli: a 2-DOF run on two boards exits 0 and shows both links") {
+  const ScratchFolder folder("hapkit_pair_cli_run");
   PtyBoard first, second;
-  first.counts.store(0);  // the Haplink's joints at their count zero
-  second.counts.store(0);
-  const CliOutcome out = run_cli("run environments/planar/haplink_box_inside.json --device serial:" + first.path() +
+  const CliOutcome out = run_cli("run '" + pantograph_scene(folder) + "' --device serial:" + first.path() +
                                  "," + second.path() + " --duration 0.5s --no-reload --quiet");
   CHECK(out.exit_code == 0);
   CHECK(out.out.find("  joint 1 port     " + first.path()) != std::string::npos);
@@ -30,24 +44,27 @@ TEST_CASE("hapkit pair cli: a 2-DOF run on two boards exits 0 and shows both lin
   CHECK(second.commands.load() > 100);
   CHECK(first.last_duty.load() == 0);  // zero on the way out
   CHECK(second.last_duty.load() == 0);
-  MESSAGE(out.out);
 }
 
 TEST_CASE("hapkit pair cli: --baud reaches both boards' ports") {
+  const ScratchFolder folder("hapkit_pair_cli_baud");
+  const std::string scene = pantograph_scene(folder);
   PtyBoard first, second;
-  const CliOutcome out = run_cli("run environments/planar/haplink_box_inside.json --device serial:" + first.path() +
+  const CliOutcome out = run_cli("run '" + scene + "' --device serial:" + first.path() +
                                  "," + second.path() + " --baud 115200 --duration 0.1s --no-reload --quiet");
   CHECK(out.exit_code == 0);
-  const CliOutcome bad = run_cli("run environments/planar/haplink_box_inside.json --device serial:" + first.path() +
+  const CliOutcome bad = run_cli("run '" + scene + "' --device serial:" + first.path() +
                                  "," + second.path() + " --baud 12345 --duration 0.1s --no-reload --quiet");
   CHECK(bad.exit_code == 2);
   CHECK(bad.err.find("baud") != std::string::npos);
 }
 
 TEST_CASE("hapkit pair cli: a board that never answers fails the run (exit 1) and is named") {
+  const ScratchFolder folder("hapkit_pair_cli_mute");
+  const std::string scene = pantograph_scene(folder);
   PtyBoard first, second;
   second.muted.store(true);
-  const CliOutcome out = run_cli("run environments/planar/haplink_box_inside.json --device serial:" + first.path() +
+  const CliOutcome out = run_cli("run '" + scene + "' --device serial:" + first.path() +
                                  "," + second.path() + " --duration 0.1s --no-reload --quiet");
   CHECK(out.exit_code == 1);
   CHECK(out.err.find("joint 2's board " + second.path()) != std::string::npos);
@@ -55,7 +72,8 @@ TEST_CASE("hapkit pair cli: a board that never answers fails the run (exit 1) an
 
 TEST_CASE("hapkit pair cli: malformed or mismatched device strings are usage errors") {
   PtyBoard board;
-  const std::string planar = "run environments/planar/haplink_box_inside.json --duration 0.1s --no-reload --device ";
+  const ScratchFolder folder("hapkit_pair_cli_errors");
+  const std::string planar = "run '" + pantograph_scene(folder) + "' --duration 0.1s --no-reload --device ";
   const CliOutcome one = run_cli(planar + "serial:" + board.path());
   CHECK(one.exit_code == 2);
   CHECK(one.err.find("one port for a 2-DOF scene") != std::string::npos);
@@ -69,6 +87,12 @@ TEST_CASE("hapkit pair cli: malformed or mismatched device strings are usage err
                                    "--no-reload --device serial:/a,/b");
   CHECK(haply.exit_code == 2);
   CHECK(haply.err.find("is not a Hapkit board") != std::string::npos);
+  // The Haplink's joints read encoders, which the hapscene firmware does not.
+  const CliOutcome haplink = run_cli("run environments/planar/haplink_box_inside.json --duration 0.1s "
+                                     "--no-reload --device serial:/a,/b");
+  CHECK(haplink.exit_code == 2);
+  CHECK(haplink.err.find("joint 1 reads an encoder, but the hapscene firmware reads the Hapkit's MR sensor") !=
+        std::string::npos);
   const CliOutcome one_dof = run_cli("run environments/wall.json --duration 0.1s --device serial:/a,/b");
   CHECK(one_dof.exit_code == 2);
   CHECK(one_dof.err.find("is 1-DOF and takes one port") != std::string::npos);

@@ -16,15 +16,22 @@ namespace {
 
 const char* kWhat = "--device serial";
 
-// The hapscene firmware drives one joint: it reports counts and takes a duty.
+// The hapscene firmware drives one joint: it reads the Hapkit's MR sensor and takes a duty.
+// (An encoder joint, the Haplink's, would have its MR counts read as encoder counts: the
+// handle in the wrong place.)
 void require_hapkit_joints(const PlanarProfile& profile) {
   for (std::size_t i = 0; i < 2; ++i) {
     const PlanarJoint& joint = profile.joints[i];
-    const bool counts = joint.sensor.kind == PlanarSensorKind::mr || joint.sensor.kind == PlanarSensorKind::encoder;
+    if (joint.sensor.kind == PlanarSensorKind::encoder) {
+      throw InputError(std::string(kWhat) + ": profile \"" + profile.name + "\" joint " + std::to_string(i + 1) +
+                       " reads an encoder, but the hapscene firmware reads the Hapkit's MR sensor (a Hapkit "
+                       "pantograph's joints, \"hapkit_pantograph\", are what two boards drive)");
+    }
+    const bool counts = joint.sensor.kind == PlanarSensorKind::mr;
     const bool duty = joint.drive.law == PlanarDriveLaw::sqrt || joint.drive.law == PlanarDriveLaw::linear;
     if (!counts || !duty) {
       throw InputError(std::string(kWhat) + ": profile \"" + profile.name + "\" joint " + std::to_string(i + 1) +
-                       " is not a Hapkit board (it needs an \"mr\" or \"encoder\" sensor and a \"sqrt\" or "
+                       " is not a Hapkit board (it needs an \"mr\" sensor and a \"sqrt\" or "
                        "\"linear\" drive; a Haply-style profile runs on --device haply:PATH)");
     }
   }
