@@ -1,5 +1,7 @@
 #include "engine/scene/step.hpp"
 
+#include <type_traits>
+
 #include "engine/devices/device_model.hpp"
 
 namespace hapscene {
@@ -96,19 +98,40 @@ template <bool kScripts, int N>
   return force_N;
 }
 
+// The device model's stages for a tick compiled for device family kFamily (a planar
+// model's PlanarFamily; 1-D models have one family).
+template <PlanarFamily kFamily, typename Model, typename Reading, typename Sensor>
+[[gnu::always_inline]] inline auto sense_stage(const Model& model, const Reading& reading, Sensor* sensor) noexcept {
+  if constexpr (std::is_same_v<Model, PlanarTickModel>) {
+    return sense_position_m<kFamily>(model, reading, sensor);
+  } else {
+    return sense_position_m(model, reading, sensor);
+  }
+}
+template <PlanarFamily kFamily, typename Model, typename Sensor, typename Force, typename Command>
+[[gnu::always_inline]] inline void command_stage(const Model& model, const Sensor& sensor, const Force& force_N,
+                                                 Command* command) noexcept {
+  if constexpr (std::is_same_v<Model, PlanarTickModel>) {
+    motor_command<kFamily>(model, sensor, force_N, command);
+  } else {
+    *command = motor_command(model, sensor, force_N);
+  }
+}
+
 // One tick of a scene with N axes, written once for every N. Each case is its own
 // instantiation: a tick of built-in effects alone (the common one) makes no call at all,
 // so it saves no registers and keeps its values in them; scripts and cross-fades take the
 // others. The device model's two functions (sense_position_m, motor_command) are
-// overloaded per device family and inlined.
-template <int N, bool kFading, bool kScripts>
+// overloaded per device model and inlined; a planar tick of built-in effects alone is also
+// compiled for each PlanarFamily, its sensor, linkage and drive branches decided.
+template <int N, bool kFading, bool kScripts, PlanarFamily kFamily = PlanarFamily::general>
 [[gnu::noinline]] void step_tick(const SceneOf<N>& scene,
                                  const typename SceneParts<N>::Reading& reading,
                                  TickStateOf<N>* state, const CrossfadeOf<N>* fade) noexcept {
   // Sensor: the device model turns the reading into the handle position. (The tick count
   // converts as signed: one instruction, and runs never reach 2^63 ticks.)
   state->t_s = static_cast<double>(static_cast<std::int64_t>(state->tick)) * scene.period_s;
-  state->x_m = sense_position_m(scene.device_model, reading, &state->sensor);
+  state->x_m = sense_stage<kFamily>(scene.device_model, reading, &state->sensor);
   const PoseTrust trust = pose_trust(scene.device_model, state->sensor);
   if (trust != PoseTrust::trusted) [[unlikely]] {
     hold_for_pose(trust, &state->safety.counters, &state->safety.position_hold);
@@ -139,7 +162,7 @@ template <int N, bool kFading, bool kScripts>
 
   // Safety, then the motor command the board needs.
   state->output_N = apply_safety(scene.safety, state->x_m, effects_N, &state->safety);
-  state->command = motor_command(scene.device_model, state->sensor, state->output_N);
+  command_stage<kFamily>(scene.device_model, state->sensor, state->output_N, &state->command);
   if (command_saturated(state->command)) ++state->safety.counters.motor_saturated_ticks;
   ++state->tick;
 }
@@ -160,6 +183,19 @@ void step(const SceneOf<N>& scene, const typename SceneParts<N>::Reading& readin
   if (fade != nullptr) [[unlikely]] {
     step_tick<N, true, true>(scene, reading, state, fade);
   } else if (state->scripts.empty()) [[likely]] {
+    if constexpr (N == 2) {
+      // The variant compiled for the scene's device family (one branch, always the same).
+      switch (scene.device_model.model.family) {
+        case PlanarFamily::serial_encoders_linear:
+          step_tick<N, false, false, PlanarFamily::serial_encoders_linear>(scene, reading, state, nullptr);
+          return;
+        case PlanarFamily::five_bar_angles_torque:
+          step_tick<N, false, false, PlanarFamily::five_bar_angles_torque>(scene, reading, state, nullptr);
+          return;
+        case PlanarFamily::general:
+          break;
+      }
+    }
     step_tick<N, false, false>(scene, reading, state, nullptr);
   } else {
     step_tick<N, false, true>(scene, reading, state, nullptr);

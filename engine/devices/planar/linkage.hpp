@@ -60,8 +60,65 @@ struct LinkagePose {
   Jacobian2 jacobian{};
 };
 
-// The five-bar's solve (linkage.cpp): out of line, as it is long.
-LinkagePose solve_five_bar(const FiveBarGeometry& g, const Vec2& q_rad) noexcept;
+// The five-bar's solve, written into `pose` (inline: the tick of a five-bar device runs it
+// every tick). The handle is where the circles of the distal links (centred on the elbows)
+// meet. Its Jacobian follows from differentiating the two closure constraints
+// |p - e_i|^2 = L_i^2: (p - e_i) . (dp - de_i) = 0, so M dp = diag((p - e_i) . de_i/dq_i) dq
+// with the rows of M the distal link vectors. M is singular exactly when the distal links
+// are aligned (the workspace boundary), where the pose is answered invalid.
+[[gnu::always_inline]] inline void solve_five_bar(const FiveBarGeometry& g, const Vec2& q_rad,
+                                                  LinkagePose* pose) noexcept {
+  const double sin_1 = std::sin(q_rad[0]), cos_1 = std::cos(q_rad[0]);
+  const double sin_2 = std::sin(q_rad[1]), cos_2 = std::cos(q_rad[1]);
+  // Component by component (as Vec2's operators compute).
+  const double e1_x = g.base_1_m[0] + g.proximal_1_m * cos_1, e1_y = g.base_1_m[1] + g.proximal_1_m * sin_1;
+  const double e2_x = g.base_2_m[0] + g.proximal_2_m * cos_2, e2_y = g.base_2_m[1] + g.proximal_2_m * sin_2;
+  pose->valid = false;
+  pose->handle_m = Vec2{};
+  pose->jacobian = Jacobian2{};
+  pose->elbow_1_m = Vec2{{e1_x, e1_y}};
+  pose->elbow_2_m = Vec2{{e2_x, e2_y}};
+  const double h_x = e2_x - e1_x, h_y = e2_y - e1_y;
+  const double hm = std::sqrt(h_x * h_x + h_y * h_y);
+  if (!(hm > 0.0) || !std::isfinite(hm)) return;
+  const double u_x = h_x / hm, u_y = h_y / hm;
+  // Distance from e1 along u to the chord, and the half chord.
+  const double along = (hm * hm + g.distal_1_m * g.distal_1_m - g.distal_2_m * g.distal_2_m) / (2.0 * hm);
+  const double half_chord_sq = g.distal_1_m * g.distal_1_m - along * along;
+  if (!(half_chord_sq > 0.0)) return;  // the distal links cannot meet (or only straight)
+  const double side = g.assembly_sign >= 0 ? 1.0 : -1.0;
+  const double half_chord = side * std::sqrt(half_chord_sq);
+  // p = e1 + along u + half_chord u_left, u_left = (-u_y, u_x).
+  const double p_x = (e1_x + along * u_x) + half_chord * -u_y;
+  const double p_y = (e1_y + along * u_y) + half_chord * u_x;
+
+  const double r1_x = p_x - e1_x, r1_y = p_y - e1_y;  // distal link 1
+  const double r2_x = p_x - e2_x, r2_y = p_y - e2_y;  // distal link 2
+  const double det = r1_x * r2_y - r1_y * r2_x;
+  if (det == 0.0) return;
+  // The dot products r_i . de_i/dq_i, summed from 0.0 as dot() does (the sign of a zero).
+  const double c1 = (0.0 + r1_x * (-g.proximal_1_m * sin_1)) + r1_y * (g.proximal_1_m * cos_1);
+  const double c2 = (0.0 + r2_x * (-g.proximal_2_m * sin_2)) + r2_y * (g.proximal_2_m * cos_2);
+  // M^-1 = [[r2y, -r1y], [-r2x, r1x]] / det; column j of J is M^-1 e_j c_j.
+  const double j00 = r2_y * c1 / det, j10 = -r2_x * c1 / det;
+  const double j01 = -r1_y * c2 / det, j11 = r1_x * c2 / det;
+  if (!(std::isfinite(p_x) && std::isfinite(p_y) && std::isfinite(j00) && std::isfinite(j01) &&
+        std::isfinite(j10) && std::isfinite(j11))) {
+    return;
+  }
+  pose->valid = true;
+  pose->handle_m = Vec2{{p_x, p_y}};
+  pose->jacobian.m[0][0] = j00;
+  pose->jacobian.m[1][0] = j10;
+  pose->jacobian.m[0][1] = j01;
+  pose->jacobian.m[1][1] = j11;
+}
+// The same, returned (for tests and tools).
+inline LinkagePose solve_five_bar(const FiveBarGeometry& g, const Vec2& q_rad) noexcept {
+  LinkagePose pose;
+  solve_five_bar(g, q_rad, &pose);
+  return pose;
+}
 
 // The serial arm's solve, inline: the tick's sensor stage runs it every tick.
 [[gnu::always_inline]] inline void solve_serial(const SerialArmGeometry& g, const Vec2& q_rad,
@@ -95,7 +152,7 @@ LinkagePose solve_five_bar(const FiveBarGeometry& g, const Vec2& q_rad) noexcept
   } else if (linkage.family == LinkageFamily::serial_2r) {
     solve_serial(linkage.serial, q_rad, pose);
   } else {
-    *pose = solve_five_bar(linkage.five_bar, q_rad);
+    solve_five_bar(linkage.five_bar, q_rad, pose);
   }
 }
 inline LinkagePose solve_linkage(const Linkage& linkage, const Vec2& q_rad) noexcept {

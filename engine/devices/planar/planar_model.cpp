@@ -49,7 +49,24 @@ PlanarModel compile_planar_model(const PlanarProfile& profile) noexcept {
         break;
     }
   }
+  model.family = planar_family_of(model);
   return model;
+}
+
+PlanarFamily planar_family_of(const PlanarModel& model) noexcept {
+  const PlanarJointModel& j1 = model.joints[0];
+  const PlanarJointModel& j2 = model.joints[1];
+  const bool encoders = !j1.reads_angle && !j2.reads_angle && !j1.unwraps && !j2.unwraps;
+  const bool angles = j1.reads_angle && j2.reads_angle;
+  const bool linear = j1.law == PlanarDriveLaw::linear && j2.law == PlanarDriveLaw::linear;
+  const bool torque = j1.law == PlanarDriveLaw::torque && j2.law == PlanarDriveLaw::torque;
+  if (model.linkage.family == LinkageFamily::serial_2r && encoders && linear) {
+    return PlanarFamily::serial_encoders_linear;
+  }
+  if (model.linkage.family == LinkageFamily::five_bar && angles && torque) {
+    return PlanarFamily::five_bar_angles_torque;
+  }
+  return PlanarFamily::general;
 }
 
 PlanarSensorState make_planar_sensor_state(const PlanarModel& model) noexcept {

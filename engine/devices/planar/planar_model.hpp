@@ -42,12 +42,26 @@ struct PlanarJointModel {
   double duty_max{1.0};
 };
 
+// The device families whose tick is compiled with their sensors, linkage and drive laws
+// known (the stages' per-joint and per-law branches decided at compile time); a model of
+// any other make runs the general tick. compile_planar_model names the family; the scene's
+// tick chooses its compiled variant once per tick from it (step.cpp).
+enum class PlanarFamily : std::uint8_t {
+  general,
+  serial_encoders_linear,  // a serial arm read by encoders (no wrap), linear duty laws (the Haplink)
+  five_bar_angles_torque,  // a five-bar whose board reports angles and takes torques (the 2DIY)
+};
+
 // A planar profile compiled for the tick: immutable, read through a const reference.
 struct PlanarModel {
   Linkage linkage;
   std::array<PlanarJointModel, 2> joints{};
   double coupling{};  // q2 = sensed_2 + coupling * q1
+  PlanarFamily family{PlanarFamily::general};
 };
+
+// The family of a compiled model (from its linkage, sensors and drive laws).
+PlanarFamily planar_family_of(const PlanarModel& model) noexcept;
 
 PlanarModel compile_planar_model(const PlanarProfile& profile) noexcept;
 
@@ -71,19 +85,24 @@ PlanarSensorState make_planar_sensor_state(const PlanarModel& model) noexcept;
 
 // Sensor stage: raw readings to joint angles (kept in `state->q_rad`), then the pose,
 // written to `pose`.
+// kFamily: the model's family (general: decided from the model's fields).
+template <PlanarFamily kFamily = PlanarFamily::general>
 [[gnu::always_inline]] inline void sense_planar(const PlanarModel& model, const PlanarReading& reading,
                                                 PlanarSensorState* state, LinkagePose* pose) noexcept {
   Vec2 q{};
   for (int i = 0; i < 2; ++i) {
     const PlanarJointModel& joint = model.joints[static_cast<std::size_t>(i)];
-    if (joint.reads_angle) {
+    const bool reads_angle =
+        kFamily == PlanarFamily::general ? joint.reads_angle : kFamily == PlanarFamily::five_bar_angles_torque;
+    const bool unwraps = kFamily == PlanarFamily::general && joint.unwraps;
+    if (reads_angle) {
       q[i] = reading.angle_deg[i] * (std::numbers::pi / 180.0) + joint.offset_rad;
     } else {
       // Only an MR sensor wraps: an encoder's count is already unwrapped (its flip
       // counter could never flip), so it skips the counter's work.
       const std::size_t k = static_cast<std::size_t>(i);
       const std::int32_t raw = reading.counts[k];
-      const std::int32_t unwrapped = joint.unwraps ? state->flip_counter[k].update(raw) : raw;
+      const std::int32_t unwrapped = unwraps ? state->flip_counter[k].update(raw) : raw;
       state->raw_counts[k] = raw;
       state->unwrapped_counts[k] = unwrapped;
       q[i] = joint.rad_per_count * unwrapped + joint.offset_rad;
@@ -91,12 +110,20 @@ PlanarSensorState make_planar_sensor_state(const PlanarModel& model) noexcept;
   }
   q[1] += model.coupling * q[0];
   state->q_rad = q;
-  solve_linkage(model.linkage, q, pose);
+  if constexpr (kFamily == PlanarFamily::general) {
+    solve_linkage(model.linkage, q, pose);
+  } else if (!all_finite(q)) {
+    *pose = LinkagePose{};
+  } else if constexpr (kFamily == PlanarFamily::serial_encoders_linear) {
+    solve_serial(model.linkage.serial, q, pose);
+  } else {
+    solve_five_bar(model.linkage.five_bar, q, pose);
+  }
 }
 inline LinkagePose sense_planar(const PlanarModel& model, const PlanarReading& reading,
                                 PlanarSensorState* state) noexcept {
   LinkagePose pose;
-  sense_planar(model, reading, state, &pose);
+  sense_planar<>(model, reading, state, &pose);
   return pose;
 }
 
@@ -131,11 +158,14 @@ inline Vec2 joint_torques_from_motor_N_m(const PlanarModel& model, const Vec2& m
 [[gnu::noinline]] void scale_to_drives(const PlanarModel& model, Vec2* torque_N_m,
                                        PlanarMotorCommand* command) noexcept;
 
-// Command stage: the force on the handle at the pose whose Jacobian is `jacobian`.
-[[gnu::always_inline]] inline PlanarMotorCommand planar_motor_command(const PlanarModel& model,
-                                                                      const Jacobian2& jacobian,
-                                                                      const Vec2& force_N) noexcept {
-  PlanarMotorCommand command;
+// Command stage: the force on the handle at the pose whose Jacobian is `jacobian`, written
+// to `command`. kFamily as for sense_planar.
+template <PlanarFamily kFamily = PlanarFamily::general>
+[[gnu::always_inline]] inline void planar_motor_command(const PlanarModel& model, const Jacobian2& jacobian,
+                                                        const Vec2& force_N, PlanarMotorCommand* out) noexcept {
+  PlanarMotorCommand& command = *out;
+  command.scale = 1.0;
+  command.saturated = false;
   Vec2 torque = motor_torques_from_joint_N_m(model, joint_torques_N_m(jacobian, force_N));
   if (!all_finite(torque)) torque = Vec2{};
   // The common case in two comparisons: both motors within their drives (NaN cannot be).
@@ -148,10 +178,13 @@ inline Vec2 joint_torques_from_motor_N_m(const PlanarModel& model, const Vec2& m
     const PlanarJointModel& joint = model.joints[static_cast<std::size_t>(i)];
     MotorCommand& motor = command.motor[static_cast<std::size_t>(i)];
     const double magnitude = std::fabs(torque[i]);
+    const PlanarDriveLaw law = kFamily == PlanarFamily::general                  ? joint.law
+                               : kFamily == PlanarFamily::serial_encoders_linear ? PlanarDriveLaw::linear
+                                                                                 : PlanarDriveLaw::torque;
     double duty;
-    if (joint.law == PlanarDriveLaw::linear) {
+    if (law == PlanarDriveLaw::linear) {
       duty = magnitude * joint.duty_per_N_m;
-    } else if (joint.law == PlanarDriveLaw::sqrt) {
+    } else if (law == PlanarDriveLaw::sqrt) {
       duty = std::sqrt(magnitude * joint.inverse_motor_constant);
     } else {
       duty = magnitude / joint.motor_torque_max_N_m;
@@ -161,6 +194,11 @@ inline Vec2 joint_torques_from_motor_N_m(const PlanarModel& model, const Vec2& m
     motor.duty = duty < joint.duty_max ? duty : joint.duty_max;
     motor.direction_high = torque[i] > 0.0;
   }
+}
+inline PlanarMotorCommand planar_motor_command(const PlanarModel& model, const Jacobian2& jacobian,
+                                               const Vec2& force_N) noexcept {
+  PlanarMotorCommand command;
+  planar_motor_command(model, jacobian, force_N, &command);
   return command;
 }
 

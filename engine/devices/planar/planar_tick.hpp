@@ -43,10 +43,12 @@ struct PlanarTickSensor {
 
 PlanarTickSensor make_sensor_state(const PlanarTickModel& model) noexcept;
 
-// Sensor stage: the joints' readings to the handle position (task frame, m).
+// Sensor stage: the joints' readings to the handle position (task frame, m). kFamily: the
+// model's family, or general (PlanarFamily).
+template <PlanarFamily kFamily = PlanarFamily::general>
 [[gnu::always_inline]] inline Vec2 sense_position_m(const PlanarTickModel& model, const PlanarReading& reading,
                              PlanarTickSensor* sensor) noexcept {
-  sense_planar(model.model, reading, &sensor->joints, &sensor->pose);
+  sense_planar<kFamily>(model.model, reading, &sensor->joints, &sensor->pose);
   return sensor->pose.handle_m;
 }
 
@@ -71,8 +73,13 @@ PlanarTickSensor make_sensor_state(const PlanarTickModel& model) noexcept;
 }
 
 // Command stage: J^T F at this tick's pose, to each motor's command (both scaled alike
-// when one saturates).
-[[gnu::always_inline]] inline PlanarMotorCommand motor_command(const PlanarTickModel& model, const PlanarTickSensor& sensor,
+// when one saturates), written to `command`.
+template <PlanarFamily kFamily = PlanarFamily::general>
+[[gnu::always_inline]] inline void motor_command(const PlanarTickModel& model, const PlanarTickSensor& sensor,
+                                                 const Vec2& force_N, PlanarMotorCommand* command) noexcept {
+  planar_motor_command<kFamily>(model.model, sensor.pose.jacobian, force_N, command);
+}
+inline PlanarMotorCommand motor_command(const PlanarTickModel& model, const PlanarTickSensor& sensor,
                                         const Vec2& force_N) noexcept {
   return planar_motor_command(model.model, sensor.pose.jacobian, force_N);
 }

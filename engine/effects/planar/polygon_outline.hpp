@@ -128,7 +128,7 @@ class PolygonOutline {
   // The frictionless slide along the proxy's edge when it ends inside the edge, as the full
   // step decides it (its end and the proxy placed there both farther than the vertex snap
   // from either vertex); false, and the state untouched, otherwise.
-  bool slide_on_edge(const Vec2& x_m, PlanarProxyState& state) const noexcept {
+  [[gnu::always_inline]] bool slide_on_edge(const Vec2& x_m, PlanarProxyState& state) const noexcept {
     const int e = state.feature;
     if (!(side(e, x_m) <= 0.0)) return false;  // x left the solid side: the proxy leaves the edge
     const double length = length_m(e);
