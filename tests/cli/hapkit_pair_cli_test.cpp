@@ -15,11 +15,12 @@ using namespace hapscene::test;
 namespace {
 
 // A box in a Hapkit pantograph's workspace (two Hapkit boards, MR sensors: what the
-// hapscene firmware drives), written to a scratch folder; returns its path.
+// hapscene firmware drives), written to a scratch folder; returns its path. At 100 Hz: these
+// tests are about the device path, not a loaded machine's ability to keep 1 kHz.
 std::string pantograph_scene(const ScratchFolder& folder) {
   return folder
       .write("pantograph_box.json",
-             R"({"name": "pantograph_box", "device": "hapkit_pantograph", "effects": [{"type": "box",
+             R"({"name": "pantograph_box", "device": "hapkit_pantograph", "rate_hz": 100, "effects": [{"type": "box",
                 "min": ["40 mm", "140 mm"], "max": ["60 mm", "150 mm"], "stiffness": "200 N/m", "solid": "inside"}]})")
       .string();
 }
@@ -40,8 +41,8 @@ TEST_CASE("hapkit pair cli: a 2-DOF run on two boards exits 0 and shows both lin
   CHECK(out.out.find("  joint 1 link             ") != std::string::npos);
   CHECK(out.out.find("  joint 2 round trip       ") != std::string::npos);
   CHECK(out.out.find("  two boards       ") != std::string::npos);
-  CHECK(first.commands.load() > 100);
-  CHECK(second.commands.load() > 100);
+  CHECK(first.commands.load() > 40);  // 0.5 s at 100 Hz
+  CHECK(second.commands.load() > 40);
   CHECK(first.last_duty.load() == 0);  // zero on the way out
   CHECK(second.last_duty.load() == 0);
 }
