@@ -3,6 +3,7 @@
 // the board however it ends: the end of the run, SIGTERM, and kill -9 (the watchdog).
 #include <doctest/doctest.h>
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -50,11 +51,14 @@ void move_to_home(PtyHaplyBoard& board) {
 
 // Starts `hapscene run ENV --device haply:PATH` for a long run; returns its pid.
 pid_t start_run(const std::string& environment, const std::string& port) {
+  const std::string device = "haply:" + port;  // made before the fork
   const pid_t pid = fork();
   REQUIRE(pid >= 0);
   if (pid == 0) {
-    const std::string device = "haply:" + port;
-    if (freopen("/dev/null", "w", stdout) == nullptr || freopen("/dev/null", "w", stderr) == nullptr) _exit(126);
+
+    // Between fork and exec only async-signal-safe calls (this process has threads).
+    const int null_fd = open("/dev/null", O_WRONLY);
+    if (null_fd < 0 || dup2(null_fd, 1) < 0 || dup2(null_fd, 2) < 0) _exit(126);
     execl(HAPSCENE_BINARY, HAPSCENE_BINARY, "run", environment.c_str(), "--device", device.c_str(), "--duration",
           "60s", "--no-reload", "--quiet", static_cast<char*>(nullptr));
     _exit(127);
@@ -110,6 +114,28 @@ TEST_CASE("haply run cli: device and scene must match, and the simulator's optio
   const CliOutcome sim_time = run_cli("run '" + env + "' --device haply:/dev/null --sim-time");
   CHECK(sim_time.exit_code == 2);
   CHECK(sim_time.err.find("runs in real time") != std::string::npos);
+}
+
+TEST_CASE("haply run cli: a stalled host (SIGSTOP) gets zero torque from the watchdog, then ramps in again") {
+  const test::ScratchFolder folder("haply_run_cli_stall");
+  const std::string env = folder.write("pull.json", kSpringAboveHome).string();
+  PtyHaplyBoard board;
+  const pid_t run = start_run(env, board.path());
+  move_to_home(board);
+  if (board.wait_for(torque_on, 10000)) {
+    kill(run, SIGSTOP);
+    CHECK(board.wait_for(torque_off, 3000));  // the stall bound is 100 ms
+    kill(run, SIGCONT);
+    // The host saw the watchdog fire (a restart) and renders again after its soft start.
+    CHECK(board.wait_for(torque_on, 5000));
+  } else {
+    // (A run this shared machine stalls ends itself on its overruns, at zero torque.)
+    int status = 0;
+    CHECK(waitpid(run, &status, WNOHANG) == run);
+  }
+  kill(run, SIGKILL);
+  waitpid(run, nullptr, 0);
+  CHECK(board.wait_for(torque_off, 3000));
 }
 
 TEST_CASE("haply run cli: SIGTERM ends the run at zero torque, and so does kill -9 (the watchdog)") {

@@ -1,14 +1,13 @@
 // The Haply device end to end through a pseudo-terminal: the test plays a board running
 // the stock firmware on the master side (a FakeHaplyBoard in a thread); the device opens
-// the slave as it would open /dev/ttyACM0. Every way a run can end leaves zero torque on
-// the board: a clean close here, and through the watchdog process a kill -9 and a stalled
-// process (SIGSTOP) of a forked host.
+// the slave as it would open /dev/ttyACM0. A clean close leaves zero torque on the board
+// (a kill -9 and a stalled host, which the watchdog process covers, are tested on a real
+// hapscene process: tests/cli/haply_run_cli_test.cpp).
 #include <doctest/doctest.h>
 
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -43,26 +42,7 @@ PlanarMotorCommand torque_command(double t1_N_m, double t2_N_m) {
   return command;
 }
 
-bool torque_on(const test::FakeHaplyBoard& b) { return b.torque_N_m[0] != 0.0f || b.torque_N_m[1] != 0.0f; }
 bool torque_off(const test::FakeHaplyBoard& b) { return b.torque_N_m[0] == 0.0f && b.torque_N_m[1] == 0.0f; }
-
-// A forked host: opens the device and ticks at about 1 kHz with a torque, forever; after a
-// restart (the watchdog fired while it was stopped) it commands a different torque, so the
-// test can see it noticed.
-[[noreturn]] void host_process(const std::string& path) {
-  try {
-    HaplyDevice device(v3(), config_for(path));
-    double torque_N_m = 0.05;
-    for (;;) {
-      (void)device.read();
-      if (device.take_restart()) torque_N_m = 0.07;
-      device.write(torque_command(torque_N_m, -torque_N_m));
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-  } catch (...) {
-    _exit(3);
-  }
-}
 
 bool process_gone(pid_t pid) { return kill(pid, 0) != 0; }
 
@@ -116,36 +96,5 @@ TEST_CASE("haply device: a board that never answers is an error after the handsh
   // It said hello (reset and setup) and asked again on silence, with no torque ever.
   CHECK(board.with_board([](auto& b) { return b.setups; }) >= 1);
   CHECK(board.with_board(torque_off));
-}
-
-TEST_CASE("haply device: the watchdog zeroes the torque when the host is killed (kill -9)") {
-  PtyHaplyBoard board;
-  const pid_t host = fork();
-  REQUIRE(host >= 0);
-  if (host == 0) host_process(board.path());
-  const bool rendering = board.wait_for(torque_on, 5000);
-  CHECK(rendering);
-  kill(host, SIGKILL);
-  int status = 0;
-  waitpid(host, &status, 0);
-  CHECK(WIFSIGNALED(status));
-  // The board keeps the last torque on its own: only the watchdog can take it off.
-  CHECK(board.wait_for(torque_off, 2000));
-}
-
-TEST_CASE("haply device: the watchdog zeroes the torque of a stalled host, which then ramps in again") {
-  PtyHaplyBoard board;
-  const pid_t host = fork();
-  REQUIRE(host >= 0);
-  if (host == 0) host_process(board.path());
-  CHECK(board.wait_for([](auto& b) { return b.torque_N_m[1] == 0.05f; }, 5000));
-  kill(host, SIGSTOP);
-  CHECK(board.wait_for(torque_off, 2000));   // the stall bound is 100 ms
-  kill(host, SIGCONT);
-  // The host saw the watchdog had fired (a restart) and renders again.
-  CHECK(board.wait_for([](auto& b) { return b.torque_N_m[1] == 0.07f; }, 2000));
-  kill(host, SIGKILL);
-  waitpid(host, nullptr, 0);
-  CHECK(board.wait_for(torque_off, 2000));
 }
 }
