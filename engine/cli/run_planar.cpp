@@ -68,7 +68,8 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
   // (Output paths were checked by run_command: none overwrites an input or another.)
   if (settings.noise_counts >= 0.0) arguments.fail("--noise: not yet for a 2-DOF environment");
   const PlanarScene scene = load_planar_environment_file(file);
-  const bool simulated = settings.device == "sim";
+  // The simulated linkage, alone or under two simulated boards: the hand and simulated time apply.
+  const bool simulated = simulates_plant(settings.device);
   if (!simulated && (settings.hand_text || settings.hold_text || settings.start_text)) {
     arguments.fail(std::string(settings.hand_text ? "--hand" : settings.hold_text ? "--hold" : "--start") +
                    ": the simulated device's option; --device " + settings.device + " is a real one");
@@ -96,7 +97,6 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
   } catch (const InputError& error) {
     arguments.fail(error.what());
   }
-  const auto* simulated_device = dynamic_cast<const SimulatedPlanar*>(device.get());
 
   const std::unique_ptr<TelemetryLogOf<2>> log = open_telemetry_log<2>(settings, scene.rate_hz);
   // The figure's trace (allocated before the run): the handle and the proxy of the shape
@@ -131,10 +131,10 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
                                                              proxy_label));
     print_out("  plot             %s\n", printable(*settings.plot_path).c_str());
   }
-  // The device's report: the simulated plant's, or a real device's link.
-  if (simulated_device != nullptr) {
+  // The device's report: the simulated plant's, and the links of a device on boards.
+  if (const PlanarPlant* plant = simulated_planar_plant(*device)) {
     print_out("  plant            %llu linkage faults (the linkage at the edge of closing)\n",
-              static_cast<unsigned long long>(simulated_device->plant().linkage_faults()));
+              static_cast<unsigned long long>(plant->linkage_faults()));
   }
   write_out(device->report());
   flush_out();

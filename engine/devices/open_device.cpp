@@ -7,6 +7,7 @@
 #include "engine/devices/simulated_hapkit.hpp"
 #if HAPSCENE_HAVE_HIL
 #include "engine/devices/hil/hil_hapkit.hpp"
+#include "engine/devices/hil/hil_pair.hpp"
 #endif
 
 namespace hapscene {
@@ -17,6 +18,18 @@ std::string default_firmware_elf() {
 #else
   return {};
 #endif
+}
+
+bool simulates_plant(const std::string& spec) {
+  return spec == "sim" || spec == "hil" || spec.starts_with("hil:");
+}
+
+const PlanarPlant* simulated_planar_plant(const DeviceOf<2>& device) {
+  if (const auto* sim = dynamic_cast<const SimulatedPlanar*>(&device)) return &sim->plant();
+#if HAPSCENE_HAVE_HIL
+  if (const auto* hil = dynamic_cast<const HilPair*>(&device)) return &hil->plant();
+#endif
+  return nullptr;
 }
 
 namespace {
@@ -90,10 +103,17 @@ std::unique_ptr<DeviceOf<2>> open_planar_device(const std::string& spec, const P
     config.path = path;
     return std::make_unique<HaplyDevice>(profile, config);
   }
-  const std::string device = spec.substr(0, spec.find(':'));
-  if (device == "hil") {
-    throw InputError("--device hil: a 2-DOF scene runs on " + std::string(kPlanarDeviceSpecs) +
-                     " so far (two simulated boards in lock-step are not built yet)");
+  // hil or hil:ELF: two simulated boards, joint 1's and joint 2's
+  if (spec == "hil" || spec.starts_with("hil:")) {
+#if HAPSCENE_HAVE_HIL
+    HilPairConfig config;
+    config.simulation = simulation;
+    config.firmware_elf = spec.size() > 4 ? spec.substr(4) : default_firmware_elf();
+    return std::make_unique<HilPair>(profile, config);
+#else
+    throw InputError("--device hil: this build has no firmware-in-the-loop (it needs simavr, "
+                     "libsimavr-dev and the AVR toolchain when building; see .ci/install-deps)");
+#endif
   }
   throw InputError("--device: unknown device \"" + spec + "\" for a 2-DOF scene (available: " +
                    kPlanarDeviceSpecs + ")");

@@ -55,10 +55,9 @@ TEST_CASE("planar run: --log writes the exact 2-D header and one row per tick") 
   CHECK(rows == 500);
 }
 
-TEST_CASE("planar run: options of the other dimension and devices without 2-DOF support are refused") {
+TEST_CASE("planar run: options of the other dimension and mixed 1-D and 2-D environments are refused") {
   CHECK(run_cli("run environments/planar/haplink_box_inside.json --sim-time --hold 10mm").exit_code == 2);
   CHECK(run_cli("run environments/planar/haplink_box_inside.json --sim-time --start 1,2").exit_code == 2);
-  CHECK(run_cli("run environments/planar/haplink_box_inside.json --device hil --sim-time").exit_code == 2);
   CHECK(run_cli("run environments/planar/haplink_box_inside.json environments/spring.json --sim-time").exit_code == 2);
   CHECK(run_cli("run environments/spring.json --sim-time --hold 1mm,2mm").exit_code == 2);
 }

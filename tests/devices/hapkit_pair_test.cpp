@@ -84,8 +84,8 @@ void check_fault_on_joint_2(const std::function<void(PtyBoard&)>& start, const s
     tick(&device, 20);
     CHECK(first.last_duty.load() == 0);
   }
-  CHECK(device.zeroed_writes() > 0);
-  CHECK(device.held_ticks(1) > 0);
+  CHECK(device.pair().zeroed_writes() > 0);
+  CHECK(device.pair().held_ticks(1) > 0);
   // The report names the board (the event may come a little after the hold: silence is
   // declared after 50 ms, a stale position after 5).
   const std::string joint_2_event = std::string(" s: ") + event;
@@ -164,7 +164,7 @@ TEST_CASE("hapkit pair: an implausible position on one board zeroes both motors 
   REQUIRE(tick_until(&device, 500, [&] { return device.position_status() == PositionStatus::implausible; }));
   CHECK(tick_until(&device, 200, [&] { return second.last_duty.load() == 0; }));
   CHECK(device.fault_seen());
-  CHECK(device.held_ticks(0) > 0);
+  CHECK(device.pair().held_ticks(0) > 0);
   CHECK(device.report().find("joint 1 link event") != std::string::npos);
   first.counts.store(500);
   check_both_render(&device, first, second);

@@ -5,17 +5,8 @@
 // the hapscene firmware unchanged over its own BoardLink.
 //
 // Each tick polls both links (non-blocking) and sends both commands; the loop never waits.
-// The two links are judged as one device:
-//   position_status  the worse of the two joints'; a stale joint beside a fresh one counts
-//                    as unmeasured (no force): a pose from one fresh angle and one stale
-//                    one is a pose the handle never had
-//   write            while that status holds force (unmeasured, implausible), or either
-//                    link is not running, both motors get zero, whatever the loop asks
-//   take_restart     fires once both links are running again with a fresh position after
-//                    either came back or held the force, so the force ramps in (soft
-//                    start) on both motors together
-//   report           per board, labelled with its joint and path, and the ticks each board
-//                    held the device's force
+// The two links are judged as one device by BoardPair (board_pair.hpp): a stale or lost
+// board takes both motors to zero, and both restart together with a soft start.
 // The protocol's HELLO_REPLY names the firmware and the MCU type but no per-board identity,
 // so swapped cables cannot be detected: two paths naming the same device are refused.
 #include <array>
@@ -24,6 +15,7 @@
 #include <string>
 
 #include "engine/devices/board_link.hpp"
+#include "engine/devices/planar/board_pair.hpp"
 #include "engine/devices/planar/planar_tick.hpp"
 #include "engine/devices/serial_port.hpp"
 
@@ -36,9 +28,6 @@ struct HapkitPairConfig {
   BoardLinkConfig link;              // per link (span and speed bound set per joint)
 };
 
-// The fastest a joint turns that the link believes: 40 rad/s (a 5 cm link at 2 m/s).
-inline constexpr double kMaxJointSpeed_rad_per_s = 40.0;
-
 class HapkitPair final : public DeviceOf<2> {
  public:
   // InputError: a profile whose joints are not Hapkit-style, two paths naming one device,
@@ -50,16 +39,13 @@ class HapkitPair final : public DeviceOf<2> {
 
   PlanarReading read() noexcept override;
   void write(const PlanarMotorCommand& command) noexcept override;
-  bool take_restart() noexcept override;
-  PositionStatus position_status() const noexcept override { return status_; }
-  bool fault_seen() const noexcept override;
+  bool take_restart() noexcept override { return pair_.take_restart(); }
+  PositionStatus position_status() const noexcept override { return pair_.position_status(); }
+  bool fault_seen() const noexcept override { return pair_.fault_seen(); }
   std::string report() const override;
 
   const BoardLink& link(int joint_index) const noexcept { return boards_[static_cast<std::size_t>(joint_index)]->link; }
-  // Ticks the device held force because of each joint's board.
-  std::uint64_t held_ticks(int joint_index) const noexcept { return held_ticks_[static_cast<std::size_t>(joint_index)]; }
-  // Writes that sent zero to both motors because a board was not running or trusted.
-  std::uint64_t zeroed_writes() const noexcept { return zeroed_writes_; }
+  const BoardPair& pair() const noexcept { return pair_; }
 
  private:
   struct Board {
@@ -69,16 +55,9 @@ class HapkitPair final : public DeviceOf<2> {
     BoardLink link;
   };
 
-  void update_status() noexcept;
-
   std::array<std::string, 2> paths_;
   std::array<std::unique_ptr<Board>, 2> boards_;
-  PositionStatus status_{PositionStatus::unmeasured};
-  bool restart_pending_{};
-  bool seen_fresh_{};
-  std::array<std::uint64_t, 2> held_ticks_{};
-  std::uint64_t zeroed_writes_{};
-  std::uint64_t restarts_{};
+  BoardPair pair_;
   std::int64_t start_ns_{};
 };
 

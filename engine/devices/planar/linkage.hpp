@@ -173,6 +173,16 @@ inline Vec2 handle_velocity_m_per_s(const Jacobian2& j, const Vec2& q_dot_rad_pe
                j.m[1][0] * q_dot_rad_per_s[0] + j.m[1][1] * q_dot_rad_per_s[1]}};
 }
 
+// J^-T tau: the handle force joint torques make (solving J^T F = tau; zero at a singular
+// pose).
+inline Vec2 handle_force_from_joint_torques_N(const Jacobian2& j, const Vec2& joint_torque_N_m) noexcept {
+  const double det = j.m[0][0] * j.m[1][1] - j.m[0][1] * j.m[1][0];
+  if (!(std::fabs(det) > 1e-12)) return Vec2{};
+  const Vec2& tau = joint_torque_N_m;
+  // J^T = [[j00, j10], [j01, j11]].
+  return Vec2{{(j.m[1][1] * tau[0] - j.m[1][0] * tau[1]) / det, (-j.m[0][1] * tau[0] + j.m[0][0] * tau[1]) / det}};
+}
+
 // The 2-norm condition number of J (largest over smallest singular value; infinity at a
 // singular pose). Safety ramps force out past the profile's limit.
 double condition_number(const Jacobian2& j) noexcept;

@@ -99,13 +99,7 @@ void SimulatedPlanar::write(const PlanarMotorCommand& command) noexcept {
 }
 
 Vec2 SimulatedPlanar::motor_force_N() const noexcept {
-  // The handle force the motors' joint torques make: F = J^-T tau (zero at a singular pose).
-  const Jacobian2& j = plant_.pose().jacobian;
-  const double det = j.m[0][0] * j.m[1][1] - j.m[0][1] * j.m[1][0];
-  if (!(std::fabs(det) > 1e-12)) return Vec2{};
-  const Vec2& tau = joint_torque_N_m_;
-  // J^T F = tau, with J^T = [[j00, j10], [j01, j11]].
-  return Vec2{{(j.m[1][1] * tau[0] - j.m[1][0] * tau[1]) / det, (-j.m[0][1] * tau[0] + j.m[0][0] * tau[1]) / det}};
+  return handle_force_from_joint_torques_N(plant_.pose().jacobian, joint_torque_N_m_);
 }
 
 }  // namespace hapscene
