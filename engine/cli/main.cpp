@@ -43,7 +43,11 @@ std::optional<int> builtin(const std::vector<std::string>& args) {
       write_out(hapscene::top_level_usage());
       return hapscene::kExitOk;
     }
-    const std::string help = hapscene::command_help(args[1]);
+    std::string help = hapscene::command_help(args[1]);
+    // help help, help version, ...: the top-level usage describes them.
+    for (const hapscene::BuiltinCommand& other : hapscene::builtin_commands()) {
+      if (help.empty() && args[1] == other.name) help = hapscene::top_level_usage();
+    }
     if (help.empty() || args.size() > 2) {
       throw hapscene::InputError("hapscene help: " + (args.size() > 2 ? std::string("takes one command name")
                                                                        : unknown_command(args[1])));

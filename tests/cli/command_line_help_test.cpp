@@ -89,6 +89,8 @@ TEST_CASE("command line: the usage lists every command and every option the pars
   CHECK(usage.exit_code == 0);
   CHECK(run_cli("help").out == usage.out);
   CHECK(run_cli("-h").out == usage.out);
+  CHECK(run_cli("help completion").out == usage.out);
+  CHECK(run_cli("help run validate").exit_code == 2);
   // Without a command: the usage on stderr, exit 2.
   const CliOutcome none = run_cli("");
   CHECK(none.exit_code == 2);
