@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <cstdlib>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -246,4 +247,53 @@ TEST_CASE("command line: the man page renders without warnings") {
   CHECK(text.empty());
   const std::string rendered = run_bash(folder, "groff -man -Tascii '" + page + "' | col -b 2>/dev/null || true\n");
   CHECK(contains(rendered, "--duration"));
+}
+
+// Every option each command's help lists (every form of bench) is read by the command: given
+// alone with a valid value and a file that does not exist, the command gets as far as its
+// files (exit 2), never to the logic error that an option the table defines and the code
+// never reads (or the code reads and the table lacks) would raise (exit 1).
+TEST_CASE("command line: every option in the help is one its command reads") {
+  const hapscene::test::ScratchFolder folder("cli_every_option");
+  const std::string out = folder.dir.string() + "/out";
+  const std::map<std::string, std::string> values = {
+      {"device", "sim"}, {"baud", "9600"}, {"duration", "1s"}, {"hand", "hold"}, {"hand-stiffness", "100"},
+      {"hand-damping", "1"}, {"hand-mass", "0.02"}, {"hold", "0"}, {"release", "1s"}, {"start", "0"},
+      {"noise", "0"}, {"seed", "1"}, {"log", out + ".csv"}, {"plot", out + ".svg"}, {"report", out + ".json"},
+      {"output", out + ".svg"}, {"svg", out + ".svg"}, {"x", "0:1mm:1mm"}, {"y", "0:1mm:1mm"}, {"v", "0"},
+      {"t", "0"}, {"scenario", "hold"}, {"grid", "10"}, {"width", "500"}, {"seconds", "0.1"}, {"passes", "1"},
+      {"scripts", "scripts"}, {"rate", "1000"}, {"axes", "1"}, {"ticks", "10000"}, {"impl", "builtin"}};
+  std::size_t checked = 0;
+  for (const char* command : kCommands) {
+    std::istringstream help(run_cli(std::string("help ") + command).out);
+    std::string mode;  // the form whose options follow ("options of --soak:")
+    bool in_options = false;
+    for (std::string line; std::getline(help, line);) {
+      if (line.starts_with("options")) {
+        in_options = true;
+        mode = line.starts_with("options of ") ? line.substr(11, line.size() - 12) : std::string();
+        continue;
+      }
+      if (line.empty()) in_options = false;
+      if (!in_options || !line.starts_with("  ")) continue;
+      const std::size_t at = line.find("--");
+      if (at == std::string::npos || at > 8 || line.substr(at) .starts_with("--help")) continue;
+      const std::size_t name_end = line.find(' ', at);
+      const std::string name = line.substr(at + 2, name_end - at - 2);
+      const bool flag = name_end == std::string::npos || line[name_end + 1] == ' ';
+      std::string args = std::string(command) + (mode.empty() ? "" : " " + mode) + " --" + name;
+      if (!flag) {
+        CAPTURE(name);
+        REQUIRE(values.count(name) == 1);
+        args += " " + values.at(name);
+      }
+      args += std::string(" ") + (std::string(command) == "test" ? "nowhere.test.json" : "nowhere.json");
+      CAPTURE(args);
+      const CliOutcome outcome = run_cli(args);
+      CHECK(outcome.exit_code == 2);
+      CHECK(outcome.err.find("command_definitions") == std::string::npos);
+      ++checked;
+    }
+  }
+  CHECK(checked >= 55);  // 55 when written
 }
