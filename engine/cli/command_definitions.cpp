@@ -37,24 +37,24 @@ constexpr std::string_view kPlotScenarioValues = "sweep press release hold shake
 // ---- run
 constexpr OptionDefinition kRunOptions[] = {
     {"device", 'D', "SPEC",
-     "the device: sim (a simulated device from the scene's profile), hil (the firmware on a simulated "
-     "ATmega328P and Hapkit; hil:FILE.elf another build), serial:PORT (a Hapkit running the hapscene firmware; "
-     "2-DOF: serial:PORT1,PORT2), haply:PORT (a Haply 2DIY)",
+     "the device: sim, a simulated device from the scene's profile; hil, the firmware on a simulated "
+     "ATmega328P and Hapkit (hil:FILE.elf: another build); serial:PORT, a Hapkit running the hapscene firmware "
+     "(2-DOF: serial:PORT1,PORT2); haply:PORT, a Haply 2DIY",
      "sim", nullptr, nullptr, "sim hil serial: haply:", C::device},
     {"baud", 0, "N", "serial speed in bits per second", "1000000", nullptr, &option::baud},
     {"duration", 'd', "T", "device time per environment", "2 s", &option::duration},
     {"sim-time", 0, "", "run as fast as possible in simulated time instead of real time"},
     {"hand", 0, "MOTION",
-     "the simulated hand: sweep, hold, release, shake or none (2-DOF also line and circle)", "sweep", nullptr,
+     "the simulated hand: sweep, hold, release, shake or none; a 2-DOF run also line and circle", "sweep", nullptr,
      nullptr, kHandValues, C::values},
     {"hand-stiffness", 0, "K", "the hand's grip stiffness", "200 N/m", &option::run_hand_stiffness},
     {"hand-damping", 0, "B", "the hand's damping", "2 N*s/m", &option::run_hand_damping},
-    {"hold", 0, "X", "where --hand hold, release and shake hold (2-DOF: X,Y)", "0 m, 2-DOF: the start",
+    {"hold", 0, "X", "where --hand hold, release and shake hold; 2-DOF: X,Y", "0 m, 2-DOF: the start",
      &option::hold},
     {"release", 0, "T", "when --hand release lets go", "0.5 s", &option::release},
-    {"start", 0, "X", "the handle's start position (2-DOF: X,Y)", "0 m, 2-DOF: the profile's home",
+    {"start", 0, "X", "the handle's start position; 2-DOF: X,Y", "0 m, 2-DOF: the profile's home",
      &option::run_start},
-    {"noise", 0, "COUNTS", "sensor noise standard deviation (1-DOF)", "the profile's", &option::noise},
+    {"noise", 0, "COUNTS", "1-DOF: the sensor noise's standard deviation", "the profile's", &option::noise},
     {"seed", 0, "N", "the sensor noise's seed", "1", nullptr, &option::seed},
     {"quiet", 'q', "", "no live status line"},
     {"no-reload", 0, "", "do not reload the environment when its files change"},
@@ -95,7 +95,7 @@ constexpr std::string_view kBenchExamples[] = {
 };
 constexpr OptionDefinition kAccuracyOptions[] = {
     {"svg", 0, "FILE.svg", "the figure of the 1-D rows", "", nullptr, nullptr, "", C::output},
-    {"rate", 0, "HZ", "only this loop rate (250, 500, 1000, 2000, 5000, 10000 or 20000 Hz)", "all",
+    {"rate", 0, "HZ", "only this loop rate: 250, 500, 1000, 2000, 5000, 10000 or 20000 Hz", "all",
      &option::accuracy_rate},
     {"axes", 0, "1|2", "only the Hapkit's rows (1) or the planar plant's (2)", "both", nullptr,
      &option::accuracy_axes, "1 2", C::values},
@@ -123,15 +123,15 @@ constexpr std::string_view kCallgrindExamples[] = {
 // ---- validate
 constexpr OptionDefinition kValidateOptions[] = {
     {"scenario", 's', "NAMES",
-     "scenarios to run, comma-separated: sweep, press, release, hold, shake, free (2-DOF: sweep, press, swipe, "
-     "release, hold, shake, free)",
+     "scenarios to run, comma-separated: sweep, press, release, hold, shake, free; 2-DOF: sweep, press, swipe, "
+     "release, hold, shake, free",
      "all", nullptr, nullptr, kScenarioValues, C::values, true},
     {"hand-stiffness", 0, "K", "the virtual hand's grip stiffness", "200 N/m", &option::hand_stiffness},
     {"hand-damping", 0, "B", "the virtual hand's damping", "2 N*s/m", &option::hand_damping},
     {"hand-mass", 0, "M", "the virtual hand's mass", "20 g", &option::hand_mass},
-    {"noise", 0, "COUNTS", "sensor noise standard deviation (1-DOF)", "the profile's", &option::noise},
+    {"noise", 0, "COUNTS", "1-DOF: the sensor noise's standard deviation", "the profile's", &option::noise},
     {"seed", 0, "N", "the sensor noise's seed", "1", nullptr, &option::seed},
-    {"start", 0, "X", "the free scenario's start (2-DOF: X,Y)", "4 mm, 2-DOF: the profile's home",
+    {"start", 0, "X", "the free scenario's start; 2-DOF: X,Y", "4 mm, 2-DOF: the profile's home",
      &option::free_start},
     {"report", 'r', "FILE.json", "the JSON report (one environment)", "", nullptr, nullptr, "", C::output},
     {"plot", 'p', "FILE.svg", "the figure (one environment)", "", nullptr, nullptr, "", C::output},
@@ -152,15 +152,15 @@ constexpr std::string_view kTestExamples[] = {"test", "test environments/spring.
 // ---- plot
 constexpr OptionDefinition kPlotOptions[] = {
     {"scenario", 's', "NAME",
-     "the scenario drawn: sweep, press, release, hold, shake or free (2-DOF: sweep, press, line or circle)",
+     "the scenario drawn: sweep, press, release, hold, shake or free; 2-DOF: sweep, press, line or circle",
      "sweep", nullptr, nullptr, kPlotScenarioValues, C::values},
     {"output", 'o', "FILE.svg", "the figure", "the environment's name .svg", nullptr, nullptr, "", C::output},
     {"hand-stiffness", 0, "K", "the virtual hand's grip stiffness", "200 N/m", &option::hand_stiffness},
     {"hand-damping", 0, "B", "the virtual hand's damping", "2 N*s/m", &option::hand_damping},
     {"hand-mass", 0, "M", "the virtual hand's mass", "20 g", &option::hand_mass},
-    {"noise", 0, "COUNTS", "sensor noise standard deviation (1-DOF)", "the profile's", &option::noise},
+    {"noise", 0, "COUNTS", "1-DOF: the sensor noise's standard deviation", "the profile's", &option::noise},
     {"seed", 0, "N", "the sensor noise's seed", "1", nullptr, &option::seed},
-    {"start", 0, "X", "the free scenario's start (1-DOF)", "4 mm", &option::free_start},
+    {"start", 0, "X", "1-DOF: the free scenario's start", "4 mm", &option::free_start},
     {"grid", 0, "N", "2-DOF: arrows along the workspace's longer side", "24", nullptr, &option::plot_grid},
     {"width", 0, "PX", "2-DOF: the figure's width in pixels", "900", nullptr, &option::plot_width},
 };
