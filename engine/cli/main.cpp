@@ -39,7 +39,8 @@ std::string unknown_command(const std::string& command) {
 std::optional<int> builtin(const std::vector<std::string>& args) {
   const std::string& command = args[0];
   if (command == "help" || command == "--help" || command == "-h") {
-    if (args.size() == 1 || command != "help") {
+    // help, --help, -h: the usage; help CMD, --help CMD: the command's help.
+    if (args.size() == 1) {
       write_out(hapscene::top_level_usage());
       return hapscene::kExitOk;
     }

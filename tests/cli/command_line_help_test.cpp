@@ -64,6 +64,7 @@ TEST_CASE("command line: CMD --help, CMD -h and help CMD print the command's opt
     CHECK(help.out.starts_with(std::string("usage: hapscene ") + command));
     CHECK(run_cli(std::string("help ") + command).out == help.out);
     CHECK(run_cli(std::string(command) + " -h").out == help.out);
+    CHECK(run_cli(std::string("--help ") + command).out == help.out);
     // Help wins over anything else on the line, even a mistake.
     CHECK(run_cli(std::string(command) + " --bogus --help").out == help.out);
   }
