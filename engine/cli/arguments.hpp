@@ -1,9 +1,12 @@
 #pragma once
-// Command-line options: "--name value" or "--name=value", flags, and positional
-// arguments. Every mistake is an InputError naming the option (exit code 2): an unknown
-// option, an option given twice, a value that does not parse, and a number outside the
-// range its definition accepts (engine/cli/option_definitions.hpp holds every numeric
-// option of every command with its range).
+// Command-line options: "--name value", "--name=value", "-n value", "-nvalue", flags,
+// positional arguments, and "--" before positionals that start with "-". The options a
+// command accepts are its entry in the table of engine/cli/command_definitions.cpp; the
+// command line is read against it once, left to right, when Arguments is made. Every
+// mistake is an InputError naming the option (exit code 2): an unknown option (with the
+// nearest known one), an option given twice, a missing value, a value that does not
+// parse, and a number outside the range its definition accepts
+// (engine/cli/option_definitions.hpp holds every numeric option with its range).
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -33,9 +36,14 @@ struct WholeOption {
   std::string_view what{"a whole number"};  // "a seed", "bits per second": for messages
 };
 
+struct CommandDefinition;
+struct OptionDefinition;
+
 class Arguments {
  public:
-  // `command` names the subcommand in messages ("hapscene probe").
+  // `command` names the subcommand in messages ("hapscene probe"); its options come from
+  // the table (the form of the command the arguments select, e.g. bench --soak). Throws
+  // InputError for a command line the table refuses.
   Arguments(std::vector<std::string> args, std::string command);
 
   // Removes and returns the value of --name, if given; given twice is an error.
@@ -45,15 +53,33 @@ class Arguments {
   std::optional<std::uint64_t> take(const WholeOption& option);
   // Removes --name and says whether it was given; given twice is an error.
   bool take_flag(std::string_view name);
-  // What is left: positional arguments. Refuses options nobody took.
+  // The positional arguments, in order. An option given that the command never took is
+  // a table entry the code does not read: std::logic_error (exit 1), never ignored.
   std::vector<std::string> positionals() const;
 
   [[noreturn]] void fail(const std::string& message) const;
   const std::string& command() const { return command_; }
+  const CommandDefinition& form() const { return *form_; }
 
  private:
-  std::vector<std::string> args_;
+  struct Given {
+    const OptionDefinition* option;
+    std::string value;  // empty for a flag
+    bool taken{false};
+  };
+  // The given option `name`, if any; std::logic_error when the form does not define it
+  // (`flag`: as a flag, else as an option with a value).
+  Given* find_given(std::string_view name, bool flag);
+  void parse(const std::vector<std::string>& args);
+  // "unknown option --sed (did you mean --seed?)"
+  std::string unknown_option_message(const std::string& written) const;
+
   std::string command_;
+  const CommandDefinition* form_{};
+  std::vector<Given> given_;
+  std::vector<std::string> positionals_;
+  bool mode_given_{false};  // the form's mode flag (bench --soak)
+  bool mode_taken_{false};
 };
 
 // Reads `text` as a value of `option` (quantity and range); `what` names it in messages

@@ -1,105 +1,103 @@
 // The `hapscene` command: dispatch to a subcommand and map errors to exit codes
-// (0 success, 2 invalid input, 1 anything else).
+// (0 success, 2 invalid input, 1 anything else). The commands, their options and all the
+// help are in the table of engine/cli/command_definitions.cpp.
 #include <cerrno>
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
 #include "engine/cli/commands.hpp"
+#include "engine/cli/help_text.hpp"
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/standard_output.hpp"
 
 namespace {
 
-constexpr const char* kUsage = R"(hapscene: a data-driven haptic rendering engine
+using hapscene::write_out;
 
-usage:
-  hapscene run ENV [ENV...] [options]     run environments on a device (simulated by default)
-  hapscene probe ENV --x START:STOP:STEP [--v V]
-                                          print the force-displacement curve as CSV
-  hapscene bench [ENV...] [--seconds T] [--passes N]
-                                          tick cost against the hand-written lab code
-                                          (1-D and 2-D: a planar ENV goes to the 2-D table)
-  hapscene bench --accuracy [--svg FILE] [--rate HZ] [--axes 1|2]
-                                          simulator run time against error (1-D), and
-                                          the 2-D plant's integration error
-  hapscene bench --stress                 stiffness and damping sweeps
-  hapscene bench --soak [--ticks N]       100 million ticks per lab environment
-  hapscene bench --callgrind ENV [--impl builtin|lua|baseline] [--ticks N]
-                                          untimed ticks for valgrind --tool=callgrind
-  hapscene validate ENV [ENV...] [options]
-                                          check an environment with virtual-hand scenarios
-  hapscene test [SPEC|FOLDER...]          run environment test specs (*.test.json; a folder: all under it)
-  hapscene plot ENV [--scenario NAME] [--output FILE.svg]
-                                          draw force-displacement and time series as SVG
-                                          (2-DOF: the force field, a run's paths and
-                                          time series; also --grid N, --width PX)
-  hapscene help | --help                  this text
-  hapscene version | --version
-
-run options:
-  --device SPEC         sim (default: a simulated Hapkit from the scene's profile),
-                        serial:/dev/ttyACM0 (a Hapkit running the hapscene firmware),
-                        hil (the firmware on a simulated ATmega328P and Hapkit)
-  --baud N              serial speed (default 1000000)
-  --duration T          device time per environment (default 2 s; units allowed: "500 ms")
-  --sim-time            run as fast as possible in simulated time instead of real time
-  --hand MOTION         simulated hand: sweep (default), hold, release, shake, none
-  --hand-stiffness K    hand grip stiffness (default 200 N/m)
-  --hand-damping B      hand damping (default 2 N*s/m)
-  --hold X              hold position for --hand hold and release (default 0 m)
-  --release T           when --hand release lets go (default 0.5 s)
-  --start X             handle start position (default 0 m)
-  --noise COUNTS        sensor noise standard deviation in counts (default: the profile's)
-  --seed N              noise seed (default 1)
-  --quiet               no live status line
-  --no-reload           do not reload the environment when its files change
-  --log FILE.csv        per-tick telemetry: t_s,x_m,v_m_per_s,force_N,output_N,duty,direction
-  --plot FILE.svg       the run's figure
-
-validate options:
-  --scenario NAMES      sweep, press, release, hold, shake, free (comma-separated; default all)
-  --hand-stiffness K    --hand-damping B    --hand-mass M    (default 200 N/m, 2 N*s/m, 20 g)
-  --noise COUNTS        --seed N            --start X (free scenario start, default 4 mm)
-  --report FILE.json    --plot FILE.svg     --quiet
-  2-DOF: --scenario sweep, press, swipe, release, hold, shake, free; --start X,Y
-                        (free scenario start, default the profile's home)
-
-Values take SI numbers or strings with units ("10 mm", "2 kHz"); each numeric option
-has a range (README, "Using it"), and a value outside it is invalid input.
-Exit codes: 0 success, 2 invalid input (file, arguments), 1 anything else
-(validate and test: 1 when a check or expectation fails; any command: 1 when its
-output could not be written).
-)";
-
-}  // namespace
-
-namespace {
-
-int dispatch(std::vector<std::string> args) {
-  if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
-    if (args.empty()) std::cerr << kUsage;
-    else hapscene::write_out(kUsage);
-    return args.empty() ? hapscene::kExitInvalidInput : hapscene::kExitOk;
+bool asks_for_help(const std::vector<std::string>& args) {
+  for (const std::string& arg : args) {
+    if (arg == "--") return false;
+    if (arg == "--help" || arg == "-h") return true;
   }
-  if (args[0] == "version" || args[0] == "--version") {
-    hapscene::write_out(std::string("hapscene ") + HAPSCENE_VERSION + "\n");
+  return false;
+}
+
+// "unknown command "rn" (did you mean "run"?)"
+std::string unknown_command(const std::string& command) {
+  const std::string suggestion = hapscene::nearest_command(command);
+  return "unknown command \"" + hapscene::printable(command) + "\"" +
+         (suggestion.empty() ? std::string() : " (did you mean \"" + suggestion + "\"?)");
+}
+
+// help, version, completion and man: what the command line says about itself.
+std::optional<int> builtin(const std::vector<std::string>& args) {
+  const std::string& command = args[0];
+  if (command == "help" || command == "--help" || command == "-h") {
+    // help, --help, -h: the usage; help CMD, --help CMD: the command's help.
+    if (args.size() == 1) {
+      write_out(hapscene::top_level_usage());
+      return hapscene::kExitOk;
+    }
+    std::string help = hapscene::command_help(args[1]);
+    // help help, help version, ...: the top-level usage describes them.
+    for (const hapscene::BuiltinCommand& other : hapscene::builtin_commands()) {
+      if (help.empty() && args[1] == other.name) help = hapscene::top_level_usage();
+    }
+    if (help.empty() || args.size() > 2) {
+      throw hapscene::InputError("hapscene help: " + (args.size() > 2 ? std::string("takes one command name")
+                                                                       : unknown_command(args[1])));
+    }
+    write_out(help);
     return hapscene::kExitOk;
   }
+  if (command == "version" || command == "--version" || command == "-V") {
+    if (args.size() > 1) throw hapscene::InputError("hapscene " + command + ": takes no arguments");
+    write_out(std::string("hapscene ") + HAPSCENE_VERSION + "\n");
+    return hapscene::kExitOk;
+  }
+  if (command == "completion") {
+    if (args.size() != 2 || args[1] != "bash") {
+      throw hapscene::InputError("hapscene completion: expected the shell: hapscene completion bash");
+    }
+    write_out(hapscene::bash_completion_script());
+    return hapscene::kExitOk;
+  }
+  if (command == "man") {
+    if (args.size() > 1) throw hapscene::InputError("hapscene man: takes no arguments");
+    write_out(hapscene::man_page(HAPSCENE_VERSION));
+    return hapscene::kExitOk;
+  }
+  return std::nullopt;
+}
+
+int dispatch(std::vector<std::string> args) {
+  if (args.empty()) {
+    std::cerr << hapscene::top_level_usage();
+    return hapscene::kExitInvalidInput;
+  }
   const std::string command = args[0];
-  args.erase(args.begin());
   try {
+    if (const std::optional<int> code = builtin(args)) return *code;
+    args.erase(args.begin());
+    // CMD --help and CMD -h: the command's help, whatever else is given.
+    const std::string help = hapscene::command_help(command);
+    if (!help.empty() && asks_for_help(args)) {
+      write_out(help);
+      return hapscene::kExitOk;
+    }
     if (command == "run") return hapscene::run_command(args);
     if (command == "probe") return hapscene::probe_command(args);
     if (command == "bench") return hapscene::bench_command(args);
     if (command == "validate") return hapscene::validate_command(args);
     if (command == "plot") return hapscene::plot_command(args);
     if (command == "test") return hapscene::test_command(args);
-    std::cerr << "hapscene: unknown command \"" << hapscene::printable(command) << "\" (try: hapscene --help)\n";
+    std::cerr << "hapscene: " << unknown_command(command) << " (try: hapscene --help)\n";
     return hapscene::kExitInvalidInput;
   } catch (const hapscene::InputError& error) {
     std::cerr << "error: " << hapscene::printable(error.what()) << "\n";
