@@ -6,7 +6,8 @@
 1. The schemas are valid draft 2020-12 schemas and equal what schemas/generate_schemas.py
    writes (so an edit goes through the generator).
 2. Every shipped environment (1-D and 2-D), device profile and test spec is valid against
-   its schema, and so are fresh `hapscene validate --report` files of a 1-D and a 2-D scene.
+   its schema (and a "$schema" it carries names that schema, relative to the file), and so
+   are fresh `hapscene validate --report` files of a 1-D and a 2-D scene.
 3. Files that are wrong in the ways people get them wrong (a misspelt key, a unit of the
    wrong kind, a missing key, a 1-D form in a 2-D file) are refused by the schema, and the
    environments among them are refused by hapscene too (exit 2), so the schemas are not
@@ -90,22 +91,30 @@ def closed_everywhere(node):
 
 strict_report = jsonschema.Draft202012Validator(closed_everywhere(load(SOURCE / "schemas" / "validate-report.schema.json")))
 
-# 2. Every shipped file.
+# 2. Every shipped file; a "$schema" it carries names its schema, relative to the file (so
+# it resolves in the source tree and in the installed share/hapscene alike).
 counts = {"environments": 0, "profiles": 0, "specs": 0, "reports": 0}
-for path in sorted((SOURCE / "environments").rglob("*.json")):
+
+
+def check_shipped(path, v, schema_name, kind):
+    instance = load(path)
     relative = path.relative_to(SOURCE)
+    expect_valid(v, instance, str(relative))
+    named = instance.get("$schema")
+    if named is not None and (path.parent / named).resolve() != (SOURCE / "schemas" / schema_name).resolve():
+        fail(f"{relative}: \"$schema\": \"{named}\" is not schemas/{schema_name} relative to the file")
+    counts[kind] += 1
+
+
+for path in sorted((SOURCE / "environments").rglob("*.json")):
     if path.name.endswith(".test.json"):
-        expect_valid(spec, load(path), str(relative))
-        counts["specs"] += 1
+        check_shipped(path, spec, "test-spec.schema.json", "specs")
     elif path.parent.name == "devices":
-        expect_valid(profile, load(path), str(relative))
-        counts["profiles"] += 1
+        check_shipped(path, profile, "device-profile.schema.json", "profiles")
     else:
-        expect_valid(environment, load(path), str(relative))
-        counts["environments"] += 1
+        check_shipped(path, environment, "environment.schema.json", "environments")
 for path in sorted((SOURCE / "scripts").rglob("*.test.json")):
-    expect_valid(spec, load(path), str(path.relative_to(SOURCE)))
-    counts["specs"] += 1
+    check_shipped(path, spec, "test-spec.schema.json", "specs")
 
 # A "$schema" key is part of every form.
 wall = load(SOURCE / "environments" / "wall.json")
