@@ -30,6 +30,17 @@ ObjectReader::ObjectReader(const nlohmann::json& value, std::string pointer, std
     throw InputError(located_message(file_, pointer_,
                                      "expected an object, got " + json_type_name(object_)));
   }
+  // A file's root may name its JSON Schema ("$schema": a URI, for editors; see schemas/):
+  // a string, otherwise ignored. Nowhere else is it a key.
+  if (pointer_.empty()) {
+    const auto schema = object_.find("$schema");
+    if (schema != object_.end()) {
+      if (!schema->is_string()) {
+        fail("$schema", "expected a string (the URI of this file's JSON Schema), got " + json_type_name(*schema));
+      }
+      read_keys_.emplace_back("$schema");
+    }
+  }
 }
 
 std::string ObjectReader::pointer_to(std::string_view key) const {

@@ -30,8 +30,8 @@ struct Range {
 class ObjectReader {
  public:
   // `file` names the source in messages; `pointer` is this object's JSON pointer ("" for
-  // the root); relative paths inside it are taken from `base_dir`. Throws InputError when
-  // `value` is not an object.
+  // the root, where a string "$schema" is accepted and ignored); relative paths inside it
+  // are taken from `base_dir`. Throws InputError when `value` is not an object.
   ObjectReader(const nlohmann::json& value, std::string pointer, std::string file,
                std::string base_dir = ".");
 

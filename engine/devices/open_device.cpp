@@ -2,6 +2,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/devices/haply/haply_device.hpp"
+#include "engine/devices/installed_files.hpp"
 #include "engine/devices/planar/hapkit_pair.hpp"
 #include "engine/devices/serial_hapkit.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
@@ -12,13 +13,7 @@
 
 namespace hapscene {
 
-std::string default_firmware_elf() {
-#ifdef HAPSCENE_FIRMWARE_ELF
-  return HAPSCENE_FIRMWARE_ELF;
-#else
-  return {};
-#endif
-}
+std::string default_firmware_elf() { return find_default_firmware(); }
 
 bool simulates_plant(const std::string& spec) {
   return spec == "sim" || spec == "hil" || spec.starts_with("hil:");
@@ -73,6 +68,10 @@ std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile
     HilConfig config;
     config.simulation = simulation;
     config.firmware_elf = spec.size() > 4 ? spec.substr(4) : default_firmware_elf();
+    if (config.firmware_elf.empty()) {
+      throw InputError("--device hil: no firmware found (looked for " + firmware_places_text() +
+                       "); name one with hil:PATH.elf");
+    }
     return std::make_unique<HilHapkit>(profile, config);
 #else
     throw InputError("--device hil: this build has no firmware-in-the-loop (it needs simavr, "

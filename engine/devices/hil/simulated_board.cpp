@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -17,6 +18,7 @@
 #include "engine/base/format.hpp"
 #include "engine/devices/hil/channel_io.hpp"
 #include "engine/devices/hil/firmware_image.hpp"
+#include "engine/devices/installed_files.hpp"
 
 extern char** environ;
 
@@ -31,20 +33,18 @@ using board_channel::write_exactly;
 // itself with SIGALRM); this bounds the wait for its first reply from this side.
 constexpr int kStartTimeout_ms = 15'000;
 
-// hapscene-board next to the running executable (an installed or built hapscene), or
-// where this build put it (the tests run from another folder).
+// hapscene-board: next to the running executable (a build tree), where `cmake --install`
+// put it, or where this build made it (the tests run from another folder); or
+// $HAPSCENE_BOARD (engine/devices/installed_files.hpp).
 std::string board_executable() {
-  std::error_code error;
-  const auto self = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (!error) {
-    const auto beside = self.parent_path() / "hapscene-board";
-    if (access(beside.c_str(), X_OK) == 0) return beside.string();
+  const std::string found = find_board_program();
+  if (!found.empty()) return found;
+  if (const char* chosen = std::getenv("HAPSCENE_BOARD"); chosen != nullptr && *chosen != '\0') {
+    throw std::runtime_error(std::string("--device hil: HAPSCENE_BOARD=") + chosen +
+                             " is not an executable file (it names the board simulator, hapscene-board)");
   }
-#ifdef HAPSCENE_BOARD_EXE
-  if (access(HAPSCENE_BOARD_EXE, X_OK) == 0) return HAPSCENE_BOARD_EXE;
-#endif
-  throw std::runtime_error("--device hil: the board simulator hapscene-board was not found next to " +
-                           (error ? std::string("hapscene") : self.string()) + " (build it with cmake)");
+  throw std::runtime_error("--device hil: the board simulator hapscene-board was not found (looked for " +
+                           board_places_text() + "; build it with cmake, which needs simavr)");
 }
 
 }  // namespace
