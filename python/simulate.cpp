@@ -131,9 +131,9 @@ py::dict summary_dict(const SceneOf<N>& scene, const RunSettings& settings, cons
   }
   d["scripts"] = scripts;
   py::dict compute;
-  compute["p50"] = static_cast<double>(s.compute_ns.percentile_ns(0.50)) * 1e-3;
-  compute["p99"] = static_cast<double>(s.compute_ns.percentile_ns(0.99)) * 1e-3;
-  compute["max"] = static_cast<double>(s.compute_ns.max_ns()) * 1e-3;
+  compute["p50"] = static_cast<double>(s.compute_ns.percentile_ns(0.50)) / 1000.0;
+  compute["p99"] = static_cast<double>(s.compute_ns.percentile_ns(0.99)) / 1000.0;
+  compute["max"] = static_cast<double>(s.compute_ns.max_ns()) / 1000.0;
   d["tick_compute_us"] = compute;
   d["device_report"] = device_report;
   d["faulted"] = faulted;
