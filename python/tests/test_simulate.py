@@ -1,6 +1,8 @@
 # hapscene.simulate against `hapscene run --sim-time --log`: the same options give the
 # same log, byte for byte; the summary is the one the CLI prints.
+import os
 import re
+import signal
 import threading
 import time
 
@@ -151,3 +153,17 @@ def test_the_gil_is_released_while_the_engine_runs():
     assert end - start > 0.02, "the run is too short to tell"
     middle = [t for t in stamps if start + 0.25 * (end - start) < t < start + 0.75 * (end - start)]
     assert len(middle) > 10
+
+
+def test_ctrl_c_stops_a_long_run():
+    # SIGINT during a run of 3000 s of device time (half a minute of work): the run stops
+    # at its next tick and simulate raises KeyboardInterrupt, as Python code would.
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    started = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        hapscene.simulate("environments/wall.json", duration=3000)
+    timer.join()
+    assert time.perf_counter() - started < 10.0
+    # The module still works afterwards.
+    assert len(hapscene.simulate("environments/wall.json", duration=0.1)["t_s"]) == 100
