@@ -13,6 +13,7 @@
 #include "engine/cli/harness_options.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
+#include "engine/cli/planar_run_hand.hpp"
 #include "engine/cli/run_session.hpp"
 #include "engine/cli/run_summary.hpp"
 #include "engine/cli/standard_output.hpp"
@@ -29,9 +30,8 @@
 namespace hapscene {
 namespace {
 
-// The hand of a planar run: its motion over the scene's workspace box (a sweep covers the
-// middle 80 % of it; a line crosses it; a circle of a quarter of its smaller side turns
-// round its middle), holding or releasing at --hold (default the start).
+// The hand of a planar run: --hand over the scene's workspace box (planar_run_hand.hpp),
+// holding or releasing at --hold (default the start).
 PlanarHandConfig planar_hand(const Arguments& arguments, const RunSettings& settings, const PlanarScene& scene,
                              const Vec2& start_m) {
   PlanarHandConfig hand;
@@ -44,22 +44,9 @@ PlanarHandConfig planar_hand(const Arguments& arguments, const RunSettings& sett
     }
     hand.motion = static_cast<PlanarHandMotion>(found - std::begin(kPlanarHandMotionNames));
   }
-  hand.stiffness_N_per_m = settings.simulation.hand.stiffness_N_per_m;
-  hand.damping_N_s_per_m = settings.simulation.hand.damping_N_s_per_m;
-  hand.release_s = settings.simulation.hand.release_s;
-  hand.hold_m = settings.hold_text ? parse_planar_point(arguments, "hold", *settings.hold_text, option::hold) : start_m;
-  const Vec2 low = scene.safety.workspace_min_m;
-  const Vec2 high = scene.safety.workspace_max_m;
-  const Vec2 middle = (low + high) * 0.5;
-  const Vec2 margin = (high - low) * 0.1;
-  hand.sweep_min_m = low + margin;
-  hand.sweep_max_m = high - margin;
-  hand.line_from_m = Vec2{{low[0] + margin[0], middle[1]}};
-  hand.line_to_m = Vec2{{high[0] - margin[0], middle[1]}};
-  hand.line_back_and_forth = true;
-  hand.circle_center_m = middle;
-  hand.circle_radius_m = 0.25 * std::min(high[0] - low[0], high[1] - low[1]);
-  return hand;
+  const Vec2 hold_m =
+      settings.hold_text ? parse_planar_point(arguments, "hold", *settings.hold_text, option::hold) : start_m;
+  return planar_run_hand(scene, hand.motion, settings.simulation.hand, hold_m);
 }
 
 }  // namespace

@@ -72,9 +72,7 @@ TelemetryLogOf<N>::~TelemetryLogOf() { finish(); }
 
 template <int N>
 void TelemetryLogOf<N>::on_tick(const TickStateOf<N>& state) noexcept {
-  const TelemetrySampleOf<N> sample{state.t_s,      state.x_m,          state.v_m_per_s,
-                                    state.effects_force_N, state.output_N, state.command};
-  if (!ring_.try_push(sample)) dropped_.fetch_add(1, std::memory_order_relaxed);
+  if (!ring_.try_push(telemetry_sample(state))) dropped_.fetch_add(1, std::memory_order_relaxed);
 }
 
 // Drain whatever is there, then nap briefly; after stop, drain the rest and return.

@@ -40,6 +40,13 @@ struct TelemetrySampleOf {
 
 using TelemetrySample = TelemetrySampleOf<1>;
 
+// The sample of one tick: what the log writes, and what in-memory recordings keep (the
+// Python module's simulate()), so both hold the same values.
+template <int N>
+TelemetrySampleOf<N> telemetry_sample(const TickStateOf<N>& state) noexcept {
+  return {state.t_s, state.x_m, state.v_m_per_s, state.effects_force_N, state.output_N, state.command};
+}
+
 // One CSV line (with the newline) for a sample.
 template <int N>
 std::string telemetry_csv_line(const TelemetrySampleOf<N>& sample);

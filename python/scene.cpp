@@ -1,0 +1,322 @@
+#include "python/scene.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "engine/base/errors.hpp"
+#include "engine/base/object_reader.hpp"
+#include "engine/cli/option_definitions.hpp"
+#include "engine/harness/open_loop.hpp"
+#include "engine/harness/planar_open_loop.hpp"
+#include "python/values.hpp"
+
+namespace hapscene::python {
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// A value as Python shows it: floats, bools, (x, y) tuples.
+py::object value_object(double value) { return py::float_(value); }
+py::object value_object(bool value) { return py::bool_(value); }
+py::object value_object(const Vec2& value) { return py::make_tuple(value[0], value[1]); }
+
+// One compiled effect as a dict: its type and the parameters it was compiled with, in SI
+// (the names carry the units). Every effect type of either axis count goes through the
+// same list of fields, so a new type with these fields shows them without a change here.
+template <typename Effect>
+py::dict effect_dict(const Effect& e) {
+  py::dict d;
+  d["type"] = Effect::kType;
+#define HAPSCENE_FIELD(member)                                \
+  if constexpr (requires { e.member; }) {                    \
+    if constexpr (!std::is_same_v<std::decay_t<decltype(e.member)>, std::string>) d[#member] = value_object(e.member); \
+  }
+  HAPSCENE_FIELD(stiffness_N_per_m)
+  HAPSCENE_FIELD(damping_N_s_per_m)
+  HAPSCENE_FIELD(center_m)
+  HAPSCENE_FIELD(position_m)
+  HAPSCENE_FIELD(point_m)
+  HAPSCENE_FIELD(normal)
+  HAPSCENE_FIELD(min_m)
+  HAPSCENE_FIELD(max_m)
+  HAPSCENE_FIELD(radius_m)
+  HAPSCENE_FIELD(width_m)
+  HAPSCENE_FIELD(spacing_m)
+  HAPSCENE_FIELD(offset_m)
+  HAPSCENE_FIELD(direction)
+  HAPSCENE_FIELD(solid_above)
+  HAPSCENE_FIELD(solid_inside)
+  HAPSCENE_FIELD(mirror)
+#undef HAPSCENE_FIELD
+  if constexpr (requires { e.bands.width_m; }) {
+    d["width_m"] = e.bands.width_m;
+    d["spacing_m"] = e.bands.spacing_m;
+    d["offset_m"] = e.bands.offset_m;
+    d["damping_N_s_per_m"] = e.bands.damping_N_s_per_m;
+  }
+  if constexpr (requires { e.program; }) {
+    d["name"] = e.program->display_name;
+    d["file"] = e.file;
+    py::dict params;
+    for (const ScriptParam& p : e.program->params) {
+      if (p.kind == ScriptParam::Kind::number) params[p.name.c_str()] = p.value_si;
+      else if (p.kind == ScriptParam::Kind::boolean) params[p.name.c_str()] = p.flag;
+      else params[p.name.c_str()] = p.text;
+    }
+    d["params"] = params;
+  }
+  return d;
+}
+
+template <int N>
+py::list effect_list(const SceneOf<N>& scene) {
+  py::list list;
+  for (const auto& effect : scene.effects) {
+    list.append(std::visit([](const auto& e) { return effect_dict(e); }, effect));
+  }
+  return list;
+}
+
+// Every number of every effect, flat: "effects[0].stiffness_N_per_m", and a script's
+// parameters as "effects[2].params.height" (SI). Points give ".x" and ".y" entries.
+py::dict flat_parameters(const py::list& effects) {
+  py::dict flat;
+  for (std::size_t i = 0; i < effects.size(); ++i) {
+    const std::string prefix = "effects[" + std::to_string(i) + "].";
+    const auto add = [&flat](const std::string& key, const py::handle& value) {
+      if (py::isinstance<py::float_>(value)) {
+        flat[key.c_str()] = value;
+      } else if (py::isinstance<py::tuple>(value) && py::len(value) == 2) {
+        flat[(key + ".x").c_str()] = value[py::int_(0)];
+        flat[(key + ".y").c_str()] = value[py::int_(1)];
+      }
+    };
+    for (const auto& [key, value] : effects[i].cast<py::dict>()) {
+      const std::string name = key.cast<std::string>();
+      if (name == "params") {
+        for (const auto& [param, param_value] : value.cast<py::dict>()) {
+          add(prefix + "params." + param.cast<std::string>(), param_value);
+        }
+      } else {
+        add(prefix + name, value);
+      }
+    }
+  }
+  return flat;
+}
+
+template <int N>
+const SceneOf<N>& compiled(const LoadedScene& s) {
+  if constexpr (N == 1) return s.capstan->scene;
+  else return s.planar->scene;
+}
+
+// Script faults and what the points mean, as the CLI prints them on stderr: here Python
+// warnings (hapscene.ScriptFaultWarning), one per line.
+void warn_lines(const ScriptBehaviour& behaviour, double t_s, const ScriptFaultLog& faults) {
+  const py::object warn = py::module_::import("warnings").attr("warn");
+  const py::object category = py::module_::import("hapscene").attr("ScriptFaultWarning");
+  if (!behaviour.static_field()) {
+    warn(printf_string("note: %s; each point is from fresh instances at t = %g s", behaviour.note.c_str(), t_s),
+         category, 2);
+  }
+  for (const std::string& line : faults.lines()) warn(line, category, 2);
+}
+
+void check_points(std::size_t points) {
+  if (points > static_cast<std::size_t>(option::kMaxProbePoints)) {
+    throw InputError("Scene.probe: more than " + std::to_string(option::kMaxProbePoints) + " points");
+  }
+}
+
+// Every value of `values` in `option`'s range (as --x START and STOP are).
+void check_range(const double* values, std::size_t n, const QuantityOption& option, const std::string& what) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v = values[i];
+    if (!std::isfinite(v) || v < option.min || v > option.max) {
+      throw InputError("Scene.probe: " + what + "[" + std::to_string(i) + "]: must be in " + describe_range(option) +
+                       ", got " + format_number(v));
+    }
+  }
+}
+
+Array array_like(const Array& shape_of, const std::vector<double>& values) {
+  Array out(std::vector<py::ssize_t>(shape_of.shape(), shape_of.shape() + shape_of.ndim()));
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
+}
+
+py::dict probe_capstan(const LoadedScene& s, const Array& x, double v_m_per_s, double t_s) {
+  const Scene& scene = compiled<1>(s);
+  const std::vector<double> x_m(x.data(), x.data() + x.size());
+  std::vector<double> force_N, output_N, v(x_m.size(), v_m_per_s);
+  ScriptBehaviour behaviour;
+  ScriptFaultLog faults;
+  {
+    py::gil_scoped_release release;
+    OpenLoop open_loop(scene, t_s);
+    OpenLoopScan scan = open_loop.scan(x_m, v_m_per_s);
+    output_N.resize(x_m.size());
+    for (std::size_t i = 0; i < x_m.size(); ++i) output_N[i] = open_loop.output_N(x_m[i], scan.force_N[i]);
+    force_N = std::move(scan.force_N);
+    behaviour = std::move(scan.behaviour);
+    faults = open_loop.faults();
+  }
+  warn_lines(behaviour, t_s, faults);
+  py::dict out;
+  out["x_m"] = array_like(x, x_m);
+  out["v_m_per_s"] = array_like(x, v);
+  out["force_N"] = array_like(x, force_N);
+  out["output_N"] = array_like(x, output_N);
+  return out;
+}
+
+py::dict probe_planar(const LoadedScene& s, const Array& x, const Array& y, const Vec2& v_m_per_s, double t_s) {
+  const PlanarScene& scene = compiled<2>(s);
+  std::vector<Vec2> points(x.size());
+  for (py::ssize_t i = 0; i < x.size(); ++i) points[i] = Vec2{{x.data()[i], y.data()[i]}};
+  std::vector<double> columns[8];
+  for (auto& c : columns) c.resize(points.size());
+  ScriptBehaviour behaviour;
+  ScriptFaultLog faults;
+  {
+    py::gil_scoped_release release;
+    PlanarOpenLoop open_loop(scene, t_s);
+    const PlanarOpenLoopScan scan = open_loop.scan(points, v_m_per_s);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Vec2& force_N = scan.force_N[i];
+      const Vec2 output_N = open_loop.output_N(points[i], force_N);
+      const double row[8] = {points[i][0], points[i][1], v_m_per_s[0], v_m_per_s[1],
+                             force_N[0],   force_N[1],   output_N[0],  output_N[1]};
+      for (int c = 0; c < 8; ++c) columns[c][i] = row[c];
+    }
+    behaviour = scan.behaviour;
+    faults = open_loop.faults();
+  }
+  warn_lines(behaviour, t_s, faults);
+  static const char* kNames[8] = {"x_m",       "y_m",       "vx_m_per_s", "vy_m_per_s",
+                                  "force_x_N", "force_y_N", "output_x_N", "output_y_N"};
+  py::dict out;
+  for (int c = 0; c < 8; ++c) out[kNames[c]] = array_like(x, columns[c]);
+  return out;
+}
+
+double probe_scalar(const py::object& value, const QuantityOption& option, const std::string& what) {
+  return quantity(value, option, "Scene.probe: " + what);
+}
+
+py::dict probe(const LoadedScene& s, const py::object& x, const py::object& y, const py::object& v,
+               const py::object& vx, const py::object& vy, const py::object& t) {
+  const double t_s = probe_scalar(t, option::probe_time, "t");
+  if (s.axes == 1) {
+    if (!y.is_none()) throw InputError("Scene.probe: y: only for a 2-DOF environment (its device a planar profile)");
+    if (!vx.is_none() || !vy.is_none()) throw InputError("Scene.probe: vx, vy: only for a 2-DOF environment; use v");
+    const Array xs = Array::ensure(x);
+    if (!xs) throw InputError("Scene.probe: x: expected numbers (a float or an array)");
+    check_points(static_cast<std::size_t>(xs.size()));
+    check_range(xs.data(), static_cast<std::size_t>(xs.size()), option::probe_position, "x");
+    return probe_capstan(s, xs, v.is_none() ? 0.0 : probe_scalar(v, option::probe_velocity, "v"), t_s);
+  }
+  if (y.is_none()) throw InputError("Scene.probe: y is required for a 2-DOF environment");
+  if (!v.is_none()) throw InputError("Scene.probe: v: a 2-DOF environment takes vx and vy");
+  const py::tuple both = py::module_::import("numpy").attr("broadcast_arrays")(x, y);
+  const Array xs = Array::ensure(both[0]);
+  const Array ys = Array::ensure(both[1]);
+  if (!xs || !ys) throw InputError("Scene.probe: x, y: expected numbers (floats or arrays)");
+  check_points(static_cast<std::size_t>(xs.size()));
+  check_range(xs.data(), static_cast<std::size_t>(xs.size()), option::probe_position, "x");
+  check_range(ys.data(), static_cast<std::size_t>(ys.size()), option::probe_position, "y");
+  const Vec2 v_m_per_s{{vx.is_none() ? 0.0 : probe_scalar(vx, option::probe_velocity, "vx"),
+                        vy.is_none() ? 0.0 : probe_scalar(vy, option::probe_velocity, "vy")}};
+  return probe_planar(s, xs, ys, v_m_per_s, t_s);
+}
+
+constexpr const char* kProbeDoc = R"(probe(x, y=None, *, v=None, vx=None, vy=None, t=0.0) -> dict[str, numpy.ndarray]
+
+The open-loop force at each point, as `hapscene probe` computes it (bit for bit).
+
+1-DOF scene: ``x`` (m, a float or an array of any shape) and the velocity ``v`` (m/s,
+default 0). Returns the CLI's columns ``x_m``, ``v_m_per_s``, ``force_N`` (what the
+effects ask for) and ``output_N`` (after the static safety rules), each an array of x's
+shape.
+
+2-DOF scene: ``x`` and ``y`` (broadcast together, e.g. from numpy.meshgrid) and ``vx``,
+``vy``. Returns ``x_m``, ``y_m``, ``vx_m_per_s``, ``vy_m_per_s``, ``force_x_N``,
+``force_y_N``, ``output_x_N``, ``output_y_N``.
+
+Every point comes from fresh script instances at run time ``t`` (s), so points do not
+depend on each other. Script faults and notes (what the CLI prints on stderr) are issued
+as hapscene.ScriptFaultWarning warnings. Values may be numbers in SI or strings with
+units ("5 mm"). Raises hapscene.InputError for values outside the CLI's ranges or more
+than 1000000 points.)";
+
+}  // namespace
+
+LoadedScene load_scene(const std::string& path) {
+  LoadedScene s;
+  s.path = path;
+  py::gil_scoped_release release;
+  s.axes = environment_axes(path);
+  if (s.axes == 2) {
+    s.planar = std::make_shared<const PlanarEnvironment>(load_planar_environment(path));
+  } else {
+    s.capstan = std::make_shared<const Environment>(load_environment(path));
+  }
+  return s;
+}
+
+LoadedScene scene_argument(const py::handle& value, const std::string& what) {
+  if (py::isinstance<LoadedScene>(value)) return value.cast<LoadedScene>();
+  return load_scene(path_text(value, what));
+}
+
+void bind_scene(py::module_& m) {
+  py::class_<LoadedScene>(m, "Scene", R"(An environment as the engine loaded it (hapscene.load(path)).
+
+Immutable; pass it to simulate() and validate() to run the loaded version without reading
+the file again.)")
+      .def_property_readonly("path", [](const LoadedScene& s) { return s.path; }, "The file it was loaded from.")
+      .def_property_readonly("name", [](const LoadedScene& s) { return s.axes == 1 ? compiled<1>(s).name : compiled<2>(s).name; },
+                             "The environment's name.")
+      .def_property_readonly("rate", [](const LoadedScene& s) { return s.axes == 1 ? compiled<1>(s).rate_hz : compiled<2>(s).rate_hz; },
+                             "The tick rate in Hz.")
+      .def_property_readonly("axes", [](const LoadedScene& s) { return s.axes; }, "1 (the Hapkit) or 2 (a planar device).")
+      .def_property_readonly("device", [](const LoadedScene& s) { return s.axes == 1 ? compiled<1>(s).device.name : compiled<2>(s).device.name; },
+                             "The device profile's name (\"hapkit3\").")
+      .def_property_readonly("effects", [](const LoadedScene& s) { return s.axes == 1 ? effect_list(compiled<1>(s)) : effect_list(compiled<2>(s)); },
+                             "The compiled effects in file order (disabled ones are left out): one dict each, "
+                             "its \"type\" and its parameters in SI (names carry the units; points are (x, y)).")
+      .def_property_readonly("parameters", [](const LoadedScene& s) {
+            return flat_parameters(s.axes == 1 ? effect_list(compiled<1>(s)) : effect_list(compiled<2>(s)));
+          },
+          "Every numeric parameter of the effects, flat: {\"effects[0].stiffness_N_per_m\": 500.0, ...}; "
+          "script parameters as \"effects[i].params.NAME\".")
+      .def_property_readonly("load_warnings", [](const LoadedScene& s) {
+            return s.axes == 1 ? compiled<1>(s).load_warnings : compiled<2>(s).load_warnings;
+          },
+          "The load warnings (the CLI prints them on stderr as \"warning: ...\").")
+      .def("probe", &probe, py::arg("x"), py::arg("y") = py::none(), py::kw_only(), py::arg("v") = py::none(),
+           py::arg("vx") = py::none(), py::arg("vy") = py::none(), py::arg("t") = 0.0, kProbeDoc)
+      .def("__repr__", [](const LoadedScene& s) {
+        const std::string name = s.axes == 1 ? compiled<1>(s).name : compiled<2>(s).name;
+        return "<hapscene.Scene " + name + " from " + s.path + ", " + std::to_string(s.axes) + " axis" +
+               (s.axes == 1 ? "" : "es") + ">";
+      });
+
+  m.def("load", [](const py::object& path) { return load_scene(path_text(path, "hapscene.load")); }, py::arg("path"),
+        R"(load(path) -> Scene
+
+Loads an environment file (JSON, or a .lua script) as `hapscene run` does: every value
+checked, scripts compiled. Load warnings go to stderr, as on the command line.
+
+Raises hapscene.InputError with the CLI's located message
+("environments/x.json: /effects/0/stiffness: must be in ...").)");
+}
+
+}  // namespace hapscene::python
