@@ -38,7 +38,7 @@ constexpr std::string_view kPlotScenarioValues = "sweep press release hold shake
 constexpr OptionDefinition kRunOptions[] = {
     {"device", 'D', "SPEC",
      "the device: sim, a simulated device from the scene's profile; hil, the firmware on a simulated "
-     "ATmega328P and Hapkit (hil:FILE.elf: another build); serial:PORT, a Hapkit running the hapscene firmware "
+     "ATmega328P and Hapkit (2-DOF: two boards as a Hapkit pantograph's joints; hil:FILE.elf: another build); serial:PORT, a Hapkit running the hapscene firmware "
      "(2-DOF: serial:PORT1,PORT2); haply:PORT, a Haply 2DIY",
      "sim", nullptr, nullptr, "sim hil serial: haply:", C::device},
     {"baud", 0, "N", "serial speed in bits per second", "1000000", nullptr, &option::baud},

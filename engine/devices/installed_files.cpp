@@ -1,9 +1,11 @@
 #include "engine/devices/installed_files.hpp"
 
+#include <dlfcn.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <string_view>
 #include <vector>
 
 namespace hapscene {
@@ -44,7 +46,8 @@ std::filesystem::path from_this_build(const char* build_path) {
 std::vector<std::filesystem::path> board_places() {
   std::vector<std::filesystem::path> places;
   for (std::filesystem::path place : {beside_executable("hapscene-board"), beside_executable(install_layout().board_from_bin),
-                                      from_this_build(install_layout().board_build)}) {
+                                      from_this_build(install_layout().board_build),
+                                      std::filesystem::path(install_layout().board_installed)}) {
     if (!place.empty()) places.push_back(std::move(place));
   }
   return places;
@@ -53,7 +56,8 @@ std::vector<std::filesystem::path> board_places() {
 std::vector<std::filesystem::path> firmware_places() {
   std::vector<std::filesystem::path> places;
   for (std::filesystem::path place :
-       {beside_executable(install_layout().firmware_from_bin), from_this_build(install_layout().firmware_build)}) {
+       {beside_executable(install_layout().firmware_from_bin), from_this_build(install_layout().firmware_build),
+        std::filesystem::path(install_layout().firmware_installed)}) {
     if (!place.empty()) places.push_back(std::move(place));
   }
   return places;
@@ -69,6 +73,13 @@ std::string listed(const std::vector<std::filesystem::path>& places) {
 
 std::string executable_dir() {
   std::error_code error;
+  // Loaded as a shared object (the Python module): that file's folder.
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&executable_dir), &info) != 0 && info.dli_fname != nullptr &&
+      std::string_view(info.dli_fname).find(".so") != std::string_view::npos) {
+    const auto self = std::filesystem::weakly_canonical(info.dli_fname, error);
+    if (!error) return self.parent_path().string();
+  }
   const auto self = std::filesystem::read_symlink("/proc/self/exe", error);
   return error ? std::string() : self.parent_path().string();
 }

@@ -16,19 +16,25 @@ struct InstallLayout {
   const char* board_build;        // where this build made them (empty when it did not)
   const char* firmware_build;
   const char* build_dir;          // the build folder (CMAKE_BINARY_DIR)
+  const char* board_installed;    // absolute, under the configured install prefix
+  const char* firmware_installed;
 };
 const InstallLayout& install_layout();
 
-// The folder of the running executable (from /proc/self/exe); empty when unknown.
+// The folder of the file holding this code: the running executable's (from
+// /proc/self/exe), or a shared object's when the engine is loaded as one (the Python
+// module); empty when unknown.
 std::string executable_dir();
 
 // The board simulator: $HAPSCENE_BOARD when set, else hapscene-board next to the
 // executable (a build tree), else the installed one, else (for an executable inside the
-// build folder, such as the tests) this build's. Empty when none is an executable file.
+// build folder, such as the tests) this build's, else the one under the configured install
+// prefix. Empty when none is an executable file.
 std::string find_board_program();
 
 // The firmware `--device hil` loads when no ELF is named: the installed one next to the
-// executable's tree, else (inside the build folder) this build's. Empty when neither is a file.
+// executable's tree, else (inside the build folder) this build's, else the one under the
+// configured install prefix. Empty when none is a file.
 std::string find_default_firmware();
 
 // Where the two searches above look, in order, for messages: "/usr/bin/hapscene-board,
