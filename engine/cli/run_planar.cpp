@@ -46,6 +46,14 @@ PlanarHandConfig planar_hand(const Arguments& arguments, const RunSettings& sett
   }
   const Vec2 hold_m =
       settings.hold_text ? parse_planar_point(arguments, "hold", *settings.hold_text, option::hold) : start_m;
+  // A hold the linkage cannot reach would pin the handle against its stops.
+  if (settings.hold_text) {
+    try {
+      (void)planar_joint_angles_at(scene.device, hold_m);
+    } catch (const InputError& error) {
+      arguments.fail(std::string("--hold: ") + error.what());
+    }
+  }
   return planar_run_hand(scene, hand.motion, settings.simulation.hand, hold_m);
 }
 

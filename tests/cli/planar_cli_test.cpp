@@ -60,6 +60,10 @@ TEST_CASE("planar run: options of the other dimension and mixed 1-D and 2-D envi
   CHECK(run_cli("run environments/planar/haplink_box_inside.json --sim-time --start 1,2").exit_code == 2);
   CHECK(run_cli("run environments/planar/haplink_box_inside.json environments/spring.json --sim-time").exit_code == 2);
   CHECK(run_cli("run environments/spring.json --sim-time --hold 1mm,2mm").exit_code == 2);
+  // A hold point the linkage cannot reach (the Haplink's arm is 170 mm long).
+  const CliOutcome far = run_cli("run environments/planar/haplink_box_inside.json --sim-time --hand hold --hold 0,300mm");
+  CHECK(far.exit_code == 2);
+  CHECK(far.err.find("--hold: the haplink cannot put its handle at (0, 0.3) m") != std::string::npos);
 }
 
 // validate and plot take 2-DOF scenes: planar_validate_cli_test.cpp, planar_plot_cli_test.cpp.
