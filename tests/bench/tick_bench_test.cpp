@@ -100,7 +100,7 @@ TEST_CASE("bench: the command prints the three implementations of a lab environm
   CHECK(outcome.out.find("spring     Lua script") != std::string::npos);
   CHECK(outcome.out.find("spring: built-in ") != std::string::npos);
   CHECK(outcome.out.find("the hand-folded floor (goal <= 1.5x)") != std::string::npos);
-  CHECK(outcome.out.find("texture: 100000 fields ") != std::string::npos);
+  CHECK(outcome.out.find("texture: 50000 fields ") != std::string::npos);
   CHECK(outcome.out.find("spring: Lua median ") != std::string::npos);
   CHECK(outcome.out.find("Lua rows: p99.9 <= 5x the median") != std::string::npos);
   CHECK(outcome.out.find("1.000 Lua calls per tick") != std::string::npos);
