@@ -40,6 +40,7 @@ struct LabBaselineState {
   double last_dxh_m_per_s{};  // the previous raw difference
   double duty{};
   bool direction_high{};
+  double velocity_m_per_s{};  // the sketch's filtered velocity (computed every loop)
 };
 
 enum class LabBaselineKind { spring, wall, damper, texture };
@@ -52,5 +53,33 @@ void lab_spring_tick(const LabBaselineConstants& c, std::int32_t raw, LabBaselin
 void lab_wall_tick(const LabBaselineConstants& c, std::int32_t raw, LabBaselineState* s) noexcept;
 void lab_damper_tick(const LabBaselineConstants& c, std::int32_t raw, LabBaselineState* s) noexcept;
 void lab_texture_tick(const LabBaselineConstants& c, std::int32_t raw, LabBaselineState* s) noexcept;
+
+// The floor: the same ticks folded by hand, as fast as plain C++ gets without changing
+// the maths: counts to metres one multiply-add, no division (1 / period and the torque
+// and motor constants folded at set-up), the velocity filter only where the force uses
+// it, flip counting and the duty cap without branches. The bench calls them out of line,
+// once per tick, as the engine's step() is.
+struct LabFoldedConstants {
+  double m_per_count{};
+  double offset_m{};
+  std::int32_t flip_threshold_counts{};
+  std::int32_t span_counts{};
+  double new_difference_per_m{};  // 0.9 / period
+  double duty_squared_per_N{};    // duty^2 per newton: r_pulley / r_sector * r_handle / Km
+  double stiffness_N_per_m{};
+  double position_m{};
+  bool solid_above{};
+  double damping_N_s_per_m{};
+  double width_m{};
+  double period_m{};
+  double per_period{};
+  double texture_offset_m{};
+  bool mirror{};
+};
+LabFoldedConstants fold_lab_constants(const LabBaselineConstants& c);
+void lab_spring_folded(const LabFoldedConstants& f, std::int32_t raw, LabBaselineState* s) noexcept;
+void lab_wall_folded(const LabFoldedConstants& f, std::int32_t raw, LabBaselineState* s) noexcept;
+void lab_damper_folded(const LabFoldedConstants& f, std::int32_t raw, LabBaselineState* s) noexcept;
+void lab_texture_folded(const LabFoldedConstants& f, std::int32_t raw, LabBaselineState* s) noexcept;
 
 }  // namespace hapscene

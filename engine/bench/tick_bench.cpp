@@ -58,6 +58,27 @@ std::unique_ptr<TickLoop> baseline_loop(const LabBaselineConstants& constants) {
   return std::make_unique<TickLoopOf<BaselineTick<Function>>>(BaselineTick<Function>{constants, {}});
 }
 
+// The same through a function pointer the compiler cannot see through, so it is called
+// out of line (one call per tick, as step() is) even when link-time optimisation could
+// inline it into the timing loop.
+template <typename Constants>
+struct OutOfLineTick {
+  void (*function)(const Constants&, std::int32_t, LabBaselineState*) noexcept;
+  Constants constants;
+  LabBaselineState state;
+  void operator()(std::int32_t raw) {
+    auto* call = function;
+    asm volatile("" : "+r"(call));
+    call(constants, raw, &state);
+  }
+};
+
+template <typename Constants>
+std::unique_ptr<TickLoop> out_of_line_loop(void (*function)(const Constants&, std::int32_t, LabBaselineState*) noexcept,
+                                           const Constants& constants) {
+  return std::make_unique<TickLoopOf<OutOfLineTick<Constants>>>(OutOfLineTick<Constants>{function, constants, {}});
+}
+
 constexpr std::chrono::milliseconds kWarmUp{300};
 
 double median_of(std::vector<double> values) {
@@ -97,6 +118,33 @@ std::unique_ptr<TickLoop> lab_baseline_tick_loop(const Scene& scene) {
     case LabBaselineKind::wall: return baseline_loop<lab_wall_tick>(constants);
     case LabBaselineKind::damper: return baseline_loop<lab_damper_tick>(constants);
     case LabBaselineKind::texture: return baseline_loop<lab_texture_tick>(constants);
+  }
+  return nullptr;
+}
+
+std::unique_ptr<TickLoop> lab_sketch_out_of_line_tick_loop(const Scene& scene) {
+  LabBaselineKind kind{};
+  LabBaselineConstants constants;
+  if (!lab_baseline_for(scene, &kind, &constants)) return nullptr;
+  switch (kind) {
+    case LabBaselineKind::spring: return out_of_line_loop(&lab_spring_tick, constants);
+    case LabBaselineKind::wall: return out_of_line_loop(&lab_wall_tick, constants);
+    case LabBaselineKind::damper: return out_of_line_loop(&lab_damper_tick, constants);
+    case LabBaselineKind::texture: return out_of_line_loop(&lab_texture_tick, constants);
+  }
+  return nullptr;
+}
+
+std::unique_ptr<TickLoop> lab_folded_tick_loop(const Scene& scene) {
+  LabBaselineKind kind{};
+  LabBaselineConstants constants;
+  if (!lab_baseline_for(scene, &kind, &constants)) return nullptr;
+  const LabFoldedConstants folded = fold_lab_constants(constants);
+  switch (kind) {
+    case LabBaselineKind::spring: return out_of_line_loop(&lab_spring_folded, folded);
+    case LabBaselineKind::wall: return out_of_line_loop(&lab_wall_folded, folded);
+    case LabBaselineKind::damper: return out_of_line_loop(&lab_damper_folded, folded);
+    case LabBaselineKind::texture: return out_of_line_loop(&lab_texture_folded, folded);
   }
   return nullptr;
 }

@@ -51,6 +51,12 @@ std::unique_ptr<TickLoop> scene_tick_loop(const Scene& scene);
 // (then there is nothing to compare with).
 std::unique_ptr<TickLoop> lab_baseline_tick_loop(const Scene& scene);
 
+// The same sketch called out of line through a pointer (as step() is: one call per tick,
+// never inlined into the timing loop), and the hand-folded floor (lab_baseline.hpp),
+// also out of line; null when the scene is not a single lab effect.
+std::unique_ptr<TickLoop> lab_sketch_out_of_line_tick_loop(const Scene& scene);
+std::unique_ptr<TickLoop> lab_folded_tick_loop(const Scene& scene);
+
 // Loops compared on the same readings; ratios are against the first.
 struct TickLoopGroup {
   const std::vector<std::int32_t>* counts{};

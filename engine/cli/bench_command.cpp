@@ -10,6 +10,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/base/object_reader.hpp"
+#include "engine/bench/build_info.hpp"
 #include "engine/bench/instruction_counter.hpp"
 #include "engine/bench/lua_equivalent.hpp"
 #include "engine/bench/planar_tick_bench.hpp"
@@ -55,6 +56,7 @@ constexpr const char* kPartScenes[][2] = {
     {"damper (adds the velocity estimator)", R"({"effects": [{"type": "damper", "damping": 1}]})"},
     {"texture, 10 fields over the workspace", R"({"effects": [{"type": "texture", "width": 0.005, "damping": 1}]})"},
     {"texture, 10000 fields over the workspace", R"({"effects": [{"type": "texture", "width": "5 um", "damping": 1}]})"},
+    {"texture, 50000 fields of 1 um (the finest)", R"({"effects": [{"type": "texture", "width": "1 um", "damping": 1}]})"},
     {"10 built-in effects", R"({"effects": [{"type": "spring", "stiffness": 10}, {"type": "spring", "stiffness": 10},
       {"type": "damper", "damping": 0.1}, {"type": "damper", "damping": 0.1}, {"type": "texture", "width": 0.005, "damping": 0.1},
       {"type": "texture", "width": 0.004, "damping": 0.1}, {"type": "wall", "position": 0.02, "stiffness": 100, "solid": "above"},
@@ -71,6 +73,12 @@ constexpr const char* kPartScenes[][2] = {
 
 constexpr double kBuiltinGoalRatio = 1.5;     // built-in effects against the hand-written code
 constexpr double kLuaGoal_ns = 150.0;         // Lua scripts, median per tick
+constexpr double kLuaSpringGoal_ns = 50.0;    // scripts/spring.lua, median per tick (at most)
+constexpr double kLuaTextureGoal_ns = 70.0;   // scripts/texture.lua, median per tick (under)
+constexpr double kTextureFieldsGoalRatio = 1.1;  // texture at 50 000 fields (the finest) against 10 fields
+// The parts rows the texture goal compares (indices into kPartScenes).
+constexpr std::size_t kTexture10Part = 5;
+constexpr std::size_t kTextureFinestPart = 7;
 constexpr double kTailGoalRatio = 5.0;        // Lua scripts: p99.9 against the median (no GC spikes)
 constexpr double kPolygonGoal_ns = 1000.0;    // the 1000-edge polygon, median per tick
 constexpr double kLuaPlanarGoalRatio = 1.2;   // a 2-D Lua spring against the 1-D Lua spring
@@ -195,7 +203,7 @@ void check_bench_memory(const Arguments& arguments, const std::vector<Scene>& sc
   }
   // The default rows add the Lua spring in 1-D and 2-D: a 2-D recording and two loops.
   if (defaults) readings += kPlanarReadingWeight * std::floor(seconds * 1000.0);
-  const double loops = 3.0 * static_cast<double>(scenes.size()) + 2.0 * static_cast<double>(planar_scenes.size()) +
+  const double loops = 5.0 * static_cast<double>(scenes.size()) + 2.0 * static_cast<double>(planar_scenes.size()) +
                        static_cast<double>(std::size(kPartScenes)) + (defaults ? 2.0 : 0.0);
   const double slices = std::max(1.0, std::floor(longest_ticks / static_cast<double>(kSliceTicks)));
   const double readings_bytes = 4.0 * readings;
@@ -219,6 +227,7 @@ int bench_command(std::vector<std::string> args) {
   if (arguments.take_flag("stress")) return bench_stress(arguments);
   if (arguments.take_flag("soak")) return bench_soak(arguments);
   if (arguments.take_flag("callgrind")) return bench_callgrind(arguments);
+  if (arguments.take_flag("realtime")) return bench_realtime(arguments);
   const double seconds = arguments.take(option::bench_seconds).value_or(20.0);
   const int passes = static_cast<int>(arguments.take(option::bench_passes).value_or(10));
   const std::string scripts_dir = arguments.take_value("scripts").value_or("scripts");
@@ -251,8 +260,13 @@ int bench_command(std::vector<std::string> args) {
 
   TickTimer timer;
   InstructionCounter counter;
+  print_out("build: %s\n", build_description().c_str());
   print_out("tick compute in ns (read counts -> motor command, no I/O); %g s of recorded sensor "
-            "readings x %d passes per row, every row interleaved in rounds of %zu ticks; ratios against the hand-written lab code, same rounds\n", seconds, passes, kSliceTicks);
+            "readings x %d passes per row, every row interleaved in rounds of %zu ticks; ratios against the "
+            "hand-folded floor, same rounds\n", seconds, passes, kSliceTicks);
+  print_out("rows: hand-folded floor = the lab tick with constants folded, no division, called out of line; "
+            "sketch = the lab's sketch as written (velocity filter every loop), inlined into the timing loop, "
+            "and called out of line like the engine's step()\n");
   if (counter.available()) {
     print_out("instr: instructions per tick from the CPU's counters (one more pass)\n\n");
   } else {
@@ -263,18 +277,24 @@ int bench_command(std::vector<std::string> args) {
   // the engine, then Lua, on the environment's own recorded readings.
   struct EnvironmentLoops {
     std::vector<std::int32_t> counts;
-    std::unique_ptr<TickLoop> baseline, builtin, lua;
+    std::unique_ptr<TickLoop> baseline, sketch_inline, sketch_out_of_line, builtin, lua;
   };
   std::vector<EnvironmentLoops> environments(scenes.size());
   std::vector<TickLoopGroup> groups;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     EnvironmentLoops& e = environments[i];
     e.counts = record_sensor_counts(scenes[i], seconds);
-    e.baseline = lab_baseline_tick_loop(scenes[i]);
+    // The reference (first) is the folded floor; the sketch rows come with it.
+    e.baseline = lab_folded_tick_loop(scenes[i]);
+    if (e.baseline) {
+      e.sketch_inline = lab_baseline_tick_loop(scenes[i]);
+      e.sketch_out_of_line = lab_sketch_out_of_line_tick_loop(scenes[i]);
+    }
     e.builtin = scene_tick_loop(scenes[i]);
     if (lua_scenes[i]) e.lua = scene_tick_loop(*lua_scenes[i]);
     TickLoopGroup group{&e.counts, {}};
-    for (TickLoop* loop : {e.baseline.get(), e.builtin.get(), e.lua.get()}) {
+    for (TickLoop* loop : {e.baseline.get(), e.sketch_inline.get(), e.sketch_out_of_line.get(), e.builtin.get(),
+                           e.lua.get()}) {
       if (loop != nullptr) group.loops.push_back(loop);
     }
     groups.push_back(std::move(group));
@@ -357,7 +377,11 @@ int bench_command(std::vector<std::string> args) {
       for (TickCost& cost : row_costs) cost.ratio = -1.0;
     }
     std::size_t row = 0;
-    if (e.baseline) print_row(scene.name, "hand-written C++", row_costs[row++], false);
+    if (e.baseline) {
+      print_row(scene.name, "hand-folded floor", row_costs[row++], false);
+      print_row(scene.name, "sketch, inlined", row_costs[row++], false);
+      print_row(scene.name, "sketch, call", row_costs[row++], false);
+    }
     const TickCost builtin_cost = row_costs[row++];
     // A row that runs scripts carries the Lua rows' tail goal.
     const bool has_scripts = scene.script_count > 0;
@@ -365,7 +389,7 @@ int bench_command(std::vector<std::string> args) {
     tails_ok = builtin_tail_ok && tails_ok;
     char goal[200];
     if (e.baseline) {
-      std::snprintf(goal, sizeof goal, "%s: built-in %.2fx the hand-written code (goal <= %.1fx): %s",
+      std::snprintf(goal, sizeof goal, "%s: built-in %.2fx the hand-folded floor (goal <= %.1fx): %s",
                     scene.name.c_str(), builtin_cost.ratio, kBuiltinGoalRatio,
                     builtin_cost.ratio <= kBuiltinGoalRatio ? "met" : "NOT met");
       goals.push_back(goal);
@@ -376,12 +400,30 @@ int bench_command(std::vector<std::string> args) {
       std::snprintf(goal, sizeof goal, "%s: Lua median %.1f ns (goal < %.0f ns): %s", scene.name.c_str(),
                     lua_cost.median_ns, kLuaGoal_ns, lua_cost.median_ns < kLuaGoal_ns ? "met" : "NOT met");
       goals.push_back(goal);
+      // The shipped spring and texture scripts have goals of their own.
+      if (defaults && (scene.name == "spring" || scene.name == "texture")) {
+        const bool spring_row = scene.name == "spring";
+        const double limit_ns = spring_row ? kLuaSpringGoal_ns : kLuaTextureGoal_ns;
+        const bool met = spring_row ? lua_cost.median_ns <= limit_ns : lua_cost.median_ns < limit_ns;
+        std::snprintf(goal, sizeof goal, "%s: Lua median %.1f ns (goal %s %.0f ns): %s", scene.name.c_str(),
+                      lua_cost.median_ns, spring_row ? "<=" : "<", limit_ns, met ? "met" : "NOT met");
+        goals.push_back(goal);
+      }
     }
   }
   print_out("\ngoals\n");
   for (const std::string& goal : goals) print_out("  %s\n", goal.c_str());
   print_out("  Lua rows: p99.9 <= %.0fx the median (no GC spikes): %s\n", kTailGoalRatio,
             tails_ok ? "met" : "NOT met (see p99.9/med)");
+
+  {
+    const std::vector<TickCost>& parts_costs = costs[scenes.size()];
+    const double fields_ratio = parts_costs[kTexture10Part].median_ns > 0.0
+                                    ? parts_costs[kTextureFinestPart].median_ns / parts_costs[kTexture10Part].median_ns
+                                    : 0.0;
+    print_out("  texture: 50000 fields %.2fx the cost of 10 fields (goal <= %.1fx): %s\n", fields_ratio,
+              kTextureFieldsGoalRatio, fields_ratio <= kTextureFieldsGoalRatio ? "met" : "NOT met");
+  }
 
   print_out("\nwhat each part of a scene costs (median ns per tick, measured with the rows above; "
             "ratio against the first row)\n\n");

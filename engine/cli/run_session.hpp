@@ -6,11 +6,13 @@
 // (1-DOF) and run_planar.cpp (2-DOF) print the summary and their own outputs after it.
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <initializer_list>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -35,7 +37,11 @@ class StatusLine {
     if (enabled) thread_ = std::thread([this] { loop(); });
   }
   ~StatusLine() {
-    done_.store(true);
+    {
+      std::lock_guard lock(done_mutex_);
+      done_.store(true);
+    }
+    done_wake_.notify_all();  // the run ends now, not up to a refresh period later
     if (thread_.joinable()) {
       thread_.join();
       std::fprintf(stderr, "\r\033[K");
@@ -49,8 +55,11 @@ class StatusLine {
     using namespace std::chrono;
     std::uint64_t last_ticks = status_.ticks();
     auto last_time = steady_clock::now();
-    while (!done_.load()) {
-      std::this_thread::sleep_for(milliseconds(100));
+    for (;;) {
+      {
+        std::unique_lock lock(done_mutex_);
+        if (done_wake_.wait_for(lock, milliseconds(100), [this] { return done_.load(); })) break;
+      }
       const auto now = steady_clock::now();
       const std::uint64_t ticks = status_.ticks();
       const double rate_hz = static_cast<double>(ticks - last_ticks) / duration<double>(now - last_time).count();
@@ -76,6 +85,8 @@ class StatusLine {
   std::vector<std::string> log_lines_;
   double period_s_;
   std::atomic<bool> done_{false};
+  std::mutex done_mutex_;
+  std::condition_variable done_wake_;
   std::thread thread_;
 };
 

@@ -72,7 +72,7 @@ void print_scripts(const RunSummaryOf<N>& summary, const ScriptFaultPlaces<N>* p
 
 // Real time: the wake-up lateness, its bands, the scheduling obtained and overruns.
 template <int N>
-void print_timing(const RunSettings& settings, const RunSummaryOf<N>& summary) {
+void print_timing(const RunSettings&, const RunSummaryOf<N>& summary) {
   print_out("  wake-up jitter   p50 %.2f us  p99 %.2f us  max %.2f us\n", us(summary.wake_late_ns.percentile_ns(0.50)),
             us(summary.wake_late_ns.percentile_ns(0.99)), us(summary.wake_late_ns.max_ns()));
   // The jitter histogram: ticks per band of lateness.
@@ -89,22 +89,21 @@ void print_timing(const RunSettings& settings, const RunSummaryOf<N>& summary) {
   bands += "  >1ms " + std::to_string(late.count() - below);
   print_out("  jitter bands     %s\n", bands.c_str());
   print_out("  scheduling       %s\n", summary.realtime_note.c_str());
-  const RunOptions& options = settings.options;
   if (summary.overrun_warnings > 0 || summary.overrun_fault) {  // (a window fault may come without a warning)
     print_out("  overruns         %llu warnings (first at %.3f s), longest streak %u misses, "
               "at most %u misses in %u deadlines\n",
               count(summary.overrun_warnings), summary.first_overrun_warning_s, summary.longest_miss_streak,
-              summary.most_misses_in_window, options.overrun_window_deadlines);
+              summary.most_misses_in_window, summary.overrun_limits.window_deadlines);
   }
   if (summary.overrun_fault_kind == OverrunFault::streak) {
     print_out("  FAULT            sustained overrun at %.3f s (%u deadline misses in a row): "
               "zero force commanded, run stopped\n",
-              summary.overrun_fault_s, options.overrun_fault_ticks);
+              summary.overrun_fault_s, summary.overrun_limits.fault_ticks);
   } else if (summary.overrun_fault_kind == OverrunFault::window) {
     print_out("  FAULT            frequent overruns at %.3f s (%u deadline misses within the last %u "
               "deadlines, more than %u): zero force commanded, run stopped\n",
-              summary.overrun_fault_s, summary.most_misses_in_window, options.overrun_window_deadlines,
-              options.overrun_window_misses);
+              summary.overrun_fault_s, summary.most_misses_in_window, summary.overrun_limits.window_deadlines,
+              summary.overrun_limits.window_misses);
   }
 }
 
@@ -133,8 +132,17 @@ void print_run_summary(const SceneOf<N>& scene, const RunSettings& settings, std
   }
   print_out("  faults           %llu non-finite forces\n", count(safety.nonfinite_faults));
   print_scripts(summary, places);
-  print_out("  deadline misses  %s\n",
-            real_time ? std::to_string(summary.deadline_misses).c_str() : "n/a (simulated time)");
+  std::string misses = "n/a (simulated time)";
+  if (real_time) {
+    misses = std::to_string(summary.deadline_misses);
+    // Per minute of run, for runs long enough that the rate means something.
+    if (summary.wall_time_s >= 1.0) {
+      char rate[48];
+      std::snprintf(rate, sizeof rate, " (%.1f per minute)", 60.0 * static_cast<double>(summary.deadline_misses) / summary.wall_time_s);
+      misses += rate;
+    }
+  }
+  print_out("  deadline misses  %s\n", misses.c_str());
   print_out("  tick compute     p50 %.2f us  p99 %.2f us  max %.2f us\n", us(summary.compute_ns.percentile_ns(0.50)),
             us(summary.compute_ns.percentile_ns(0.99)), us(summary.compute_ns.max_ns()));
   if (real_time) print_timing(settings, summary);

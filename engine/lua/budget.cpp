@@ -44,16 +44,27 @@ const char* budget_phrase(const ScriptVm* vm) {
 }  // namespace
 
 void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_limit_bytes,
-                std::int64_t straight_line_instructions) {
+                std::int64_t straight_line_instructions, bool straight_line_calls) {
   vm->budget_instructions = instructions;
   vm->remaining_instructions = instructions;
   if (straight_line_instructions > 0 && straight_line_instructions < instructions &&
       straight_line_instructions <= kMaxStraightLine && !vm->tripped) {
-    // The function's own code runs uncounted, charged its length up front; the call hook
-    // switches to counting as soon as it calls a Lua function.
+    // The function's own code runs uncounted, charged its length up front.
     vm->remaining_instructions -= straight_line_instructions;
     vm->entered_function = false;
-    if (!vm->hook_on_calls) {
+    if (!straight_line_calls && !vm->script_metamethods) {
+      // Sealed: it calls nothing, and no operator or field read can run script code (the
+      // metamethods in reach are the sandbox's own C guards), so no hook is needed: its
+      // length bounds it. (Lua's call hook alone costs about as much as a short force.)
+      if (!vm->unhooked) {
+        vm->unhooked = true;
+        vm->hook_on_calls = false;
+        vm->hook_period = 0;
+        lua_sethook(vm->L, nullptr, 0, 0);
+      }
+    } else if (!vm->hook_on_calls) {
+      // The call hook switches to counting as soon as it calls a Lua function.
+      vm->unhooked = false;
       vm->hook_on_calls = true;
       vm->hook_period = 0;
       lua_sethook(vm->L, call_hook, LUA_MASKCALL, 0);
@@ -81,6 +92,7 @@ void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_
 
 void start_counting(ScriptVm* vm, lua_State* L, std::int64_t period) {
   vm->hook_on_calls = false;
+  vm->unhooked = false;
   vm->hook_period = period;
   lua_sethook(L, count_hook, LUA_MASKCOUNT, static_cast<int>(period));
   if (L != vm->L) lua_sethook(vm->L, count_hook, LUA_MASKCOUNT, static_cast<int>(period));

@@ -15,6 +15,31 @@ namespace {
 constexpr unsigned kOpJmp = 56;       // pc += sJ; backwards when sJ < 0 (loops, goto)
 constexpr unsigned kOpForLoop = 73;   // numeric for: always back to the loop body
 constexpr unsigned kOpTForLoop = 77;  // generic for: always back to the call
+// Opcodes that call a value (lopcodes.h, Lua 5.4).
+constexpr unsigned kOpCall = 68;
+constexpr unsigned kOpTailCall = 69;
+// Opcodes whose register fields uses_first_register reads (lopcodes.h, Lua 5.4).
+constexpr unsigned kOpMove = 0;
+constexpr unsigned kOpGetTable = 12;
+constexpr unsigned kOpGetI = 13;
+constexpr unsigned kOpGetField = 14;
+constexpr unsigned kOpSetTabUp = 15;
+constexpr unsigned kOpSetTable = 16;
+constexpr unsigned kOpSetI = 17;
+constexpr unsigned kOpSetField = 18;
+constexpr unsigned kOpSelf = 20;
+constexpr unsigned kOpAddI = 21;   // ADDI, the K forms (ADDK .. BXORK), SHRI, SHLI: 21-33
+constexpr unsigned kOpAdd = 34;    // ADD .. SHR: 34-45
+constexpr unsigned kOpShr = 45;
+constexpr unsigned kOpMmBin = 46;
+constexpr unsigned kOpUnm = 49;    // UNM, BNOT, NOT, LEN: 49-52
+constexpr unsigned kOpLen = 52;
+constexpr unsigned kOpEq = 57;     // EQ, LT, LE: 57-59
+constexpr unsigned kOpLe = 59;
+constexpr unsigned kOpTestSet = 67;
+constexpr unsigned kOpClosure = 79;
+constexpr unsigned kOpVararg = 80;
+constexpr unsigned kOpExtraArg = 82;
 constexpr unsigned kOpcodeBits = 7;
 constexpr int kSignedJumpOffset = (1 << 24) - 1;  // OFFSET_sJ for a 25-bit sJ
 
@@ -52,40 +77,90 @@ struct Reader {
   }
 };
 
+// Whether an instruction uses register 0 (a function's first parameter) in any way other
+// than as the table of a read of a constant field (GETFIELD A 0 K): writing it, copying
+// it, passing or returning it, storing it, comparing it, using it as a key or an operand.
+// Errs on the side of "uses": a false answer must be exact, a true one only costs speed.
+// Instruction fields (lopcodes.h, iABC): op 7 bits, A 8, k 1, B 8, C 8.
+bool uses_first_register(unsigned opcode, std::uint32_t instruction) {
+  const unsigned a = (instruction >> 7) & 0xffu;
+  const bool k = ((instruction >> 15) & 1u) != 0;
+  const unsigned b = (instruction >> 16) & 0xffu;
+  const unsigned c = (instruction >> 24) & 0xffu;
+  switch (opcode) {
+    case kOpGetField: return a == 0;  // s.name: a read, unless it overwrites s itself
+    case kOpJmp:
+    case kOpExtraArg: return false;   // no register fields
+    case kOpClosure: return true;     // a nested function may capture it as an upvalue
+    case kOpVararg: return true;
+    case kOpSetTabUp: return !k && c == 0;  // A is an upvalue; RK(C) the value stored
+    default: break;
+  }
+  if (a == 0) return true;  // every other opcode has a register (or a range from it) in A
+  // B as a register.
+  const bool b_register = opcode == kOpMove || opcode == kOpGetTable || opcode == kOpGetI ||
+                          opcode == kOpSetTable || opcode == kOpSelf ||
+                          (opcode >= kOpAddI && opcode <= kOpShr) || opcode == kOpMmBin ||
+                          (opcode >= kOpUnm && opcode <= kOpLen) || (opcode >= kOpEq && opcode <= kOpLe) ||
+                          opcode == kOpTestSet;
+  if (b_register && b == 0) return true;
+  // C as a register, or RK(C) (a register when k is 0).
+  const bool c_register = opcode == kOpGetTable || (opcode >= kOpAdd && opcode <= kOpShr);
+  const bool c_rk = opcode == kOpSetTable || opcode == kOpSetI || opcode == kOpSetField || opcode == kOpSelf;
+  return c == 0 && (c_register || (c_rk && !k));
+}
+
 }  // namespace
 
-std::int64_t straight_line_length(lua_State* L, int index) {
-  if (lua_type(L, index) != LUA_TFUNCTION || lua_iscfunction(L, index)) return 0;
+FunctionCode read_function_code(lua_State* L, int index) {
+  FunctionCode code;
+  if (lua_type(L, index) != LUA_TFUNCTION || lua_iscfunction(L, index)) return code;
   std::string chunk;
   lua_pushvalue(L, index);
   const int status = lua_dump(L, append_chunk, &chunk, 1);
   lua_pop(L, 1);
   if (status != 0 || chunk.size() < kHeaderBytes ||
       std::memcmp(chunk.data(), kHeader, kHeaderBytes) != 0) {
-    return 0;
+    return code;
   }
   Reader reader{reinterpret_cast<const unsigned char*>(chunk.data()),
                 reinterpret_cast<const unsigned char*>(chunk.data()) + chunk.size()};
   std::uint64_t source_size = 0, line = 0, code_size = 0;
-  if (!reader.skip(kHeaderBytes + kCheckNumbersBytes + 1)) return 0;  // + number of upvalues
-  if (!reader.size(&source_size)) return 0;                             // 0 when stripped
-  if (source_size > 0 && !reader.skip(source_size - 1)) return 0;
-  if (!reader.size(&line) || !reader.size(&line)) return 0;             // line range
-  if (!reader.skip(3)) return 0;                                        // params, vararg, stack
-  if (!reader.size(&code_size) || code_size == 0) return 0;
-  if (code_size > static_cast<std::uint64_t>(reader.end - reader.at) / 4) return 0;
+  if (!reader.skip(kHeaderBytes + kCheckNumbersBytes + 1)) return code;  // + number of upvalues
+  if (!reader.size(&source_size)) return code;                             // 0 when stripped
+  if (source_size > 0 && !reader.skip(source_size - 1)) return code;
+  if (!reader.size(&line) || !reader.size(&line)) return code;             // line range
+  if (static_cast<std::size_t>(reader.end - reader.at) < 3) return code;
+  const bool is_vararg = reader.at[1] != 0;
+  reader.skip(3);                                                          // params, vararg, stack
+  if (!reader.size(&code_size) || code_size == 0) return code;
+  if (code_size > static_cast<std::uint64_t>(reader.end - reader.at) / 4) return code;
 
+  bool loops = false;
+  bool calls = false;
+  bool first_escapes = is_vararg;  // `...` holds the arguments too
   for (std::uint64_t i = 0; i < code_size; ++i) {
     std::uint32_t instruction = 0;
     std::memcpy(&instruction, reader.at + 4 * i, 4);  // dumped in the machine's byte order
     const unsigned opcode = instruction & ((1u << kOpcodeBits) - 1);
-    if (opcode == kOpForLoop || opcode == kOpTForLoop) return 0;
+    if (opcode == kOpForLoop || opcode == kOpTForLoop) loops = true;
+    if (opcode == kOpCall || opcode == kOpTailCall) calls = true;
     if (opcode == kOpJmp) {
       const int jump = static_cast<int>(instruction >> kOpcodeBits) - kSignedJumpOffset;
-      if (jump < 0) return 0;
+      if (jump < 0) loops = true;
     }
+    if (!first_escapes && uses_first_register(opcode, instruction)) first_escapes = true;
   }
-  return static_cast<std::int64_t>(code_size);
+  code.calls = calls;
+  code.first_parameter_read_by_field_only = !first_escapes;
+  if (!loops) code.straight_line_length = static_cast<std::int64_t>(code_size);
+  return code;
+}
+
+std::int64_t straight_line_length(lua_State* L, int index, bool* calls) {
+  const FunctionCode code = read_function_code(L, index);
+  if (calls != nullptr) *calls = code.straight_line_length == 0 || code.calls;
+  return code.straight_line_length;
 }
 
 }  // namespace hapscene::detail

@@ -10,6 +10,21 @@ namespace hapscene::detail {
 // loop (no backward jump of any kind: every instruction runs at most once per call), or 0
 // when it can loop, is not a Lua function, or its bytecode is not Lua 5.4's. Calls it
 // makes are not covered: they are counted when they happen (see budget.cpp).
-std::int64_t straight_line_length(lua_State* L, int index);
+// `calls` (when given) is set to whether the function's own code has a call instruction
+// (a call or a tail call); true whenever the answer is 0.
+std::int64_t straight_line_length(lua_State* L, int index, bool* calls = nullptr);
+
+// What read_function_code found in a Lua function's own code (not in what it calls).
+struct FunctionCode {
+  std::int64_t straight_line_length{};  // as straight_line_length answers
+  bool calls{true};                     // has a call or tail call instruction
+  // Its first parameter is only ever read as the table of a constant field (`s.x`): never
+  // written, copied, passed, returned, stored, captured or used as an operand, so the
+  // value passed there cannot escape the call or be changed by it.
+  bool first_parameter_read_by_field_only{};
+};
+// Reads the code of the Lua function at `index`; the defaults (can loop, calls, the
+// parameter may escape) when it is not a Lua 5.4 function.
+FunctionCode read_function_code(lua_State* L, int index);
 
 }  // namespace hapscene::detail

@@ -290,10 +290,14 @@ int sandbox_setmetatable(lua_State* L) {
   lua_Integer depth = 0;
   for (const char* event : kEvents) {
     lua_pushstring(L, event);
-    if (lua_rawget(L, 2) == LUA_TNIL) {
+    const int event_type = lua_rawget(L, 2);
+    if (event_type == LUA_TNIL) {
       lua_pop(L, 1);
       continue;
     }
+    // An operator or field read may now call a function (script code, or a C function
+    // that calls script code, such as pcall): force() can no longer run unhooked.
+    if (event_type == LUA_TFUNCTION) vm_of(L)->script_metamethods = true;
     const bool chain = std::strcmp(event, "__index") == 0 || std::strcmp(event, "__newindex") == 0;
     if (chain && lua_type(L, -1) == LUA_TTABLE) {
       depth = std::max(depth, 1 + chain_depth(L, -1));

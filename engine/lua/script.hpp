@@ -189,6 +189,13 @@ class ScriptInstance {
   // costs nothing); otherwise does up to max_steps incremental steps of about 1 KiB of
   // collector work each.
   void collect_garbage(int max_steps = 1) noexcept;
+  // Brings the state's hot parts into the caches before a tick (the real-time loop calls
+  // it while it spins to the deadline): one protected call of a tiny function of the
+  // sandbox's own that reads s.x, through the same call path force() takes. Only when
+  // force() runs unhooked (no budget is charged: the function runs a fixed 3
+  // instructions); otherwise does nothing. Changes nothing the script can see; never
+  // allocates, throws or blocks.
+  void warm() noexcept;
 
   bool disabled() const noexcept;
   // "scripts/bumps.lua:12: attempt to perform arithmetic on a nil value (global 'k')";
@@ -216,6 +223,14 @@ class ScriptInstance {
   // The length in VM instructions of force() when its own code cannot loop (it then runs
   // without the per-instruction count hook, charged that length per call), else 0.
   std::int64_t force_straight_line_instructions() const noexcept;
+  // Whether force() now runs with no hook at all: it is straight-line, has no call
+  // instruction, and no metatable the script set holds a function (so nothing it runs can
+  // reach script code). Changes to false when the script sets such a metatable.
+  bool force_runs_without_hooks() const noexcept;
+  // Whether force(s) gets the table of values itself as `s` rather than the read-only
+  // proxy: its code only reads constant fields of s (s.x), so s cannot be written or
+  // escape; an unknown field is an error either way.
+  bool force_reads_state_directly() const noexcept;
 
  private:
   friend ScriptProgram compile_script(std::string, std::string, const nlohmann::json&, std::string,

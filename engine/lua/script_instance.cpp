@@ -152,10 +152,23 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   if (status != LUA_OK || vm->tripped || !vm->load_error.empty()) throw_load_failure(*vm, L);
   lua_pushcfunction(L, detail::finish_load);
   if (lua_pcall(L, 0, detail::kSlotCount, 0) != LUA_OK || vm->tripped) throw_load_failure(*vm, L);
+  // The warm-up function: the sandbox's own code, not the script's (nothing it touches is
+  // the script's but the fields of s, which it only reads).
+  static constexpr char kWarmSource[] = "local s = ... return s.x";
+  if (luaL_loadbufferx(L, kWarmSource, sizeof kWarmSource - 1, "=(warm)", "t") == LUA_OK) {
+    vm->warm_ref = luaL_ref(L, LUA_REGISTRYINDEX);
+  } else {
+    lua_pop(L, 1);
+  }
   detail::end_call(vm);
 
   // Running from here on: new globals are errors. Start with a clean heap.
-  vm->force_straight_line = detail::straight_line_length(L, detail::kSlotForce);
+  const detail::FunctionCode force_code = detail::read_function_code(L, detail::kSlotForce);
+  vm->force_straight_line = force_code.straight_line_length;
+  vm->force_calls = force_code.straight_line_length == 0 || force_code.calls;
+  // A force that only reads fields of `s` gets the data table itself (no proxy hop): it
+  // cannot write it or let it escape, and an unknown field is still an error there.
+  vm->state_slot = force_code.first_parameter_read_by_field_only ? detail::kSlotData : detail::kSlotState;
   vm->phase = detail::Phase::running;
   vm->source = nullptr;
   vm->params_override = nullptr;
@@ -173,7 +186,7 @@ double ScriptInstance::force_N(const ScriptInput& input) noexcept {
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
   detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
-                     vm->force_straight_line);
+                     vm->force_straight_line, vm->force_calls);
 
   // s, then force(s) in protected mode.
   set_state(L, detail::kSlotKeyX, input.x_m);
@@ -184,7 +197,7 @@ double ScriptInstance::force_N(const ScriptInput& input) noexcept {
     vm->last_dt_s = input.dt_s;
   }
   lua_pushvalue(L, detail::kSlotForce);
-  lua_pushvalue(L, detail::kSlotState);
+  lua_pushvalue(L, vm->state_slot);
   const int status = lua_pcall(L, 1, 1, 0);
   detail::end_call(vm);
 
@@ -236,7 +249,7 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
   detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
-                     vm->force_straight_line);
+                     vm->force_straight_line, vm->force_calls);
 
   // s, then force(s) in protected mode, keeping every result to count them.
   set_state(L, detail::kSlotKeyX, input.x_m);
@@ -251,7 +264,7 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
     vm->last_dt_s = input.dt_s;
   }
   lua_pushvalue(L, detail::kSlotForce);
-  lua_pushvalue(L, detail::kSlotState);
+  lua_pushvalue(L, vm->state_slot);
   const int status = lua_pcall(L, 1, LUA_MULTRET, 0);
   detail::end_call(vm);
 
@@ -298,11 +311,11 @@ int ScriptInstance::check_force_results() noexcept {
   lua_State* L = vm->L;
   vm->now_s = 0.0;
   detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
-                     vm->force_straight_line);
+                     vm->force_straight_line, vm->force_calls);
   set_state(L, detail::kSlotKeyX, 0.0);
   if (vm->axes == 2) set_state(L, detail::kSlotKeyY, 0.0);
   lua_pushvalue(L, detail::kSlotForce);
-  lua_pushvalue(L, detail::kSlotState);
+  lua_pushvalue(L, vm->state_slot);
   const int status = lua_pcall(L, 1, LUA_MULTRET, 0);
   detail::end_call(vm);
   if (status != LUA_OK || vm->tripped) {
@@ -347,10 +360,26 @@ void ScriptInstance::collect_garbage(int max_steps) noexcept {
   }
 }
 
+void ScriptInstance::warm() noexcept {
+  ScriptVm* vm = vm_.get();
+  if (vm->disabled || !vm->unhooked || vm->warm_ref == LUA_NOREF) return;
+  lua_State* L = vm->L;
+  lua_rawgeti(L, LUA_REGISTRYINDEX, vm->warm_ref);
+  lua_pushvalue(L, vm->state_slot);
+  lua_pcall(L, 1, 1, 0);  // s.x exists: it cannot fail; its result is dropped either way
+  lua_settop(L, detail::kSlotCount);
+}
+
 bool ScriptInstance::disabled() const noexcept { return vm_->disabled; }
 
 std::int64_t ScriptInstance::force_straight_line_instructions() const noexcept {
   return vm_->force_straight_line;
+}
+
+bool ScriptInstance::force_reads_state_directly() const noexcept { return vm_->state_slot == detail::kSlotData; }
+
+bool ScriptInstance::force_runs_without_hooks() const noexcept {
+  return vm_->force_straight_line > 0 && !vm_->force_calls && !vm_->script_metamethods;
 }
 
 std::string_view ScriptInstance::fault_message() const noexcept {

@@ -64,12 +64,22 @@ struct ScriptVm {
   int axes{1};       // of the scene: 1 (s.x, s.v; one result) or 2 (s.x, s.y, s.vx, s.vy; two)
   int force_line{};  // line where force is defined, for messages about its return value
   std::int64_t force_straight_line{};  // force's length when it cannot loop, else 0
+  bool force_calls{true};  // force's own code has a call instruction (see bytecode.hpp)
+  // What force(s) gets as `s`: the read-only proxy (kSlotState), or the data table itself
+  // (kSlotData) when force's code only reads constant fields of s (see bytecode.hpp).
+  int state_slot{kSlotState};
+  // A metatable the script set holds a function (sandbox_setmetatable): an operator or a
+  // field read may then run script code, or a C function that calls it, without a call
+  // instruction. Never cleared: metatables are frozen copies, and stay.
+  bool script_metamethods{};
 
   // Instruction budget of the current call (see budget.cpp).
   std::int64_t remaining_instructions{};
   std::int64_t budget_instructions{};
   std::int64_t hook_period{0};  // of the count hook; 0: not counting
   bool hook_on_calls{};         // the call hook is installed instead (see begin_call)
+  bool unhooked{};              // no hook at all: a sealed straight-line call (see begin_call)
+  int warm_ref{LUA_NOREF};      // registry reference of the warm-up function (ScriptInstance::warm)
   bool entered_function{};      // the call hook has seen the called function's own call
   bool check_clock{};
   std::chrono::steady_clock::time_point deadline{};  // of wall_time_per_call_s
@@ -138,9 +148,12 @@ inline ScriptVm* vm_of(lua_State* L) { return *static_cast<ScriptVm**>(lua_getex
 // Starts a call with the given instruction budget and allocation limit. With
 // `straight_line_instructions` > 0 (the called function cannot loop and is that long, see
 // bytecode.hpp) and below the budget, the function's own code runs without the count
-// hook, charged its length up front; anything it calls in Lua is counted.
+// hook, charged its length up front; anything it calls in Lua is counted. When moreover
+// its code has no call instruction (`straight_line_calls` false) and no metatable of the
+// script holds a function (vm->script_metamethods), nothing it runs can reach script code
+// or a C function of the script's choosing: it runs with no hook at all.
 void begin_call(ScriptVm* vm, std::int64_t instructions, std::size_t allocation_limit_bytes,
-                std::int64_t straight_line_instructions = 0);
+                std::int64_t straight_line_instructions = 0, bool straight_line_calls = true);
 void end_call(ScriptVm* vm);
 // Installs the count hook, firing every `period` instructions, on `L` and the main thread.
 void start_counting(ScriptVm* vm, lua_State* L, std::int64_t period);

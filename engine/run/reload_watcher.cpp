@@ -56,17 +56,26 @@ ReloadWatcherOf<N>::ReloadWatcherOf(std::string environment_path, const Scene& r
   limits_.safety = running.safety;
   watch_files_of(running, {});
   if (options_.poll_period_s <= 0.0) return;
+  // Waits one poll period between polls, or until the destructor says stop: the run ends
+  // when its last tick does, not up to a poll period later.
   thread_ = std::thread([this] {
-    while (!stop_.load()) {
-      std::this_thread::sleep_for(std::chrono::duration<double>(options_.poll_period_s));
-      if (!stop_.load()) poll();
+    const auto period = std::chrono::duration<double>(options_.poll_period_s);
+    std::unique_lock lock(stop_mutex_);
+    while (!stop_wake_.wait_for(lock, period, [this] { return stop_.load(); })) {
+      lock.unlock();
+      poll();
+      lock.lock();
     }
   });
 }
 
 template <int N>
 ReloadWatcherOf<N>::~ReloadWatcherOf() {
-  stop_.store(true);
+  {
+    std::lock_guard lock(stop_mutex_);
+    stop_.store(true);
+  }
+  stop_wake_.notify_all();
   if (thread_.joinable()) thread_.join();
   if (job_ != nullptr) {
     bool done = false;

@@ -61,7 +61,8 @@ class ReloadWatcherOf {
   // the watcher's thread with one line per reload or failed reload.
   ReloadWatcherOf(std::string environment_path, const Scene& running, SceneExchangeOf<N>* exchange,
                   Report report, ReloadWatcherOptionsOf<N> options = {});
-  // Stops the thread; abandons a load still running (never waits for it).
+  // Stops the thread at once (it is woken from its wait between polls); abandons a load
+  // still running (never waits for it).
   ~ReloadWatcherOf();
   ReloadWatcherOf(const ReloadWatcherOf&) = delete;
   ReloadWatcherOf& operator=(const ReloadWatcherOf&) = delete;
@@ -119,6 +120,8 @@ class ReloadWatcherOf {
   int abandoned_here_{0};
   bool stopped_watching_{false};
   std::atomic<bool> stop_{false};
+  std::mutex stop_mutex_;                // guards the stop signal for stop_wake_
+  std::condition_variable stop_wake_;   // wakes the watcher's thread from its wait on stop
   std::thread thread_;
 };
 

@@ -10,6 +10,7 @@
 
 #include "engine/base/clock.hpp"
 #include "engine/run/realtime.hpp"
+#include "engine/run/warm_tick.hpp"
 #include "engine/scene/step.hpp"
 
 namespace hapscene {
@@ -24,21 +25,6 @@ PositionHold position_hold(PositionStatus status) noexcept {
     case PositionStatus::implausible: return PositionHold::cut;
   }
   return PositionHold::cut;
-}
-
-// Sleeps until shortly before `deadline_ns` on an absolute clock, then spins to it.
-void wait_until(std::int64_t deadline_ns) noexcept {
-  constexpr std::int64_t kSpin_ns = 50'000;
-  const std::int64_t sleep_until_ns = deadline_ns - kSpin_ns;
-  if (monotonic_now_ns() < sleep_until_ns) {
-    timespec until{};
-    until.tv_sec = static_cast<time_t>(sleep_until_ns / 1'000'000'000);
-    until.tv_nsec = static_cast<long>(sleep_until_ns % 1'000'000'000);
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) != 0) {
-    }
-  }
-  while (monotonic_now_ns() < deadline_ns) {
-  }
 }
 
 // Deadline misses among the last `size` deadlines: one bit per deadline in a fixed ring
@@ -75,6 +61,16 @@ class MissWindow {
 
 }  // namespace
 
+OverrunLimits overrun_limits_at(const RunOptions& options, double rate_hz) noexcept {
+  const double scale = std::max(1.0, rate_hz / 1000.0);
+  const auto scaled = [scale](std::uint32_t deadlines) {
+    return static_cast<std::uint32_t>(std::min(std::llround(deadlines * scale), static_cast<long long>(UINT32_MAX)));
+  };
+  return OverrunLimits{scaled(options.overrun_warn_ticks), scaled(options.overrun_fault_ticks),
+                       std::min(scaled(options.overrun_window_deadlines), kMaxOverrunWindow),
+                       scaled(options.overrun_window_misses)};
+}
+
 template <int N>
 RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<DeviceOf<N>>& device,
                           const RunOptions& options, std::type_identity_t<TickObserverOf<N>>* observer) {
@@ -94,7 +90,9 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   const RealtimeGuard realtime(real_time);
   summary.realtime_note = realtime.note();
   std::uint32_t miss_streak = 0;
-  MissWindow miss_window(options.overrun_window_deadlines);
+  const OverrunLimits limits = overrun_limits_at(options, scene.rate_hz);
+  summary.overrun_limits = limits;
+  MissWindow miss_window(limits.window_deadlines);
 
   if (observer != nullptr) observer->on_start(state);
   const std::int64_t start_ns = monotonic_now_ns();
@@ -106,7 +104,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     }
     // Pace: wait for this tick's absolute deadline.
     if (real_time) {
-      wait_until(deadline_ns);
+      wait_until(deadline_ns, [&] { warm_tick(hot_swap.scene(), state); });
       summary.wake_late_ns.record(static_cast<std::uint64_t>(monotonic_now_ns() - deadline_ns));
     }
 
@@ -145,15 +143,15 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
       const std::uint32_t streak_before = miss_streak;
       miss_streak = static_cast<std::uint32_t>(std::min<std::int64_t>(miss_streak + missed, UINT32_MAX));
       if (miss_streak > summary.longest_miss_streak) summary.longest_miss_streak = miss_streak;
-      if (streak_before < options.overrun_warn_ticks && miss_streak >= options.overrun_warn_ticks) {
+      if (streak_before < limits.warn_ticks && miss_streak >= limits.warn_ticks) {
         ++summary.overrun_warnings;
         if (summary.first_overrun_warning_s < 0.0) summary.first_overrun_warning_s = state.t_s;
       }
       // Frequent overruns: too many misses within the sliding window of deadlines.
       miss_window.push(static_cast<std::uint64_t>(missed), /*missed=*/true);
       summary.most_misses_in_window = std::max(summary.most_misses_in_window, miss_window.misses());
-      const bool streak_fault = miss_streak >= options.overrun_fault_ticks;
-      if (streak_fault || miss_window.misses() > options.overrun_window_misses) {
+      const bool streak_fault = miss_streak >= limits.fault_ticks;
+      if (streak_fault || miss_window.misses() > limits.window_misses) {
         summary.overrun_fault = true;
         summary.overrun_fault_kind = streak_fault ? OverrunFault::streak : OverrunFault::window;
         summary.overrun_fault_s = state.t_s;

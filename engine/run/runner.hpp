@@ -46,7 +46,21 @@ struct RunOptions {
   // scheduling misses far fewer (README "The loop" gives the measurement).
   std::uint32_t overrun_window_deadlines{1000};
   std::uint32_t overrun_window_misses{100};
+  // The four numbers above are deadlines at 1 kHz. Above 1 kHz each is scaled by
+  // rate / 1 kHz (overrun_limits_at), so they stand for the same time at any rate: a
+  // stall of a few milliseconds, which a desktop or a VM has now and then, faults a
+  // 10 kHz run no sooner than a 1 kHz one (10 ms without a command in a row, or over
+  // 100 ms of misses within a second, still do). At 1 kHz and below they are unchanged.
 };
+
+// The overrun limits in force for a run at `rate_hz` (see RunOptions).
+struct OverrunLimits {
+  std::uint32_t warn_ticks{};
+  std::uint32_t fault_ticks{};
+  std::uint32_t window_deadlines{};
+  std::uint32_t window_misses{};
+};
+OverrunLimits overrun_limits_at(const RunOptions& options, double rate_hz) noexcept;
 
 // The exchange a run of a scene with N axes takes its reloads from (null: no reload).
 template <int N>
@@ -73,7 +87,7 @@ void set_reload_exchange(RunOptions* options, SceneExchangeOf<N>* exchange) noex
 
 // The longest sliding window of deadlines the runner can judge (a fixed bit ring: no
 // allocation in the loop).
-inline constexpr std::uint32_t kMaxOverrunWindow = 4096;
+inline constexpr std::uint32_t kMaxOverrunWindow = 16384;
 
 // Why the loop stopped on overruns.
 enum class OverrunFault : std::uint8_t {
@@ -115,6 +129,7 @@ struct RunSummaryOf {
   OverrunFault overrun_fault_kind{OverrunFault::none};  // which criterion ended it
   double overrun_fault_s{};             // device time of the fault
   std::uint32_t most_misses_in_window{};  // most misses within any overrun window seen
+  OverrunLimits overrun_limits;           // the limits in force (RunOptions scaled to the rate)
   bool device_lost{};                   // the run ended because the device was lost (Device::lost)
   // The safety limits at the start and at the end of the run (a hot reload may tighten
   // them, never loosen them): what the summary reports as in force.

@@ -139,7 +139,7 @@ TEST_CASE("planar bench: the command prints the 2-D table and goals after the 1-
   REQUIRE(parts != std::string::npos);
   REQUIRE(table != std::string::npos);
   CHECK(parts < table);
-  CHECK(out.find("spring     hand-written C++") < parts);
+  CHECK(out.find("spring     hand-folded floor") < parts);
   CHECK(out.find("haplink_box_inside       hand-written C++") > table);
   CHECK(out.find("haplink_box_inside       built-in (JSON)") > table);
   CHECK(out.find("haply2diy_v3_box_inside  hand-written C++") > table);

@@ -92,10 +92,15 @@ TEST_CASE("bench: the command prints the three implementations of a lab environm
   // The bench's own scenes (the parts table's walls that cannot act, on purpose) warn
   // nobody: only a user's file does.
   CHECK(outcome.err.find("warning") == std::string::npos);
-  CHECK(outcome.out.find("spring     hand-written C++") != std::string::npos);
+  CHECK(outcome.out.find("build: ") == 0);  // timings name their build first
+  CHECK(outcome.out.find("spring     hand-folded floor") != std::string::npos);
+  CHECK(outcome.out.find("spring     sketch, inlined") != std::string::npos);
+  CHECK(outcome.out.find("spring     sketch, call") != std::string::npos);
   CHECK(outcome.out.find("spring     built-in (JSON)") != std::string::npos);
   CHECK(outcome.out.find("spring     Lua script") != std::string::npos);
   CHECK(outcome.out.find("spring: built-in ") != std::string::npos);
+  CHECK(outcome.out.find("the hand-folded floor (goal <= 1.5x)") != std::string::npos);
+  CHECK(outcome.out.find("texture: 50000 fields ") != std::string::npos);
   CHECK(outcome.out.find("spring: Lua median ") != std::string::npos);
   CHECK(outcome.out.find("Lua rows: p99.9 <= 5x the median") != std::string::npos);
   CHECK(outcome.out.find("1.000 Lua calls per tick") != std::string::npos);
