@@ -116,6 +116,11 @@ constexpr OptionDefinition kCallgrindOptions[] = {
     {"ticks", 0, "N", "ticks to run", "100000", nullptr, &option::callgrind_ticks},
     {"scripts", 0, "DIR", "where the Lua twins of the lab effects are", "scripts", nullptr, nullptr, "", C::folder},
 };
+constexpr OptionDefinition kRealtimeOptions[] = {
+    {"seconds", 0, "T", "recorded sensor readings per row, ticked at the scene's rate", "1 s", &option::bench_seconds},
+    {"scripts", 0, "DIR", "where the Lua twins of the lab effects are", "scripts", nullptr, nullptr, "", C::folder},
+};
+constexpr std::string_view kRealtimeExamples[] = {"bench --realtime", "bench --realtime environments/wall.json --seconds 5"};
 constexpr std::string_view kCallgrindExamples[] = {
     "bench --callgrind environments/wall.json --impl lua --ticks 200000",
 };
@@ -205,6 +210,11 @@ constexpr CommandDefinition kCommands[] = {
      "Runs many simulated ticks of each environment (default: the lab ones and their Lua twins) with the "
      "sweeping hand: non-finite values, drift and memory.",
      kSoakOptions, C::environment},
+    {"bench", "realtime", "[ENV...] [options]", "ticks timed the way the real-time loop runs them",
+     "Ticks each environment (default: the lab ones and their Lua twins) the way the real-time loop does "
+     "(sleep, wake, tick), with and without warming the working set before each deadline, beside the hot "
+     "figures: p50 and p99 of the tick's compute, with the goals' verdicts.",
+     kRealtimeOptions, C::environment, kRealtimeExamples},
     {"bench", "callgrind", "ENV [options]", "untimed ticks for valgrind --tool=callgrind",
      "Runs a fixed number of ticks of one implementation, untimed, for counting instructions under valgrind.",
      kCallgrindOptions, C::environment, kCallgrindExamples},
