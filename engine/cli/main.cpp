@@ -60,6 +60,8 @@ run options:
   --no-reload           do not reload the environment when its files change
   --log FILE.csv        per-tick telemetry: t_s,x_m,v_m_per_s,force_N,output_N,duty,direction
   --plot FILE.svg       the run's figure
+  --ui [PORT|HOST:PORT] a live view in the browser: prints its address with a token
+                        (loopback, a free port by default; the run lasts a day unless --duration)
 
 validate options:
   --scenario NAMES      sweep, press, release, hold, shake, free (comma-separated; default all)

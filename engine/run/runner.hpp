@@ -16,6 +16,7 @@
 #include "engine/base/latency_histogram.hpp"
 #include "engine/devices/device.hpp"
 #include "engine/run/hot_swap.hpp"
+#include "engine/run/loop_monitor.hpp"
 #include "engine/run/tick_observer.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/scene/tick_state.hpp"
@@ -46,6 +47,8 @@ struct RunOptions {
   // scheduling misses far fewer (README "The loop" gives the measurement).
   std::uint32_t overrun_window_deadlines{1000};
   std::uint32_t overrun_window_misses{100};
+  // When set, the loop's timing is published here as it runs (the live view reads it).
+  LoopMonitor* monitor{nullptr};
 };
 
 // The exchange a run of a scene with N axes takes its reloads from (null: no reload).
