@@ -63,7 +63,11 @@ class StatusLine {
       log_lines_.clear();
       status_.drain_log(&log_lines_);
       for (const std::string& line : log_lines_) {
-        std::fprintf(stderr, "%s%s\n", enabled_ ? "\r\033[K" : "", printable(line).c_str());
+        if (enabled_) {
+          std::fprintf(stderr, "\r\033[K%s\n", line.c_str());
+        } else {
+          std::fprintf(stderr, "%s\n", printable(line).c_str());  // as after the run
+        }
         if (view_ != nullptr) view_->add_log(line);
       }
       if (!enabled_) continue;

@@ -333,7 +333,7 @@ struct LiveViewOf<N>::Impl {
             client->queue.clear();
           }
           if (out.empty()) {
-            if (stopping.load()) {
+            if (stopping.load() || ended.load()) {  // the run is over and its last event out
               sink.done();
               return true;
             }
@@ -443,8 +443,10 @@ struct LiveViewOf<N>::Impl {
       }
       status["scripts_disabled"] = disabled;
       event["status"] = status;
-      // The event, with each client's own count of dropped events at the end.
+      // The event, with each client's own count of dropped events at the end. After the
+      // run's last event ("event: end") nothing more is sent.
       std::lock_guard lock(clients_mutex);
+      if (ended.load()) continue;
       event["log"] = json(pending_log);
       pending_log.clear();
       std::string body = event.dump();

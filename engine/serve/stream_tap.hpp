@@ -21,7 +21,7 @@ inline constexpr std::size_t kStreamProxies = 8;
 
 template <int N>
 struct StreamSampleOf {
-  std::uint64_t tick{};
+  std::uint64_t tick{};  // the tick's index from the run's start (0: the first)
   double t_s{};
   Axes<N> x_m{};
   Axes<N> v_m_per_s{};
@@ -43,9 +43,11 @@ class StreamTapOf final : public TickObserverOf<N> {
 
   void on_tick(const TickStateOf<N>& state) noexcept override {
     ticks_.store(state.tick, std::memory_order_relaxed);
-    if (state.tick % stride_ != 0) return;
+    // The tick's index from 0 (state.tick counts the ticks done, this one included).
+    const std::uint64_t index = state.tick - 1;
+    if (index % stride_ != 0) return;
     StreamSampleOf<N> s;
-    s.tick = state.tick;
+    s.tick = index;
     s.t_s = state.t_s;
     s.x_m = state.x_m;
     s.v_m_per_s = state.v_m_per_s;
