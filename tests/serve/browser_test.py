@@ -130,6 +130,15 @@ def wait_for(what, condition, timeout_s=20.0):
     raise AssertionError("timed out waiting for " + what)
 
 
+def page_state(browser):
+    """What the page shows, for a failure's message."""
+    try:
+        return browser.evaluate("JSON.stringify({view: window.hapsceneView && Object.assign({}, window.hapsceneView, {scene: undefined}),"
+                                " connection: document.getElementById('connection').textContent})")
+    except Exception as error:  # the page itself may be the problem
+        return "(page not readable: %s)" % error
+
+
 def start_run(hapscene, environment, extra):
     """`hapscene run ENV --ui` with the simulated Hapkit; returns the process and the URL."""
     process = subprocess.Popen([hapscene, "run", environment, "--ui", "--quiet", "--duration", "120s"] + extra,
@@ -160,7 +169,7 @@ def check_one_dof(browser, hapscene, scratch, screenshots):
     try:
         browser.open(url)
         wait_for("the page to draw ticks", lambda: browser.evaluate(
-            "window.hapsceneView && window.hapsceneView.frames > 5 && window.hapsceneView.samples > 100"))
+            "window.hapsceneView && window.hapsceneView.frames > 5 && window.hapsceneView.samples > 100"), timeout_s=60)
         first = browser.evaluate("window.hapsceneView.plotted")
         time.sleep(1.0)
         second = browser.evaluate("window.hapsceneView.plotted")
@@ -177,7 +186,7 @@ def check_one_dof(browser, hapscene, scratch, screenshots):
         before = browser.evaluate("window.hapsceneView.scene.parameters[0].value")
         browser.click(box["left"] + 0.75 * box["width"], box["top"] + box["height"] / 2)
         stiffness = wait_for("the change to be taken", lambda: (
-            browser.evaluate("window.hapsceneView.changes > 0 && window.hapsceneView.scene.parameters[0].value")))
+            browser.evaluate("window.hapsceneView.changes > 0 && window.hapsceneView.scene.parameters[0].value")), timeout_s=30)
         assert abs(stiffness - before) > 10, (before, stiffness)
         print("slider moved: stiffness %.1f -> %.1f N/m (%s)" % (before, stiffness,
               browser.evaluate("document.getElementById('unsaved').textContent")))
@@ -187,7 +196,7 @@ def check_one_dof(browser, hapscene, scratch, screenshots):
             last = browser.evaluate("window.hapsceneView.last")
             expected = -stiffness * last["x_m"]
             return last if abs(last["x_m"]) > 0.002 and abs(last["force_N"] - expected) < 1e-9 * max(1.0, abs(expected)) else None
-        last = wait_for("the stream to show -K x with K = %.1f N/m" % stiffness, new_force, timeout_s=10)
+        last = wait_for("the stream to show -K x with K = %.1f N/m" % stiffness, new_force, timeout_s=30)
         print("the stream shows the new force: %.4f N at x %.4f m (-K x = %.4f N; before, %.4f N)" %
               (last["force_N"], last["x_m"], -stiffness * last["x_m"], -before * last["x_m"]))
         time.sleep(0.5)
@@ -208,7 +217,7 @@ def check_planar(browser, hapscene, scratch, screenshots):
     try:
         browser.open(url)
         wait_for("the plane to draw", lambda: browser.evaluate(
-            "window.hapsceneView && window.hapsceneView.frames > 5 && window.hapsceneView.samples > 1500"), timeout_s=30)
+            "window.hapsceneView && window.hapsceneView.frames > 5 && window.hapsceneView.samples > 1500"), timeout_s=60)
         last = browser.evaluate("window.hapsceneView.last")
         assert "y_m" in last and "output_y_N" in last, last
         if screenshots:
@@ -268,8 +277,12 @@ def main():
     scratch = tempfile.mkdtemp(prefix="hapscene_browser_")
     browser = Browser(os.path.join(scratch, "profile"))
     try:
-        check_one_dof(browser, args.hapscene, scratch, args.screenshots)
-        check_planar(browser, args.hapscene, scratch, args.screenshots)
+        try:
+            check_one_dof(browser, args.hapscene, scratch, args.screenshots)
+            check_planar(browser, args.hapscene, scratch, args.screenshots)
+        except AssertionError:
+            print("the page: " + page_state(browser), file=sys.stderr)
+            raise
     finally:
         browser.close()
         shutil.rmtree(scratch, ignore_errors=True)
