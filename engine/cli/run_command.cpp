@@ -161,7 +161,7 @@ int run_command(std::vector<std::string> args) {
     const std::string hand(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]);
     print_run_summary<1>(scene, settings, hand, summary, nullptr);
     if (run.reloads > 0) print_out("  reloads          %llu\n", static_cast<unsigned long long>(run.reloads));
-  print_live_view_line(run);
+    print_live_view_line(run);
     if (log && !finish_telemetry_log(*log, *settings.log_path)) write_failed = true;
     if (trace) {
       std::string what = "run, hand " + hand;
