@@ -234,6 +234,29 @@ TEST_CASE("live view: save writes the values back keeping the file's layout, uni
   CHECK(run.exchange.swaps() <= 2);
 }
 
+TEST_CASE("live view: validate runs the harness on the current values, off the loop, and gives the verdict table") {
+  test::ScratchFolder folder("live_validate");
+  const std::string file = folder.write("spring.json", kSpring).string();
+  test::LiveRun<1> run(file, 30.0);
+  int status = 0;
+  (void)run.post_params({{"effect", 0}, {"parameter", "stiffness"}, {"value", 150}}, &status);
+  REQUIRE(status == 200);
+  httplib::Client client = run.client();
+  client.set_read_timeout(60, 0);
+  const auto result = client.Post(run.with_token("/api/validate"), "", "application/json");
+  REQUIRE(result);
+  CHECK(result->status == 200);
+  const json verdict = json::parse(result->body);
+  CHECK(verdict["pass"] == true);
+  // The table as `validate` prints it, of the values running (150 N/m), and the JSON report.
+  CHECK(verdict["table"].get<std::string>().rfind("validate live spring (" + file + ")", 0) == 0);
+  CHECK(verdict["report"]["schema"] == "hapscene-validate/1");
+  // The sweep's largest force is 150 N/m's (4.016 N at 26.77 mm), not the file's 100 N/m
+  // (validate runs in simulated time: the same values give the same table).
+  const std::string table = verdict["table"].get<std::string>();
+  CHECK_MESSAGE(table.find("at -26.77 mm, t 2.626 s (asked up to 4.016 N)") != std::string::npos, table);
+}
+
 TEST_CASE("live view: a 2-D run streams x and y, both forces per axis and the shapes' proxies") {
   test::ScratchFolder folder("live_planar");
   const std::string text = test::slurp_file(std::string(HAPSCENE_SOURCE_DIR) + "/environments/planar/haplink_box_inside.json");
