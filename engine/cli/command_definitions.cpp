@@ -60,12 +60,18 @@ constexpr OptionDefinition kRunOptions[] = {
     {"no-reload", 0, "", "do not reload the environment when its files change"},
     {"log", 'l', "FILE.csv", "per-tick telemetry (one environment)", "", nullptr, nullptr, "", C::output},
     {"plot", 'p', "FILE.svg", "the run's figure (one environment)", "", nullptr, nullptr, "", C::output},
+    // Its value is optional (`--ui`, `--ui 8080`, `--ui HOST:PORT`): run_command takes it
+    // before the others are read (ui_option.hpp), so the parser never sees it.
+    {"ui", 0, "[PORT|HOST:PORT]",
+     "a live view in the browser: prints its address with an access token (loopback, a free port by default; "
+     "the run lasts a day unless --duration says; one environment, real time)"},
 };
 constexpr std::string_view kRunExamples[] = {
     "run environments/wall.json",
     "run environments/wall.json --sim-time --log wall.csv",
     "run environments/spring.json --hand release --hold 20mm -d 3s",
     "run environments/wall.json -D serial:/dev/ttyACM0",
+    "run environments/wall.json --ui",
 };
 
 // ---- probe

@@ -26,6 +26,7 @@
 #include "engine/cli/run_summary.hpp"
 #include "engine/cli/run_trace.hpp"
 #include "engine/cli/standard_output.hpp"
+#include "engine/cli/ui_option.hpp"
 #include "engine/devices/open_device.hpp"
 #include "engine/harness/figures.hpp"
 #include "engine/load/environment.hpp"
@@ -84,10 +85,17 @@ void parse_capstan_hand(const Arguments& arguments, RunSettings* settings) {
 }  // namespace
 
 int run_command(std::vector<std::string> args) {
+  // The live view: --ui takes an optional value; a run with it lasts a day unless --duration says.
+  const std::optional<UiAddress> ui = take_ui_option(&args, "hapscene run");
+  const bool duration_given = option_given(args, "duration");
   Arguments arguments(std::move(args), "hapscene run");
   RunSettings settings = parse_settings(arguments);
+  settings.ui = ui;
+  if (ui && !duration_given) settings.options.duration_s = option::kDay_s;
   const std::vector<std::string> files = arguments.positionals();
   if (files.empty()) arguments.fail("expected at least one environment file");
+  if (ui && files.size() != 1) arguments.fail("--ui takes one environment file");
+  if (ui && settings.options.pacing == Pacing::simulated_time) arguments.fail("--ui: the live view is for real-time runs (drop --sim-time)");
   if ((settings.log_path || settings.plot_path) && files.size() != 1) {
     arguments.fail("--log and --plot take one environment file");
   }
@@ -153,6 +161,7 @@ int run_command(std::vector<std::string> args) {
     const std::string hand(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]);
     print_run_summary<1>(scene, settings, hand, summary, nullptr);
     if (run.reloads > 0) print_out("  reloads          %llu\n", static_cast<unsigned long long>(run.reloads));
+    print_live_view_line(run);
     if (log && !finish_telemetry_log(*log, *settings.log_path)) write_failed = true;
     if (trace) {
       std::string what = "run, hand " + hand;

@@ -112,6 +112,7 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
                                      : std::string("yours");
   print_run_summary<2>(scene, settings, hand, summary, &fault_places);
   if (run.reloads > 0) print_out("  reloads          %llu\n", static_cast<unsigned long long>(run.reloads));
+  print_live_view_line(run);
   const bool write_failed = log && !finish_telemetry_log(*log, *settings.log_path);
   if (trace) {
     std::string what = "run, hand " + hand;

@@ -25,6 +25,7 @@
 #include "engine/run/observer_list.hpp"
 #include "engine/run/reload_watcher.hpp"
 #include "engine/run/runner.hpp"
+#include "engine/serve/live_view.hpp"
 
 namespace hapscene {
 
@@ -33,8 +34,11 @@ namespace hapscene {
 template <int N>
 class StatusLine {
  public:
-  StatusLine(LiveStatusOf<N>& status, double period_s, bool enabled) : status_(status), period_s_(period_s) {
-    if (enabled) thread_ = std::thread([this] { loop(); });
+  // `view` (may be null): the live view, which gets the log lines too; with one, the log
+  // lines are printed as they come even when the status line is not shown.
+  StatusLine(LiveStatusOf<N>& status, double period_s, bool enabled, LiveViewOf<N>* view = nullptr)
+      : status_(status), period_s_(period_s), enabled_(enabled), view_(view) {
+    if (enabled || view != nullptr) thread_ = std::thread([this] { loop(); });
   }
   ~StatusLine() {
     {
@@ -44,7 +48,7 @@ class StatusLine {
     done_wake_.notify_all();  // the run ends now, not up to a refresh period later
     if (thread_.joinable()) {
       thread_.join();
-      std::fprintf(stderr, "\r\033[K");
+      if (enabled_) std::fprintf(stderr, "\r\033[K");
     }
   }
   StatusLine(const StatusLine&) = delete;
@@ -67,7 +71,15 @@ class StatusLine {
       last_time = now;
       log_lines_.clear();
       status_.drain_log(&log_lines_);
-      for (const std::string& line : log_lines_) std::fprintf(stderr, "\r\033[K%s\n", line.c_str());
+      for (const std::string& line : log_lines_) {
+        if (enabled_) {
+          std::fprintf(stderr, "\r\033[K%s\n", line.c_str());
+        } else {
+          std::fprintf(stderr, "%s\n", printable(line).c_str());  // as after the run
+        }
+        if (view_ != nullptr) view_->add_log(line);
+      }
+      if (!enabled_) continue;
       const double t_s = static_cast<double>(ticks) * period_s_;
       if constexpr (N == 1) {
         std::fprintf(stderr, "\r\033[K  t %7.3f s   x %+8.3f mm   force %+7.3f N   loop %8.1f Hz", t_s,
@@ -84,6 +96,8 @@ class StatusLine {
   LiveStatusOf<N>& status_;
   std::vector<std::string> log_lines_;
   double period_s_;
+  bool enabled_;
+  LiveViewOf<N>* view_;
   std::atomic<bool> done_{false};
   std::mutex done_mutex_;
   std::condition_variable done_wake_;
@@ -95,7 +109,20 @@ struct WatchedRun {
   RunSummaryOf<N> summary;
   std::uint64_t reloads{};                 // versions the loop took
   std::uint64_t replaced_script_faults{};  // disabled scripts in versions a reload replaced
+  bool live_view{};                        // --ui: the live view's counts
+  std::uint64_t live_events{};
+  std::uint64_t live_dropped_events{};
+  std::uint64_t live_dropped_ticks{};
 };
+
+// The summary's line for the live view, when there was one.
+template <int N>
+void print_live_view_line(const WatchedRun<N>& run) {
+  if (!run.live_view) return;
+  print_out("  live view        %llu events, %llu dropped by slow clients, %llu ticks dropped (ring full)\n",
+            static_cast<unsigned long long>(run.live_events), static_cast<unsigned long long>(run.live_dropped_events),
+            static_cast<unsigned long long>(run.live_dropped_ticks));
+}
 
 // Runs `scene` (loaded from `file`) on `device` for settings.options. `observers`: the
 // caller's (null ones are skipped), after the live status.
@@ -109,22 +136,50 @@ WatchedRun<N> run_watched(const SceneOf<N>& scene, DeviceOf<N>& device, const st
   for (TickObserverOf<N>* observer : observers) all.add(observer);
   SceneExchangeOf<N> exchange;
   RunOptions options = settings.options;
-  if (settings.reload) set_reload_exchange<N>(&options, &exchange);
+  // The live view (--ui): its tap sees every tick, its changes go through the reload
+  // watcher (which then runs even with --no-reload, watching no file).
+  LoopMonitor monitor;
+  std::unique_ptr<LiveViewOf<N>> view;
+  if (settings.ui) {
+    view = std::make_unique<LiveViewOf<N>>(*settings.ui, file, scene);
+    all.add(view->tap());
+    options.monitor = &monitor;
+  }
+  if (settings.reload || view) set_reload_exchange<N>(&options, &exchange);
   WatchedRun<N> run;
   {
-    StatusLine<N> line(status, scene.period_s, show_status);
+    StatusLine<N> line(status, scene.period_s, show_status, view.get());
     std::unique_ptr<ReloadWatcherOf<N>> watcher;
-    if (settings.reload) {
+    if (settings.reload || view) {
       ReloadWatcherOptionsOf<N> watch;
       watch.before_destroy = [&status](LoadedSceneOf<N>& retired) { status.drain_retired(retired); };
+      watch.watch_files = settings.reload;
+      LiveViewOf<N>* shown = view.get();
       watcher = std::make_unique<ReloadWatcherOf<N>>(
           file, scene, &exchange,
-          [show_status](const std::string& message) {
+          [show_status, shown](const std::string& message) {
             std::fprintf(stderr, "%s%s\n", show_status ? "\r\033[K" : "", printable(message).c_str());
+            if (shown != nullptr) shown->add_log(message);
           },
           std::move(watch));
     }
+    if (view) {
+      view->start(watcher.get(), &monitor);
+      if (!settings.ui->loopback) {
+        std::fprintf(stderr, "warning: the live view listens on %s, not on loopback: anyone who can reach it "
+                             "and has the token can change the forces\n", printable(settings.ui->host).c_str());
+      }
+      std::fprintf(stderr, "live view: %s\n", view->url().c_str());
+      std::fflush(stderr);
+    }
     run.summary = run_scene(scene, device, options, &all);
+    if (view) {
+      view->stop();  // before the watcher goes
+      run.live_view = true;
+      run.live_events = view->events_sent();
+      run.live_dropped_events = view->dropped_events();
+      run.live_dropped_ticks = view->dropped_ticks();
+    }
     if (watcher) run.replaced_script_faults = watcher->replaced_script_faults();
   }
   std::vector<std::string> log_lines;

@@ -15,6 +15,7 @@
 #include "engine/devices/open_device.hpp"
 #include "engine/run/runner.hpp"
 #include "engine/run/telemetry_log.hpp"
+#include "engine/serve/ui_address.hpp"
 
 namespace hapscene {
 
@@ -32,6 +33,7 @@ struct RunSettings {
   std::optional<std::string> hand_text;
   std::optional<std::string> hold_text;
   std::optional<std::string> start_text;
+  std::optional<UiAddress> ui;  // --ui [PORT|HOST:PORT]: the live view (engine/serve)
 };
 
 // The --log file's writer for a run of `rate_hz` (null without --log). In simulated time

@@ -130,6 +130,7 @@ bool ReloadWatcherOf<N>::changed() const {
 
 template <int N>
 void ReloadWatcherOf<N>::poll() {
+  std::lock_guard guard(mutex_);
   // Destroy what the loop let go of; a fault of a replaced version is reported here
   // (the run's summary covers only the version running at the end).
   if (std::unique_ptr<LoadedScene> retired = exchange_->take_retired()) {
@@ -147,7 +148,7 @@ void ReloadWatcherOf<N>::poll() {
   if (waiting_ != nullptr && exchange_->offer(waiting_)) {
     report_("reloaded " + environment_path_ + ": cross-fading to the new version");
   }
-  if (job_ != nullptr || stopped_watching_ || !changed()) return;
+  if (job_ != nullptr || stopped_watching_ || !options_.watch_files || !changed()) return;
   start_load();
   if (options_.poll_period_s > 0.0) return;
   // Without a thread: wait for the load here, at most the compile timeout.
@@ -256,6 +257,32 @@ void ReloadWatcherOf<N>::accept(std::unique_ptr<LoadedScene> next) {
   if (exchange_->offer(waiting_)) {
     report_("reloaded " + environment_path_ + ": cross-fading to the new version");
   }
+}
+
+template <int N>
+std::string ReloadWatcherOf<N>::offer_version(std::unique_ptr<LoadedScene> next) {
+  std::lock_guard guard(mutex_);
+  if (next == nullptr) return "no version to offer";
+  const std::string refusal = reload_refusal(limits_, next->scene);
+  if (!refusal.empty()) {
+    report_("change refused, keeping the running version: " + environment_path_ + ": " + refusal);
+    return environment_path_ + ": " + refusal;
+  }
+  limits_.safety = next->scene.safety;
+  // An older version still waiting for the slot was never offered: the newer one replaces it.
+  waiting_ = std::move(next);
+  if (exchange_->offer(waiting_)) {
+    report_("changed " + environment_path_ + " from the live view: cross-fading to the new version");
+  }
+  return {};
+}
+
+template <int N>
+std::string ReloadWatcherOf<N>::write_watched(const std::function<std::string()>& write) {
+  std::lock_guard guard(mutex_);
+  const std::string result = write();
+  for (Watched& watched : files_) watched.stamp = stamp_of(watched.path);
+  return result;
 }
 
 // The axis counts scenes are compiled for.

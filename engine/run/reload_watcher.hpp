@@ -42,6 +42,9 @@ struct ReloadWatcherOptionsOf {
   // makes its script instances, and refuses a file that now makes a scene with another
   // number of axes (another device).
   std::function<std::unique_ptr<LoadedSceneOf<N>>(const std::string& path)> load;
+  // False: the files are not watched (--no-reload with the live view, which still offers
+  // versions through offer_version); retired scenes are still destroyed here.
+  bool watch_files{true};
 };
 
 using ReloadWatcherOptions = ReloadWatcherOptionsOf<1>;
@@ -69,6 +72,17 @@ class ReloadWatcherOf {
 
   // Checks once (the thread calls this every poll period; without a thread, the owner).
   void poll();
+
+  // Offers a version compiled elsewhere (the live view's parameter change, from its
+  // text) through the same check as a reload of the file: "" when it is offered to the
+  // loop (or waits for the slot, replacing an older version still waiting), else why it
+  // is refused (the running version keeps going). Reported like a reload. Any thread.
+  std::string offer_version(std::unique_ptr<LoadedScene> next);
+
+  // Runs `write` (which writes the environment file) so that the watcher does not take
+  // the file it writes for an edit: the watched stamps are taken again afterwards. Returns
+  // what `write` returns. Any thread.
+  std::string write_watched(const std::function<std::string()>& write);
 
   // Loads abandoned by every watcher of this process (their threads may still run: the
   // process should then end with std::_Exit after flushing its output).
@@ -122,6 +136,7 @@ class ReloadWatcherOf {
   std::atomic<bool> stop_{false};
   std::mutex stop_mutex_;                // guards the stop signal for stop_wake_
   std::condition_variable stop_wake_;   // wakes the watcher's thread from its wait on stop
+  std::mutex mutex_;  // poll, offer_version and write_watched, all off the loop
   std::thread thread_;
 };
 

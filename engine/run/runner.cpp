@@ -105,7 +105,9 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     // Pace: wait for this tick's absolute deadline.
     if (real_time) {
       wait_until(deadline_ns, [&] { warm_tick(hot_swap.scene(), state); });
-      summary.wake_late_ns.record(static_cast<std::uint64_t>(monotonic_now_ns() - deadline_ns));
+      const auto late_ns = static_cast<std::uint64_t>(monotonic_now_ns() - deadline_ns);
+      summary.wake_late_ns.record(late_ns);
+      if (options.monitor != nullptr) options.monitor->note_wake_late(late_ns);
     }
 
     // Read the device, compute, write the device.
@@ -119,6 +121,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     device.write(state.command);
     const std::int64_t end_ns = monotonic_now_ns();
     summary.compute_ns.record(static_cast<std::uint64_t>(end_ns - begin_ns));
+    if (options.monitor != nullptr) options.monitor->note_compute(static_cast<std::uint64_t>(end_ns - begin_ns));
     collect_script_garbage(&state);  // in the slack, after the command is out
 
     // Count, and let device time pass.
@@ -150,6 +153,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
       // Frequent overruns: too many misses within the sliding window of deadlines.
       miss_window.push(static_cast<std::uint64_t>(missed), /*missed=*/true);
       summary.most_misses_in_window = std::max(summary.most_misses_in_window, miss_window.misses());
+      if (options.monitor != nullptr) options.monitor->note_misses(summary.deadline_misses, summary.overrun_warnings);
       const bool streak_fault = miss_streak >= limits.fault_ticks;
       if (streak_fault || miss_window.misses() > limits.window_misses) {
         summary.overrun_fault = true;

@@ -16,6 +16,7 @@
 #include "engine/base/latency_histogram.hpp"
 #include "engine/devices/device.hpp"
 #include "engine/run/hot_swap.hpp"
+#include "engine/run/loop_monitor.hpp"
 #include "engine/run/tick_observer.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/scene/tick_state.hpp"
@@ -51,6 +52,8 @@ struct RunOptions {
   // stall of a few milliseconds, which a desktop or a VM has now and then, faults a
   // 10 kHz run no sooner than a 1 kHz one (10 ms without a command in a row, or over
   // 100 ms of misses within a second, still do). At 1 kHz and below they are unchanged.
+  // When set, the loop's timing is published here as it runs (the live view reads it).
+  LoopMonitor* monitor{nullptr};
 };
 
 // The overrun limits in force for a run at `rate_hz` (see RunOptions).

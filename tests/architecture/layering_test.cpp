@@ -28,6 +28,7 @@ const std::map<std::string, int>& engine_layer_ranks() {
       {"engine/run", 6},      // the runner, hot reload, telemetry
       {"engine/harness", 7},  // validate, test specs, probe, plots
       {"engine/bench", 8},    // hapscene bench (a library of its own)
+      {"engine/serve", 8},    // the live view of `run --ui` (a library of its own)
       {"engine/cli", 9},      // the command line
       {"python", 10},         // the Python module: above the command line, whose code it runs
   };
@@ -121,6 +122,12 @@ TEST_CASE("layering: the check catches an upward include, a sideways one, a cycl
   CHECK(layering_violations({{"engine/scene/step.cpp", 3, "engine/run/runner.hpp"}}).size() == 1);
   // Sideways: devices and lua are on one level and do not know each other.
   CHECK(layering_violations({{"engine/devices/profile.cpp", 5, "engine/lua/script.hpp"}}).size() == 1);
+  // The live view and the bench are on one level; the runner may not know the live view.
+  CHECK(layering_violations({{"engine/serve/live_view.cpp", 5, "engine/bench/soak.hpp"}}).size() == 1);
+  CHECK(layering_violations({{"engine/run/runner.cpp", 5, "engine/serve/live_view.hpp"}}).size() == 1);
+  CHECK(layering_violations({{"engine/cli/run_session.hpp", 5, "engine/serve/live_view.hpp"},
+                             {"engine/serve/live_view.cpp", 5, "engine/harness/validate.hpp"}})
+            .empty());
   // A cycle between two folders always has one upward edge.
   CHECK(layering_violations({{"engine/effects/spring.hpp", 1, "engine/base/units.hpp"},
                              {"engine/base/units.hpp", 1, "engine/effects/spring.hpp"}})

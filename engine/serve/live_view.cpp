@@ -1,0 +1,622 @@
+#include "engine/serve/live_view.hpp"
+
+#include <httplib.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <cstring>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <random>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/base/errors.hpp"
+#include "engine/base/json_source.hpp"
+#include "engine/harness/planar_report.hpp"
+#include "engine/harness/planar_shape_list.hpp"
+#include "engine/harness/planar_validate.hpp"
+#include "engine/harness/report.hpp"
+#include "engine/harness/validate.hpp"
+#include "engine/load/environment.hpp"
+#include "engine/serve/parameters.hpp"
+#include "engine/serve/stream_tap.hpp"
+#include "engine/serve/ui_assets.hpp"
+
+namespace hapscene {
+namespace {
+
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+constexpr std::size_t kMaxEnvironmentBytes = std::size_t{1} << 20;
+// The ring between the loop and the pump: 16384 samples (16 s at 1 kHz); the pump empties
+// it 50 times a second.
+constexpr std::size_t kTapCapacity = 1u << 14;
+
+// 128 random bits as hex, from the system's random source.
+std::string new_token() {
+  std::random_device source;
+  std::string token;
+  static const char* kHex = "0123456789abcdef";
+  for (int i = 0; i < 8; ++i) {
+    const unsigned int word = source();
+    for (int k = 0; k < 4; ++k) token.push_back(kHex[(word >> (4 * k)) & 0xf]);
+  }
+  return token;
+}
+
+// Compares without an early exit, so the time taken says nothing about the token.
+bool same_token(const std::string& given, const std::string& token) {
+  if (given.size() != token.size()) return false;
+  unsigned char difference = 0;
+  for (std::size_t i = 0; i < token.size(); ++i) difference |= static_cast<unsigned char>(given[i] ^ token[i]);
+  return difference == 0;
+}
+
+json axes_json(double value) { return value; }
+json axes_json(const Vec2& value) { return json::array({value[0], value[1]}); }
+
+std::filesystem::file_time_type stamp_of(const std::string& path) {
+  std::error_code error;
+  const auto stamp = std::filesystem::last_write_time(path, error);
+  return error ? std::filesystem::file_time_type{} : stamp;
+}
+
+void error_response(httplib::Response& res, int status, const std::string& message) {
+  res.status = status;
+  res.set_content(json{{"error", message}}.dump(), "application/json");
+}
+
+// A client of /api/stream: its events waiting to be written, and what it missed.
+struct StreamClient {
+  std::deque<std::string> queue;
+  std::uint64_t dropped{};
+  bool closed{};
+};
+
+}  // namespace
+
+std::uint64_t live_stride(double rate_hz) {
+  return static_cast<std::uint64_t>(std::max(1.0, std::ceil(rate_hz / kLiveMaxTicksPerSecond)));
+}
+
+template <int N>
+struct LiveViewOf<N>::Impl {
+  using Scene = SceneOf<N>;
+
+  Impl(const UiAddress& where, std::string environment_path, const Scene& scene)
+      : address(where),
+        path(std::move(environment_path)),
+        tap(kTapCapacity, live_stride(scene.rate_hz)),
+        period_s(scene.period_s) {
+    base_dir = std::filesystem::path(path).parent_path().string();
+    if (base_dir.empty()) base_dir = ".";
+    text = read_text_file(path, kMaxEnvironmentBytes);
+    file_text = text;
+    file_stamp = stamp_of(path);
+    describe(scene, text);
+    token = new_token();
+    server.set_payload_max_length(1u << 16);
+    bound_port = address.port == 0 ? server.bind_to_any_port(address.host) : (server.bind_to_port(address.host, address.port) ? address.port : -1);
+    if (bound_port < 0) {
+      throw InputError("--ui " + address.host + ":" + std::to_string(address.port) + ": cannot listen there (" +
+                       std::string(std::strerror(errno)) + ")");
+    }
+  }
+
+  // Loads a version of the environment from text, as a reload loads the file.
+  std::unique_ptr<LoadedSceneOf<N>> load_text(const std::string& candidate) const {
+    if constexpr (N == 1) {
+      return make_loaded_scene<1>(load_environment_text(candidate, path, base_dir));
+    } else {
+      return make_loaded_scene<2>(load_planar_environment_text(candidate, path, base_dir));
+    }
+  }
+
+  // The scene's description and parameters for `version_text` (with doc_mutex held, or
+  // before serving).
+  void describe(const Scene& scene, const std::string& version_text) {
+    parameters = live_parameters<N>(json::parse(version_text), scene);
+    json device{{"name", scene.device.name},
+                {"max_force_N", scene.safety.max_force_N},
+                {"slew_limit_N_per_s", scene.safety.slew_limit_N_per_s},
+                {"soft_start_s", scene.safety.soft_start_s},
+                {"workspace_min_m", axes_json(scene.safety.workspace_min_m)},
+                {"workspace_max_m", axes_json(scene.safety.workspace_max_m)}};
+    json effects = json::array();
+    const json document = json::parse(version_text);
+    if (document.contains("effects") && document["effects"].is_array()) {
+      for (std::size_t i = 0; i < document["effects"].size(); ++i) {
+        const json& effect = document["effects"][i];
+        json item{{"effect", i}};
+        item["type"] = effect.is_object() && effect.contains("type") ? effect["type"] : json(nullptr);
+        item["enabled"] = !(effect.is_object() && effect.contains("enabled") && effect["enabled"] == false);
+        if (effect.is_object() && effect.contains("file")) item["file"] = effect["file"];
+        effects.push_back(item);
+      }
+    }
+    json shapes = json::array();
+    if constexpr (N > 1) {
+      for (const PlanarShapeGeometry& shape : planar_shape_list(scene)) {
+        json s{{"kind", planar_shape_kind_name(shape.kind)}, {"solid_inside", shape.solid_inside}};
+        if (shape.kind == PlanarShapeKind::wall) {
+          s["point_m"] = axes_json(shape.point_m);
+          s["normal"] = axes_json(shape.normal);
+        } else if (shape.kind == PlanarShapeKind::circle) {
+          s["center_m"] = axes_json(shape.center_m);
+          s["radius_m"] = shape.radius_m;
+        } else {
+          json points = json::array();
+          for (const Vec2& p : shape.points_m) points.push_back(axes_json(p));
+          s["points_m"] = points;
+        }
+        shapes.push_back(s);
+      }
+    }
+    json params = json::array();
+    for (const LiveParameter& p : parameters) params.push_back(parameter_to_json(p));
+    scene_json = json{{"name", scene.name},
+                      {"file", path},
+                      {"axes", N},
+                      {"rate_hz", scene.rate_hz},
+                      {"device", device},
+                      {"stream", {{"events_per_s", kLiveEventsPerSecond}, {"stride", tap.stride()}}},
+                      {"effects", effects},
+                      {"parameters", params},
+                      {"shapes", shapes}};
+  }
+
+  // The file changed on disk since it was last read or written (an editor saved it; the
+  // watcher reloads it): its text becomes the current values. With doc_mutex held.
+  void refresh_from_file() {
+    const auto stamp = stamp_of(path);
+    if (stamp == file_stamp) return;
+    file_stamp = stamp;
+    try {
+      const std::string fresh = read_text_file(path, kMaxEnvironmentBytes);
+      std::unique_ptr<LoadedSceneOf<N>> loaded = load_text(fresh);
+      describe(loaded->scene, fresh);
+      text = fresh;
+      file_text = fresh;
+    } catch (const std::exception&) {
+      // A broken file: the running version (and these values) keep going, as a reload does.
+    }
+  }
+
+  json scene_with_state() const {
+    json out = scene_json;
+    out["unsaved"] = text != file_text;
+    return out;
+  }
+
+  // POST /api/params.
+  void change(const httplib::Request& req, httplib::Response& res) {
+    json body;
+    try {
+      body = json::parse(req.body);
+    } catch (const json::exception&) {
+      error_response(res, 400, "request: expected a JSON object {\"effect\": I, \"parameter\": NAME, \"value\": V}");
+      return;
+    }
+    if (!body.is_object() || !body.contains("effect") || !body["effect"].is_number_unsigned() ||
+        !body.contains("parameter") || !body["parameter"].is_string() || !body.contains("value")) {
+      error_response(res, 400, "request: expected a JSON object {\"effect\": I, \"parameter\": NAME, \"value\": V}");
+      return;
+    }
+    std::lock_guard lock(doc_mutex);
+    refresh_from_file();
+    try {
+      const std::string candidate = with_parameter(text, parameters, body["effect"].get<std::size_t>(),
+                                                   body["parameter"].get<std::string>(), body["value"]);
+      std::unique_ptr<LoadedSceneOf<N>> loaded = load_text(candidate);
+      // Described before it is handed over (the loop owns it from then on).
+      const std::vector<LiveParameter> before = parameters;
+      const json scene_before = scene_json;
+      describe(loaded->scene, candidate);
+      const std::string refusal = watcher->offer_version(std::move(loaded));
+      if (!refusal.empty()) {
+        parameters = before;
+        scene_json = scene_before;
+        error_response(res, 400, refusal);
+        return;
+      }
+      text = candidate;
+      ++changes;
+      res.set_content(scene_with_state().dump(), "application/json");
+    } catch (const InputError& error) {
+      error_response(res, 400, error.what());
+    } catch (const std::exception& error) {
+      error_response(res, 400, error.what());
+    }
+  }
+
+  // POST /api/save: the current values into the file, through the watcher so that it
+  // does not reload what it wrote.
+  void save(httplib::Response& res) {
+    std::lock_guard lock(doc_mutex);
+    refresh_from_file();
+    const std::string problem = watcher->write_watched([&]() -> std::string {
+      const std::string temporary = path + ".hapscene-save";
+      {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        out << text;
+        out.flush();
+        if (!out) return path + ": cannot write " + temporary;
+      }
+      std::error_code error;
+      std::filesystem::rename(temporary, path, error);
+      if (error) {
+        std::filesystem::remove(temporary, error);
+        return path + ": cannot replace the file (" + error.message() + ")";
+      }
+      return {};
+    });
+    if (!problem.empty()) {
+      error_response(res, 500, problem);
+      return;
+    }
+    file_text = text;
+    file_stamp = stamp_of(path);
+    res.set_content(json{{"saved", path}, {"bytes", text.size()}}.dump(), "application/json");
+  }
+
+  // POST /api/validate: the harness on the current values, on this thread at a lower
+  // priority than the run (off the loop; one at a time).
+  void validate(httplib::Response& res) {
+    std::unique_lock busy(validate_mutex, std::try_to_lock);
+    if (!busy.owns_lock()) {
+      error_response(res, 409, "a validate run is already going");
+      return;
+    }
+    std::string version;
+    {
+      std::lock_guard lock(doc_mutex);
+      version = text;
+    }
+    setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
+    try {
+      json out;
+      if constexpr (N == 1) {
+        const Environment environment = compile_environment(version, path, base_dir);
+        HarnessOptions options;
+        options.thresholds = environment.validate;
+        const ValidationReport report = validate_scene(environment.scene, {}, options);
+        out = {{"pass", report.pass}, {"table", format_report_table(report)}, {"report", report_to_json(report)}};
+      } else {
+        const PlanarEnvironment environment = compile_planar_environment(version, path, base_dir);
+        HarnessOptions options;
+        options.thresholds = environment.validate;
+        PlanarValidationReport report = validate_planar_scene(environment.scene, {}, options);
+        for (PlanarScenarioResult& s : report.scenarios) {
+          s.records.clear();
+          s.proxies_m.clear();
+        }
+        out = {{"pass", report.pass}, {"table", format_planar_report_table(report)}, {"report", planar_report_to_json(report)}};
+      }
+      res.set_content(out.dump(), "application/json");
+    } catch (const std::exception& error) {
+      error_response(res, 400, error.what());
+    }
+    setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 0);
+  }
+
+  // GET /api/stream: the client's events as they come; a keep-alive comment when none.
+  void stream(httplib::Response& res) {
+    auto client = std::make_shared<StreamClient>();
+    {
+      std::lock_guard lock(clients_mutex);
+      clients.push_back(client);
+    }
+    res.set_header("Cache-Control", "no-store");
+    res.set_header("X-Accel-Buffering", "no");
+    res.set_chunked_content_provider(
+        "text/event-stream",
+        [this, client](std::size_t /*offset*/, httplib::DataSink& sink) {
+          std::string out;
+          {
+            std::unique_lock lock(clients_mutex);
+            clients_cv.wait_for(lock, std::chrono::milliseconds(500),
+                                [&] { return !client->queue.empty() || stopping.load(); });
+            for (std::string& event : client->queue) out += event;
+            client->queue.clear();
+          }
+          if (out.empty()) {
+            if (stopping.load() || ended.load()) {  // the run is over and its last event out
+              sink.done();
+              return true;
+            }
+            out = ": keep-alive\n\n";
+          }
+          return sink.write(out.data(), out.size());
+        },
+        [this, client](bool /*success*/) {
+          std::lock_guard lock(clients_mutex);
+          client->closed = true;
+          std::erase(clients, client);
+        });
+  }
+
+  // The pump: drains the tap kLiveEventsPerSecond times a second into one event for
+  // every client.
+  void pump() {
+    const auto interval = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kLiveEventsPerSecond));
+    auto next = Clock::now() + interval;
+    auto last_time = Clock::now();
+    std::uint64_t last_ticks = 0;
+    double rate_hz = 0.0;
+    StreamSampleOf<N> sample;
+    while (!stopping.load()) {
+      std::this_thread::sleep_until(next);
+      next += interval;
+      // Every sample since the last event, column by column.
+      json t_s = json::array();
+      json x[N], f[N], o[N];
+      for (int i = 0; i < N; ++i) x[i] = f[i] = o[i] = json::array();
+      json first_tick = nullptr;
+      bool any = false;
+      while (tap.pop(&sample)) {
+        if (!any) first_tick = sample.tick;
+        any = true;
+        t_s.push_back(sample.t_s);
+        for (int i = 0; i < N; ++i) {
+          x[i].push_back(component(sample.x_m, i));
+          f[i].push_back(component(sample.force_N, i));
+          o[i].push_back(component(sample.output_N, i));
+        }
+        // The passivity observer: the work the handle's motion did against the commanded force.
+        if (have_previous) {
+          for (int i = 0; i < N; ++i) {
+            energy_J -= component(previous.output_N, i) * (component(sample.x_m, i) - component(previous.x_m, i));
+          }
+        }
+        previous = sample;
+        have_previous = true;
+      }
+      const auto now = Clock::now();
+      const std::uint64_t ticks = tap.ticks();
+      const double dt_s = std::chrono::duration<double>(now - last_time).count();
+      if (dt_s > 0.0) {
+        const double instant_hz = static_cast<double>(ticks - last_ticks) / dt_s;
+        rate_hz = rate_hz == 0.0 ? instant_hz : 0.8 * rate_hz + 0.2 * instant_hz;
+      }
+      last_ticks = ticks;
+      last_time = now;
+
+      json event{{"seq", seq.load()}, {"tick", first_tick}, {"stride", tap.stride()}, {"t_s", t_s}};
+      if constexpr (N == 1) {
+        event["x_m"] = x[0];
+        event["force_N"] = f[0];
+        event["output_N"] = o[0];
+      } else {
+        event["x_m"] = x[0];
+        event["y_m"] = x[1];
+        event["force_x_N"] = f[0];
+        event["force_y_N"] = f[1];
+        event["output_x_N"] = o[0];
+        event["output_y_N"] = o[1];
+        json proxies = json::array();
+        for (std::size_t i = 0; i < previous.proxy_count; ++i) proxies.push_back(axes_json(previous.proxies_m[i]));
+        event["proxies_m"] = proxies;
+      }
+      const SafetyCounters& safety = previous.safety;
+      json status{{"ticks", ticks},
+                  {"t_s", static_cast<double>(ticks) * period_s},
+                  {"loop_rate_hz", rate_hz},
+                  {"energy_J", energy_J},
+                  {"dropped_ticks", tap.dropped()},
+                  {"finished", tap.finished()},
+                  {"safety",
+                   {{"clamped_ticks", safety.clamped_ticks},
+                    {"slew_limited_ticks", safety.slew_limited_ticks},
+                    {"soft_start_ticks", safety.soft_start_ticks},
+                    {"outside_workspace_ticks", safety.outside_workspace_ticks},
+                    {"nonfinite_faults", safety.nonfinite_faults},
+                    {"position_hold_ticks", safety.position_hold_ticks},
+                    {"pose_hold_ticks", safety.pose_hold_ticks},
+                    {"motor_saturated_ticks", safety.motor_saturated_ticks}}}};
+      if (monitor != nullptr) {
+        status["deadline_misses"] = monitor->deadline_misses();
+        status["overrun_warnings"] = monitor->overrun_warnings();
+        status["wake_late_max_us"] = static_cast<double>(monitor->take_wake_late_max_ns()) * 1e-3;
+        status["compute_max_us"] = static_cast<double>(monitor->take_compute_max_ns()) * 1e-3;
+      } else {
+        status["deadline_misses"] = nullptr;
+        status["overrun_warnings"] = nullptr;
+        status["wake_late_max_us"] = nullptr;
+        status["compute_max_us"] = nullptr;
+      }
+      json disabled = json::array();
+      for (int i = 0; i < 64; ++i) {
+        if ((previous.scripts_disabled >> i) & 1u) disabled.push_back(i);
+      }
+      status["scripts_disabled"] = disabled;
+      event["status"] = status;
+      // The event, with each client's own count of dropped events at the end. After the
+      // run's last event ("event: end") nothing more is sent.
+      std::lock_guard lock(clients_mutex);
+      if (ended.load()) continue;
+      event["log"] = json(pending_log);
+      pending_log.clear();
+      std::string body = event.dump();
+      body.pop_back();  // the closing brace: each client's count follows
+      const bool finishing = tap.finished() && !any && !ended;
+      for (const auto& client : clients) {
+        if (client->queue.size() >= kLiveClientQueue) {
+          client->queue.pop_front();
+          ++client->dropped;
+          ++dropped_events_total;
+        }
+        std::string event_text = "id: " + std::to_string(seq.load()) + "\ndata: " + body + ",\"dropped_events\":" +
+                           std::to_string(client->dropped) + "}\n\n";
+        if (finishing) event_text += "event: end\ndata: {}\n\n";
+        client->queue.push_back(std::move(event_text));
+      }
+      if (finishing) ended.store(true);
+      ++seq;
+      clients_cv.notify_all();
+    }
+  }
+
+  UiAddress address;
+  std::string path;
+  std::string base_dir;
+  httplib::Server server;
+  int bound_port{-1};
+  std::string token;
+  StreamTapOf<N> tap;
+  double period_s{};
+  ReloadWatcherOf<N>* watcher{};
+  LoopMonitor* monitor{};
+
+  std::mutex doc_mutex;  // text, file_text, file_stamp, parameters, scene_json
+  std::string text;      // the current values: what save writes
+  std::string file_text; // the file as last read or written
+  std::filesystem::file_time_type file_stamp{};
+  std::vector<LiveParameter> parameters;
+  json scene_json;
+  std::uint64_t changes{};
+
+  std::mutex clients_mutex;  // clients, their queues, pending_log
+  std::condition_variable clients_cv;
+  std::vector<std::shared_ptr<StreamClient>> clients;
+  std::vector<std::string> pending_log;
+  std::uint64_t dropped_events_total{};
+
+  // The pump thread's own.
+  StreamSampleOf<N> previous{};
+  bool have_previous{};
+  double energy_J{};
+  std::atomic<std::uint64_t> seq{0};
+
+  std::mutex validate_mutex;
+  std::atomic<bool> stopping{false};
+  std::atomic<bool> ended{false};  // the "end" event was queued
+  std::thread server_thread;
+  std::thread pump_thread;
+};
+
+template <int N>
+LiveViewOf<N>::LiveViewOf(const UiAddress& address, std::string environment_path, const SceneOf<N>& scene)
+    : impl_(std::make_unique<Impl>(address, std::move(environment_path), scene)) {}
+
+template <int N>
+LiveViewOf<N>::~LiveViewOf() {
+  stop();
+}
+
+template <int N>
+void LiveViewOf<N>::stop() {
+  Impl& s = *impl_;
+  // The streams' last event, when the run is over: the pump sends it within two periods.
+  for (int i = 0; i < 20 && s.tap.finished() && !s.ended.load() && s.pump_thread.joinable(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  // Let the clients' writers take what is queued.
+  for (int i = 0; i < 20 && s.pump_thread.joinable(); ++i) {
+    bool empty = true;
+    {
+      std::lock_guard lock(s.clients_mutex);
+      for (const auto& client : s.clients) empty = empty && client->queue.empty();
+    }
+    if (empty) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  s.stopping.store(true);
+  s.clients_cv.notify_all();
+  if (s.pump_thread.joinable()) s.pump_thread.join();
+  s.server.stop();
+  if (s.server_thread.joinable()) s.server_thread.join();
+}
+
+template <int N>
+void LiveViewOf<N>::start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor) {
+  Impl& s = *impl_;
+  s.watcher = watcher;
+  s.monitor = monitor;
+  httplib::Server& server = s.server;
+  // Every request needs the token, checked before routing.
+  server.set_pre_routing_handler([&s](const httplib::Request& req, httplib::Response& res) {
+    std::string given = req.get_param_value("token");
+    const std::string authorization = req.get_header_value("Authorization");
+    if (given.empty() && authorization.rfind("Bearer ", 0) == 0) given = authorization.substr(7);
+    res.set_header("Cache-Control", "no-store");
+    if (same_token(given, s.token)) return httplib::Server::HandlerResponse::Unhandled;
+    error_response(res, 403, "forbidden: the token is missing or wrong (open the URL `hapscene run --ui` printed)");
+    return httplib::Server::HandlerResponse::Handled;
+  });
+  server.Get("/", [](const httplib::Request&, httplib::Response& res) {
+    res.set_content(live_page_html(), "text/html; charset=utf-8");
+  });
+  server.Get("/api/scene", [&s](const httplib::Request&, httplib::Response& res) {
+    std::lock_guard lock(s.doc_mutex);
+    s.refresh_from_file();
+    res.set_content(s.scene_with_state().dump(), "application/json");
+  });
+  server.Get("/api/stream", [&s](const httplib::Request&, httplib::Response& res) { s.stream(res); });
+  server.Post("/api/params", [&s](const httplib::Request& req, httplib::Response& res) { s.change(req, res); });
+  server.Post("/api/save", [&s](const httplib::Request&, httplib::Response& res) { s.save(res); });
+  server.Post("/api/validate", [&s](const httplib::Request&, httplib::Response& res) { s.validate(res); });
+  s.server_thread = std::thread([&s] { s.server.listen_after_bind(); });
+  s.pump_thread = std::thread([&s] { s.pump(); });
+}
+
+template <int N>
+TickObserverOf<N>* LiveViewOf<N>::tap() {
+  return &impl_->tap;
+}
+
+template <int N>
+void LiveViewOf<N>::add_log(const std::string& line) {
+  std::lock_guard lock(impl_->clients_mutex);
+  if (impl_->pending_log.size() < 1000) impl_->pending_log.push_back(line);
+}
+
+template <int N>
+std::string LiveViewOf<N>::url() const {
+  const std::string& host = impl_->address.host;
+  const std::string shown = host.find(':') != std::string::npos ? "[" + host + "]" : host;
+  return "http://" + shown + ":" + std::to_string(impl_->bound_port) + "/?token=" + impl_->token;
+}
+
+template <int N>
+const std::string& LiveViewOf<N>::token() const {
+  return impl_->token;
+}
+
+template <int N>
+int LiveViewOf<N>::port() const {
+  return impl_->bound_port;
+}
+
+template <int N>
+std::uint64_t LiveViewOf<N>::dropped_events() const {
+  std::lock_guard lock(impl_->clients_mutex);
+  return impl_->dropped_events_total;
+}
+
+template <int N>
+std::uint64_t LiveViewOf<N>::dropped_ticks() const {
+  return impl_->tap.dropped();
+}
+
+template <int N>
+std::uint64_t LiveViewOf<N>::events_sent() const {
+  return impl_->seq.load();
+}
+
+template class LiveViewOf<1>;
+template class LiveViewOf<2>;
+
+}  // namespace hapscene

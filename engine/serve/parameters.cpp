@@ -1,0 +1,331 @@
+#include "engine/serve/parameters.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "engine/base/errors.hpp"
+#include "engine/harness/validate.hpp"
+#include "engine/serve/json_text_edit.hpp"
+
+namespace hapscene {
+namespace {
+
+// A key of a built-in effect: its quantity, and its default when the file leaves it out
+// ("" default_from: required; "width": the width's value).
+struct KeySpec {
+  const char* key;
+  Quantity quantity;
+  bool vector;              // [x, y] in 2-D
+  bool has_default;
+  double fallback;
+  const char* default_from; // another key whose value is the default
+};
+
+struct TypeSpec {
+  const char* type;
+  std::vector<KeySpec> keys;
+};
+
+constexpr Quantity kLength = Quantity::length_m;
+constexpr Quantity kStiffness = Quantity::stiffness_N_per_m;
+constexpr Quantity kDamping = Quantity::damping_N_s_per_m;
+
+// The numeric keys of the built-in effects (engine/effects/lab_effects.cpp and
+// engine/effects/planar/planar_parse.cpp read the same).
+const std::vector<TypeSpec>& type_specs(int axes) {
+  static const std::vector<TypeSpec> capstan{
+      {"spring", {{"stiffness", kStiffness, false, false, 0, ""}, {"center", kLength, false, true, 0, ""}}},
+      {"wall", {{"position", kLength, false, false, 0, ""}, {"stiffness", kStiffness, false, false, 0, ""}}},
+      {"damper", {{"damping", kDamping, false, false, 0, ""}}},
+      {"texture",
+       {{"width", kLength, false, false, 0, ""},
+        {"damping", kDamping, false, false, 0, ""},
+        {"spacing", kLength, false, true, 0, "width"},
+        {"offset", kLength, false, true, 0, ""}}},
+  };
+  static const std::vector<TypeSpec> planar{
+      {"spring", {{"stiffness", kStiffness, false, false, 0, ""}, {"center", kLength, true, true, 0, ""}}},
+      {"damper", {{"damping", kDamping, false, false, 0, ""}}},
+      {"texture",
+       {{"width", kLength, false, false, 0, ""},
+        {"damping", kDamping, false, false, 0, ""},
+        {"spacing", kLength, false, true, 0, "width"},
+        {"offset", kLength, false, true, 0, ""}}},
+      {"wall", {{"point", kLength, true, false, 0, ""}, {"stiffness", kStiffness, false, false, 0, ""}}},
+      {"box", {{"min", kLength, true, false, 0, ""}, {"max", kLength, true, false, 0, ""},
+               {"stiffness", kStiffness, false, false, 0, ""}}},
+      {"circle", {{"center", kLength, true, false, 0, ""}, {"radius", kLength, false, false, 0, ""},
+                  {"stiffness", kStiffness, false, false, 0, ""}}},
+      {"polygon", {{"stiffness", kStiffness, false, false, 0, ""}}},
+  };
+  return axes == 1 ? capstan : planar;
+}
+
+// A JSON number, or a string with a unit of `quantity`, in SI (NaN when it is neither).
+double si_value(const nlohmann::json& value, Quantity quantity) {
+  if (value.is_number()) return value.get<double>();
+  if (value.is_string()) {
+    const QuantityParse parsed = parse_quantity_as(value.get<std::string>(), quantity);
+    if (parsed.ok) return parsed.value_si;
+  }
+  return std::nan("");
+}
+
+// The device's limits a slider may span.
+template <int N>
+struct Limits {
+  double max_force_N{};
+  double low_m[2]{};   // workspace per axis
+  double high_m[2]{};
+  double stiffness_N_per_m{};
+  const char* stiffness_from{};
+  double rate_hz{};
+};
+
+template <int N>
+Limits<N> limits_of(const SceneOf<N>& scene) {
+  Limits<N> limits;
+  limits.max_force_N = scene.safety.max_force_N;
+  for (int i = 0; i < N; ++i) {
+    limits.low_m[i] = component(scene.safety.workspace_min_m, i);
+    limits.high_m[i] = component(scene.safety.workspace_max_m, i);
+  }
+  limits.rate_hz = scene.rate_hz;
+  if constexpr (N == 1) {
+    // The stiffest passive sampled wall for this device and rate (what validate judges by).
+    const PassivityBound bound = passivity_bound(scene.device, scene.period_s);
+    limits.stiffness_N_per_m = bound.N_per_m;
+    limits.stiffness_from = "the passivity bound of this device and rate (validate)";
+  } else {
+    // The force limit reached 5 mm into a shape.
+    limits.stiffness_N_per_m = scene.safety.max_force_N / 0.005;
+    limits.stiffness_from = "the force limit reached at 5 mm of penetration";
+  }
+  return limits;
+}
+
+// The slider's range for a value of `quantity` on axis `axis` (-1: not a component).
+template <int N>
+void set_range(const Limits<N>& limits, const std::string& key, int axis, LiveParameter* p) {
+  const int a = axis < 0 ? 0 : axis;
+  const double span_m = limits.high_m[a] - limits.low_m[a];
+  switch (p->quantity) {
+    case Quantity::length_m:
+      if (key == "width" || key == "spacing" || key == "radius") {
+        p->min = 0.0;
+        p->max = span_m;
+        p->range_from = "0 to the workspace's width";
+      } else {
+        p->min = limits.low_m[a];
+        p->max = limits.high_m[a];
+        p->range_from = N == 1 ? "the workspace" : (a == 0 ? "the workspace in x" : "the workspace in y");
+      }
+      break;
+    case Quantity::stiffness_N_per_m:
+      p->min = 0.0;
+      p->max = limits.stiffness_N_per_m;
+      p->range_from = limits.stiffness_from;
+      break;
+    case Quantity::damping_N_s_per_m:
+      p->min = 0.0;
+      p->max = limits.max_force_N / 1.0;
+      p->range_from = "the force limit reached at 1 m/s";
+      break;
+    case Quantity::force_N:
+      p->min = -limits.max_force_N;
+      p->max = limits.max_force_N;
+      p->range_from = "the force limit";
+      break;
+    case Quantity::time_s:
+      p->min = 0.0;
+      p->max = 10.0;
+      p->range_from = "0 to 10 s";
+      break;
+    case Quantity::frequency_Hz:
+      p->min = 0.0;
+      p->max = limits.rate_hz / 2.0;
+      p->range_from = "0 to half the tick rate";
+      break;
+    default:
+      p->min = std::min(0.0, 2.0 * p->value);
+      p->max = std::max(1.0, 2.0 * p->value);
+      p->range_from = "0 to twice the value";
+      break;
+  }
+  // The range always holds the value as it is.
+  if (std::isfinite(p->value)) {
+    p->min = std::min(p->min, p->value);
+    p->max = std::max(p->max, p->value);
+  }
+}
+
+std::string axis_label(const std::string& key, int axis) {
+  return axis < 0 ? key : key + (axis == 0 ? " x" : " y");
+}
+
+// The string form of a unit written after a number ("10 mm" -> "mm"), or "" when none.
+std::string unit_of(const std::string& text) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  (void)std::strtod(begin, &end);
+  if (end == begin) return {};
+  std::string unit(end);
+  const auto first = unit.find_first_not_of(" \t");
+  if (first == std::string::npos) return {};
+  return unit.substr(first);
+}
+
+std::string shortest(double value) {
+  char buffer[64];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return ec == std::errc() ? std::string(buffer, end) : std::string("0");
+}
+
+// A number for a string with a unit: 12 significant digits, so 0.012 m reads "12 mm".
+std::string in_unit(double value, const std::string& unit, Quantity quantity, bool* ok) {
+  const QuantityParse one = parse_quantity_as("1 " + unit, quantity);
+  *ok = one.ok && one.value_si != 0.0;
+  if (!*ok) return {};
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.12g", value / one.value_si);
+  return std::string(buffer) + " " + unit;
+}
+
+// The parameter's path as JSON pointer tokens from the root.
+std::vector<std::string> tokens_of(std::size_t effect, const std::string& parameter) {
+  std::vector<std::string> tokens{"effects", std::to_string(effect)};
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t slash = parameter.find('/', start);
+    tokens.push_back(parameter.substr(start, slash == std::string::npos ? std::string::npos : slash - start));
+    if (slash == std::string::npos) break;
+    start = slash + 1;
+  }
+  return tokens;
+}
+
+}  // namespace
+
+template <int N>
+std::vector<LiveParameter> live_parameters(const nlohmann::json& document, const SceneOf<N>& scene) {
+  std::vector<LiveParameter> out;
+  const Limits<N> limits = limits_of(scene);
+  // The compiled scripts, in file order (the scene lists enabled effects as written).
+  std::vector<const ScriptProgram*> programs;
+  for (const auto& effect : scene.effects) {
+    if (const auto* script = std::get_if<ScriptEffect>(&effect)) programs.push_back(script->program.get());
+  }
+  std::size_t next_program = 0;
+  const auto effects = document.find("effects");
+  if (effects == document.end() || !effects->is_array()) return out;
+  for (std::size_t index = 0; index < effects->size(); ++index) {
+    const nlohmann::json& effect = (*effects)[index];
+    if (!effect.is_object() || !effect.contains("type") || !effect["type"].is_string()) continue;
+    const std::string type = effect["type"].get<std::string>();
+    const bool enabled = !effect.contains("enabled") || effect["enabled"] != false;
+    if (type == "script") {
+      if (!enabled) continue;
+      if (next_program >= programs.size()) continue;
+      const ScriptProgram& program = *programs[next_program++];
+      for (const ScriptParam& param : program.params) {
+        if (param.kind != ScriptParam::Kind::number) continue;
+        LiveParameter p;
+        p.effect = index;
+        p.type = type;
+        p.parameter = "params/" + param.name;
+        p.label = param.name;
+        p.quantity = param.has_unit ? param.quantity : Quantity::dimensionless;
+        p.value = param.value_si;
+        p.written = param.overridden;
+        set_range(limits, param.name, -1, &p);
+        out.push_back(std::move(p));
+      }
+      continue;
+    }
+    const auto& specs = type_specs(N);
+    const auto spec = std::find_if(specs.begin(), specs.end(), [&](const TypeSpec& s) { return type == s.type; });
+    if (spec == specs.end()) continue;
+    for (const KeySpec& key : spec->keys) {
+      const bool written = effect.contains(key.key);
+      const int components = key.vector && N > 1 ? N : 1;
+      for (int axis = 0; axis < components; ++axis) {
+        LiveParameter p;
+        p.effect = index;
+        p.type = type;
+        p.quantity = key.quantity;
+        p.written = written;
+        const int shown_axis = key.vector && N > 1 ? axis : -1;
+        p.parameter = shown_axis < 0 ? std::string(key.key) : std::string(key.key) + "/" + std::to_string(axis);
+        p.label = axis_label(key.key, shown_axis);
+        if (written) {
+          const nlohmann::json& value = effect[key.key];
+          p.value = shown_axis < 0 ? si_value(value, key.quantity)
+                                   : (value.is_array() && value.size() > static_cast<std::size_t>(axis)
+                                          ? si_value(value[static_cast<std::size_t>(axis)], key.quantity)
+                                          : std::nan(""));
+        } else if (key.default_from[0] != '\0' && effect.contains(key.default_from)) {
+          p.value = si_value(effect[key.default_from], key.quantity);
+        } else {
+          p.value = key.fallback;
+        }
+        if (!std::isfinite(p.value)) continue;
+        set_range(limits, key.key, shown_axis, &p);
+        out.push_back(std::move(p));
+      }
+    }
+  }
+  return out;
+}
+
+std::string with_parameter(std::string_view text, const std::vector<LiveParameter>& parameters, std::size_t effect,
+                           const std::string& parameter, const nlohmann::json& value) {
+  const auto found = std::find_if(parameters.begin(), parameters.end(), [&](const LiveParameter& p) {
+    return p.effect == effect && p.parameter == parameter;
+  });
+  if (found == parameters.end()) {
+    throw InputError("/effects/" + std::to_string(effect) + "/" + parameter + ": no such parameter (GET /api/scene lists them)");
+  }
+  const std::vector<std::string> tokens = tokens_of(effect, parameter);
+  std::string value_json;
+  if (value.is_string()) {
+    value_json = json_string_literal(value.get<std::string>());
+  } else if (value.is_number()) {
+    const double si = value.get<double>();
+    if (!std::isfinite(si)) throw InputError("value: must be a finite number");
+    value_json = shortest(si);
+    // Written with a unit before: the same unit again.
+    JsonSpan span;
+    if (find_json_value(text, tokens, &span) && text[span.begin] == '"') {
+      const std::string before = nlohmann::json::parse(text.substr(span.begin, span.end - span.begin)).get<std::string>();
+      const std::string unit = unit_of(before);
+      bool ok = false;
+      const std::string with_unit = unit.empty() ? std::string() : in_unit(si, unit, found->quantity, &ok);
+      if (ok) value_json = json_string_literal(with_unit);
+    }
+  } else {
+    throw InputError("value: expected a number (SI) or a string with a unit, got " + std::string(value.type_name()));
+  }
+  return set_json_value(text, tokens, value_json);
+}
+
+nlohmann::json parameter_to_json(const LiveParameter& p) {
+  return {{"effect", p.effect},
+          {"type", p.type},
+          {"parameter", p.parameter},
+          {"label", p.label},
+          {"quantity", std::string(quantity_name(p.quantity))},
+          {"unit", std::string(si_unit(p.quantity))},
+          {"value", p.value},
+          {"min", p.min},
+          {"max", p.max},
+          {"range_from", p.range_from},
+          {"written", p.written}};
+}
+
+template std::vector<LiveParameter> live_parameters<1>(const nlohmann::json&, const SceneOf<1>&);
+template std::vector<LiveParameter> live_parameters<2>(const nlohmann::json&, const SceneOf<2>&);
+
+}  // namespace hapscene

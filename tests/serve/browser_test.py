@@ -1,0 +1,293 @@
+#!/usr/bin/python3
+"""The live view in a real browser: headless Chromium (Debian's `chromium`) opens the page
+of a simulated `hapscene run --ui`, sees the plotted values change, moves a parameter's
+slider with the mouse, and the stream then shows the force of the new value.
+
+Chromium is driven over the DevTools protocol on a pipe (--remote-debugging-pipe: JSON
+messages ending in NUL on file descriptors 3 and 4), so nothing beyond the standard
+library and the browser is needed. Without chromium the test fails: it is the point.
+
+usage: browser_test.py --hapscene BUILD/hapscene [--screenshots DIR]
+       browser_test.py --hapscene BUILD/hapscene --measure ENV --seconds T [--rounds R]
+  --screenshots DIR   also writes DIR/live-view.png (1-D) and DIR/live-view-planar.png (2-D)
+  --measure ENV       the loop's timing without and with the page open and streaming:
+                      R rounds of `run ENV --duration T --quiet` and of the same run with
+                      --ui and the page open in chromium, alternating; prints each
+                      summary's deadline-miss, tick-compute and jitter lines
+"""
+import argparse
+import base64
+import fcntl
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+SOURCE_DIR = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+class Browser:
+    """Headless Chromium with one page, driven over the DevTools pipe."""
+
+    def __init__(self, profile_dir, width=1400, height=900):
+        executable = shutil.which("chromium") or shutil.which("chromium-browser")
+        if executable is None:
+            raise SystemExit("FAIL: chromium is not installed (apt-get install chromium; see .ci/install-deps)")
+        to_browser_read, self.to_browser = os.pipe()
+        self.from_browser, from_browser_write = os.pipe()
+        # The browser reads commands on fd 3 and writes replies on fd 4. Python's pipes are
+        # close-on-exec; the copies dup2 makes in the child are not, so only 3 and 4 pass.
+        # (Moved above 10 first, so that neither dup2 overwrites the other's source.)
+        high_read = fcntl.fcntl(to_browser_read, fcntl.F_DUPFD_CLOEXEC, 10)
+        high_write = fcntl.fcntl(from_browser_write, fcntl.F_DUPFD_CLOEXEC, 10)
+        os.close(to_browser_read)
+        os.close(from_browser_write)
+        def child_fds():
+            os.dup2(high_read, 3)
+            os.dup2(high_write, 4)
+        self.process = subprocess.Popen(
+            [executable, "--headless=new", "--remote-debugging-pipe", "--no-sandbox", "--disable-gpu",
+             "--no-first-run", "--no-default-browser-check", "--disable-extensions", "--hide-scrollbars",
+             "--user-data-dir=" + profile_dir, "--window-size=%d,%d" % (width, height), "about:blank"],
+            close_fds=False, preexec_fn=child_fds, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        to_browser_read, from_browser_write = high_read, high_write
+        os.close(to_browser_read)
+        os.close(from_browser_write)
+        self.next_id = 0
+        self.buffer = b""
+        self.session = None
+        self.width, self.height = width, height
+
+    def send(self, method, params=None, session=True):
+        self.next_id += 1
+        message = {"id": self.next_id, "method": method, "params": params or {}}
+        if session and self.session:
+            message["sessionId"] = self.session
+        os.write(self.to_browser, json.dumps(message).encode() + b"\0")
+        while True:
+            reply = self.read()
+            if reply.get("id") == self.next_id:
+                if "error" in reply:
+                    raise RuntimeError("%s: %s" % (method, reply["error"]))
+                return reply.get("result", {})
+
+    def read(self):
+        while b"\0" not in self.buffer:
+            chunk = os.read(self.from_browser, 1 << 16)
+            if not chunk:
+                raise RuntimeError("chromium closed the DevTools pipe")
+            self.buffer += chunk
+        message, self.buffer = self.buffer.split(b"\0", 1)
+        return json.loads(message)
+
+    def open(self, url):
+        target = self.send("Target.createTarget", {"url": "about:blank"}, session=False)
+        attached = self.send("Target.attachToTarget", {"targetId": target["targetId"], "flatten": True}, session=False)
+        self.session = attached["sessionId"]
+        self.send("Page.enable")
+        self.send("Emulation.setDeviceMetricsOverride",
+                  {"width": self.width, "height": self.height, "deviceScaleFactor": 1, "mobile": False})
+        self.send("Page.navigate", {"url": url})
+
+    def evaluate(self, expression):
+        result = self.send("Runtime.evaluate", {"expression": expression, "returnByValue": True})
+        if "exceptionDetails" in result:
+            raise RuntimeError("page: %s" % result["exceptionDetails"])
+        return result["result"].get("value")
+
+    def click(self, x, y):
+        for kind in ("mouseMoved", "mousePressed", "mouseReleased"):
+            self.send("Input.dispatchMouseEvent",
+                      {"type": kind, "x": x, "y": y, "button": "left", "clickCount": 1 if kind != "mouseMoved" else 0})
+
+    def screenshot(self, path):
+        data = self.send("Page.captureScreenshot", {"format": "png"})["data"]
+        with open(path, "wb") as out:
+            out.write(base64.b64decode(data))
+
+    def close(self):
+        try:
+            self.send("Browser.close", session=False)
+        except Exception:
+            pass
+        try:
+            self.process.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+
+
+def wait_for(what, condition, timeout_s=20.0):
+    until = time.monotonic() + timeout_s
+    while time.monotonic() < until:
+        value = condition()
+        if value:
+            return value
+        time.sleep(0.1)
+    raise AssertionError("timed out waiting for " + what)
+
+
+def page_state(browser):
+    """What the page shows, for a failure's message."""
+    try:
+        return browser.evaluate("JSON.stringify({view: window.hapsceneView && Object.assign({}, window.hapsceneView, {scene: undefined}),"
+                                " connection: document.getElementById('connection').textContent})")
+    except Exception as error:  # the page itself may be the problem
+        return "(page not readable: %s)" % error
+
+
+def start_run(hapscene, environment, extra):
+    """`hapscene run ENV --ui` with the simulated Hapkit; returns the process and the URL."""
+    process = subprocess.Popen([hapscene, "run", environment, "--ui", "--quiet", "--duration", "120s"] + extra,
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    until = time.monotonic() + 20
+    while time.monotonic() < until:
+        line = process.stderr.readline()
+        if not line:
+            break
+        if line.startswith("live view: "):
+            return process, line[len("live view: "):].strip()
+    process.kill()
+    raise AssertionError("hapscene run --ui printed no URL: " + process.stderr.read())
+
+
+def end_run(process):
+    process.send_signal(signal.SIGINT)
+    out, err = process.communicate(timeout=20)
+    return out, err
+
+
+def check_one_dof(browser, hapscene, scratch, screenshots):
+    environment = os.path.join(scratch, "spring.json")
+    shutil.copy(os.path.join(SOURCE_DIR, "environments", "spring.json"), environment)
+    # The hand sweeps the handle across the workspace; the spring's force at each tick is
+    # -K x, so the stream shows the stiffness in force.
+    process, url = start_run(hapscene, environment, [])
+    try:
+        browser.open(url)
+        wait_for("the page to draw ticks", lambda: browser.evaluate(
+            "window.hapsceneView && window.hapsceneView.frames > 5 && window.hapsceneView.samples > 100"), timeout_s=60)
+        first = browser.evaluate("window.hapsceneView.plotted")
+        time.sleep(1.0)
+        second = browser.evaluate("window.hapsceneView.plotted")
+        assert second["t_s"] > first["t_s"], (first, second)
+        assert second["x_m"] != first["x_m"] or second["output_N"] != first["output_N"], (first, second)
+        print("plotted values change: t %.3f -> %.3f s, x %.4f -> %.4f m" %
+              (first["t_s"], second["t_s"], first["x_m"], second["x_m"]))
+
+        # Move the stiffness slider with the mouse to about 3/4 of its range.
+        box = browser.evaluate("""(() => {
+            const r = document.querySelector('input[type=range][data-param="0:stiffness"]').getBoundingClientRect();
+            return {left: r.left, top: r.top, width: r.width, height: r.height};
+        })()""")
+        before = browser.evaluate("window.hapsceneView.scene.parameters[0].value")
+        browser.click(box["left"] + 0.75 * box["width"], box["top"] + box["height"] / 2)
+        stiffness = wait_for("the change to be taken", lambda: (
+            browser.evaluate("window.hapsceneView.changes > 0 && window.hapsceneView.scene.parameters[0].value")), timeout_s=30)
+        assert abs(stiffness - before) > 10, (before, stiffness)
+        print("slider moved: stiffness %.1f -> %.1f N/m (%s)" % (before, stiffness,
+              browser.evaluate("document.getElementById('unsaved').textContent")))
+
+        # The stream shows the new force: -K x with the new K, once the cross-fade is over.
+        def new_force():
+            last = browser.evaluate("window.hapsceneView.last")
+            expected = -stiffness * last["x_m"]
+            return last if abs(last["x_m"]) > 0.002 and abs(last["force_N"] - expected) < 1e-9 * max(1.0, abs(expected)) else None
+        last = wait_for("the stream to show -K x with K = %.1f N/m" % stiffness, new_force, timeout_s=30)
+        print("the stream shows the new force: %.4f N at x %.4f m (-K x = %.4f N; before, %.4f N)" %
+              (last["force_N"], last["x_m"], -stiffness * last["x_m"], -before * last["x_m"]))
+        time.sleep(0.5)
+        if screenshots:
+            browser.screenshot(os.path.join(screenshots, "live-view.png"))
+    finally:
+        out, err = end_run(process)
+    assert "live view " in out, out
+    print(out.strip().splitlines()[-1] if out.strip() else "")
+    with open(environment) as env:
+        assert env.read() == open(os.path.join(SOURCE_DIR, "environments", "spring.json")).read(), "the file changed without save"
+
+
+def check_planar(browser, hapscene, scratch, screenshots):
+    environment = os.path.join(scratch, "box.json")
+    shutil.copy(os.path.join(SOURCE_DIR, "environments", "planar", "haplink_box_inside.json"), environment)
+    process, url = start_run(hapscene, environment, ["--hand", "circle"])
+    try:
+        browser.open(url)
+        wait_for("the plane to draw", lambda: browser.evaluate(
+            "window.hapsceneView && window.hapsceneView.frames > 5 && window.hapsceneView.samples > 1500"), timeout_s=60)
+        last = browser.evaluate("window.hapsceneView.last")
+        assert "y_m" in last and "output_y_N" in last, last
+        if screenshots:
+            browser.screenshot(os.path.join(screenshots, "live-view-planar.png"))
+    finally:
+        end_run(process)
+
+
+def timing_lines(summary):
+    keep = ("deadline misses", "tick compute", "wake-up jitter", "live view")
+    return [line.strip() for line in summary.splitlines() if line.strip().startswith(keep)]
+
+
+def measure(hapscene, environment, seconds, rounds):
+    scratch = tempfile.mkdtemp(prefix="hapscene_measure_")
+    try:
+        for round_index in range(rounds):
+            plain = subprocess.run([hapscene, "run", environment, "--duration", "%gs" % seconds, "--quiet"],
+                                   capture_output=True, text=True)
+            print("round %d without the page:" % (round_index + 1))
+            for line in timing_lines(plain.stdout):
+                print("  " + line)
+            browser = Browser(os.path.join(scratch, "profile%d" % round_index))
+            try:
+                process = subprocess.Popen([hapscene, "run", environment, "--ui", "--quiet", "--duration", "%gs" % seconds],
+                                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                url = None
+                while url is None:
+                    line = process.stderr.readline()
+                    if not line:
+                        raise AssertionError("no URL")
+                    if line.startswith("live view: "):
+                        url = line[len("live view: "):].strip()
+                browser.open(url)
+                out, _ = process.communicate(timeout=seconds + 60)
+                frames = browser.evaluate("window.hapsceneView ? window.hapsceneView.frames : 0")
+            finally:
+                browser.close()
+            print("round %d with the page open and streaming (%s frames drawn):" % (round_index + 1, frames))
+            for line in timing_lines(out):
+                print("  " + line)
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--hapscene", required=True)
+    parser.add_argument("--screenshots")
+    parser.add_argument("--measure")
+    parser.add_argument("--seconds", type=float, default=30.0)
+    parser.add_argument("--rounds", type=int, default=2)
+    args = parser.parse_args()
+    if args.measure:
+        measure(args.hapscene, args.measure, args.seconds, args.rounds)
+        return
+    scratch = tempfile.mkdtemp(prefix="hapscene_browser_")
+    browser = Browser(os.path.join(scratch, "profile"))
+    try:
+        try:
+            check_one_dof(browser, args.hapscene, scratch, args.screenshots)
+            check_planar(browser, args.hapscene, scratch, args.screenshots)
+        except AssertionError:
+            print("the page: " + page_state(browser), file=sys.stderr)
+            raise
+    finally:
+        browser.close()
+        shutil.rmtree(scratch, ignore_errors=True)
+    print("PASS live view in headless chromium")
+
+
+if __name__ == "__main__":
+    main()

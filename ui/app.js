@@ -1,0 +1,409 @@
+// hapscene live view: reads the scene (GET /api/scene), plots the tick stream
+// (GET /api/stream, Server-Sent Events) at the display's frame rate, and sends parameter
+// changes (POST /api/params), saves (POST /api/save) and validates (POST /api/validate).
+// Plain JavaScript, no library: the plots are drawn on canvases here.
+'use strict';
+(() => {
+  const token = new URLSearchParams(location.search).get('token') || '';
+  const api = (path) => path + '?token=' + encodeURIComponent(token);
+  const WINDOW_S = 5;   // the time plots' span
+  const TRACE_S = 3;    // the force-position trace's span
+  const $ = (id) => document.getElementById(id);
+
+  // What the page has seen and drawn, for people debugging it and for the browser test.
+  const view = window.hapsceneView = {
+    events: 0, samples: 0, frames: 0, ended: false, scene: null,
+    last: null,       // the newest tick received
+    plotted: null,    // the newest tick drawn, and when
+    changes: 0, refused: 0, lastError: null, droppedEvents: 0,
+  };
+
+  let scene = null;
+  // The ticks of the last WINDOW_S seconds, column by column (2-D: x and y components).
+  const ticks = { t: [], x: [], y: [], fx: [], fy: [], ox: [], oy: [] };
+  let proxies = [];
+  let status = null;
+
+  // ---- units shown on the page (the API is SI) ----
+  const DISPLAY = { length: { unit: 'mm', scale: 1e-3 } };
+  const shown = (p) => DISPLAY[p.quantity] || { unit: p.unit || '', scale: 1 };
+  const fmt = (v, digits = 4) => (v === null || v === undefined || !isFinite(v)) ? '-' : Number(v.toPrecision(digits)).toString();
+
+  // ---- the scene and its parameters ----
+  async function loadScene() {
+    const response = await fetch(api('/api/scene'));
+    if (!response.ok) throw new Error((await response.json()).error);
+    setScene(await response.json());
+    buildParams();
+  }
+
+  function setScene(s) {
+    scene = s;
+    view.scene = s;
+    $('scene-name').textContent = s.name;
+    $('scene-file').textContent = s.file + ' on ' + s.device.name + ', ' + s.rate_hz + ' Hz, ' + s.axes + '-DOF';
+    $('unsaved').textContent = s.unsaved ? '(changed, not saved)' : '';
+    $('position-title').textContent = s.axes === 1 ? 'position (mm) against time (s)' : 'position x, y (mm) against time (s)';
+    $('trace-title').textContent = s.axes === 1 ? 'force (N) against position (mm), last 3 s'
+                                                : 'the plane (mm): handle, proxies, shapes, commanded force';
+  }
+
+  const paramKey = (p) => p.effect + ':' + p.parameter;
+  const controls = new Map();  // paramKey -> {row, range, number, p}
+
+  function buildParams() {
+    const box = $('params');
+    box.textContent = '';
+    controls.clear();
+    let current = null;
+    for (const p of scene.parameters) {
+      if (!current || current.effect !== p.effect) {
+        const effect = scene.effects[p.effect] || { type: p.type };
+        current = { effect: p.effect, node: document.createElement('div') };
+        current.node.className = 'effect';
+        const title = document.createElement('div');
+        title.className = 'effect-title';
+        title.textContent = '/effects/' + p.effect + ' ' + p.type + (effect.file ? ' (' + effect.file + ')' : '');
+        current.node.appendChild(title);
+        box.appendChild(current.node);
+      }
+      const d = shown(p);
+      const row = document.createElement('div');
+      row.className = 'param';
+      row.title = 'range: ' + p.range_from + (p.written ? '' : ' (not written in the file: the default)');
+      const label = document.createElement('label');
+      label.textContent = p.label;
+      const range = document.createElement('input');
+      range.type = 'range';
+      range.min = p.min / d.scale;
+      range.max = p.max / d.scale;
+      range.step = (p.max - p.min) / d.scale / 1000 || 'any';
+      range.value = p.value / d.scale;
+      range.dataset.param = paramKey(p);
+      const number = document.createElement('input');
+      number.type = 'number';
+      number.step = 'any';
+      number.value = fmt(p.value / d.scale, 6);
+      number.dataset.param = paramKey(p);
+      const unit = document.createElement('span');
+      unit.className = 'unit';
+      unit.textContent = d.unit;
+      row.append(label, range, number, unit);
+      current.node.appendChild(row);
+      const control = { row, range, number, p };
+      controls.set(paramKey(p), control);
+      range.addEventListener('input', () => { number.value = fmt(Number(range.value), 6); request(control, Number(range.value) * d.scale, false); });
+      range.addEventListener('change', () => request(control, Number(range.value) * d.scale, true));
+      number.addEventListener('change', () => request(control, Number(number.value) * d.scale, true));
+    }
+  }
+
+  // Shows the scene's values in the controls (after a change taken or refused).
+  function syncControls() {
+    for (const p of scene.parameters) {
+      const c = controls.get(paramKey(p));
+      if (!c) continue;
+      const d = shown(p);
+      c.p = p;
+      c.range.min = p.min / d.scale;
+      c.range.max = p.max / d.scale;
+      if (document.activeElement !== c.range) c.range.value = p.value / d.scale;
+      if (document.activeElement !== c.number) c.number.value = fmt(p.value / d.scale, 6);
+    }
+  }
+
+  // One request in flight; while dragging, the newest value waits for it (older ones are skipped).
+  let inFlight = false;
+  let queued = null;
+  async function request(control, value, final) {
+    if (inFlight) { queued = { control, value }; return; }
+    inFlight = true;
+    try {
+      const response = await fetch(api('/api/params'), {
+        method: 'POST', headers: { 'Content-Type': 'application/json' },
+        body: JSON.stringify({ effect: control.p.effect, parameter: control.p.parameter, value }),
+      });
+      const body = await response.json();
+      if (response.ok) {
+        view.changes++;
+        control.row.classList.remove('refused');
+        $('param-error').hidden = true;
+        setScene(body);
+        syncControls();
+      } else {
+        view.refused++;
+        view.lastError = body.error;
+        control.row.classList.add('refused');
+        $('param-error').hidden = false;
+        $('param-error').textContent = body.error;
+        syncControls();  // back to the values running
+      }
+    } catch (error) {
+      view.lastError = String(error);
+    } finally {
+      inFlight = false;
+      if (queued) { const next = queued; queued = null; request(next.control, next.value, final); }
+    }
+  }
+
+  $('save-button').addEventListener('click', async () => {
+    const response = await fetch(api('/api/save'), { method: 'POST' });
+    const body = await response.json();
+    $('save-result').textContent = response.ok ? 'saved to ' + body.saved + ' (' + body.bytes + ' bytes)' : body.error;
+    if (response.ok) { scene.unsaved = false; $('unsaved').textContent = ''; }
+  });
+
+  $('validate-button').addEventListener('click', async () => {
+    const button = $('validate-button');
+    button.disabled = true;
+    $('validate-verdict').textContent = 'running the harness on the current values...';
+    try {
+      const response = await fetch(api('/api/validate'), { method: 'POST' });
+      const body = await response.json();
+      if (response.ok) {
+        $('validate-verdict').innerHTML = body.pass ? '<span class="pass">PASS</span>' : '<span class="fail">FAIL</span>';
+        $('validate-table').textContent = body.table;
+      } else {
+        $('validate-verdict').textContent = body.error;
+        $('validate-table').textContent = '';
+      }
+    } finally {
+      button.disabled = false;
+    }
+  });
+
+  // ---- the stream ----
+  function onTicks(message) {
+    const d = JSON.parse(message.data);
+    view.events++;
+    view.droppedEvents = d.dropped_events;
+    const n = d.t_s.length;
+    const two = scene && scene.axes === 2;
+    for (let i = 0; i < n; i++) {
+      ticks.t.push(d.t_s[i]);
+      ticks.x.push(d.x_m[i]);
+      if (two) {
+        ticks.y.push(d.y_m[i]);
+        ticks.fx.push(d.force_x_N[i]); ticks.fy.push(d.force_y_N[i]);
+        ticks.ox.push(d.output_x_N[i]); ticks.oy.push(d.output_y_N[i]);
+      } else {
+        ticks.fx.push(d.force_N[i]);
+        ticks.ox.push(d.output_N[i]);
+      }
+    }
+    view.samples += n;
+    if (n > 0) {
+      const k = n - 1;
+      view.last = two ? { t_s: d.t_s[k], x_m: d.x_m[k], y_m: d.y_m[k], force_x_N: d.force_x_N[k], force_y_N: d.force_y_N[k], output_x_N: d.output_x_N[k], output_y_N: d.output_y_N[k] }
+                      : { t_s: d.t_s[k], x_m: d.x_m[k], force_N: d.force_N[k], output_N: d.output_N[k] };
+    }
+    if (d.proxies_m) proxies = d.proxies_m;
+    // Keep WINDOW_S seconds.
+    const newest = ticks.t.length ? ticks.t[ticks.t.length - 1] : 0;
+    let drop = 0;
+    while (drop < ticks.t.length && ticks.t[drop] < newest - WINDOW_S) drop++;
+    if (drop > 0) for (const key of Object.keys(ticks)) ticks[key].splice(0, drop);
+    status = d.status;
+    showStatus(d);
+    for (const line of d.log) addLog(line);
+  }
+
+  function showStatus(d) {
+    const s = d.status;
+    $('st-time').textContent = fmt(s.t_s, 6) + ' s';
+    $('st-rate').textContent = fmt(s.loop_rate_hz, 5) + ' Hz';
+    $('st-misses').textContent = s.deadline_misses === null ? 'n/a' : s.deadline_misses + (s.overrun_warnings ? ' (' + s.overrun_warnings + ' warnings)' : '');
+    $('st-jitter').textContent = s.wake_late_max_us === null ? 'n/a' : fmt(s.wake_late_max_us, 3) + ' us';
+    $('st-compute').textContent = s.compute_max_us === null ? 'n/a' : fmt(s.compute_max_us, 3) + ' us';
+    $('st-energy').textContent = fmt(s.energy_J * 1e3, 4) + ' mJ';
+    $('st-stream').textContent = 'event ' + d.seq + ', every ' + (d.stride === 1 ? 'tick' : d.stride + ' ticks') +
+      ', dropped ' + d.dropped_events + ' events / ' + s.dropped_ticks + ' ticks';
+    const rows = Object.entries(s.safety).map(([k, v]) => '<tr><th>' + k.replace(/_/g, ' ') + '</th><td>' + v + '</td></tr>');
+    $('safety-table').innerHTML = rows.join('');
+    $('faults').innerHTML = '';
+    for (const i of s.scripts_disabled) {
+      const div = document.createElement('div');
+      div.className = 'error';
+      div.textContent = 'script ' + i + ' disabled by a fault (0 N from then on; the run summary says why)';
+      $('faults').appendChild(div);
+    }
+  }
+
+  function addLog(line) {
+    const li = document.createElement('li');
+    li.textContent = line;
+    $('log').appendChild(li);
+    while ($('log').children.length > 200) $('log').firstChild.remove();
+    $('log').scrollTop = $('log').scrollHeight;
+  }
+
+  function connect() {
+    const source = new EventSource(api('/api/stream'));
+    source.onopen = () => { $('connection').textContent = 'live'; $('connection').className = 'badge live'; };
+    source.onmessage = onTicks;
+    source.addEventListener('end', () => {
+      view.ended = true;
+      source.close();
+      $('connection').textContent = 'run ended';
+      $('connection').className = 'badge ended';
+    });
+    source.onerror = () => {
+      if (view.ended) return;
+      $('connection').textContent = 'connection lost';
+      $('connection').className = 'badge lost';
+    };
+  }
+
+  // ---- plots ----
+  // A canvas sized to its box in device pixels, and a mapping from data to pixels.
+  function frame(canvas, xRange, yRange) {
+    const ratio = window.devicePixelRatio || 1;
+    const w = canvas.clientWidth, h = canvas.clientHeight;
+    if (canvas.width !== Math.round(w * ratio) || canvas.height !== Math.round(h * ratio)) {
+      canvas.width = Math.round(w * ratio);
+      canvas.height = Math.round(h * ratio);
+    }
+    const g = canvas.getContext('2d');
+    g.setTransform(ratio, 0, 0, ratio, 0, 0);
+    g.clearRect(0, 0, w, h);
+    const left = 52, right = 10, top = 6, bottom = 22;
+    const sx = (v) => left + (v - xRange[0]) / (xRange[1] - xRange[0]) * (w - left - right);
+    const sy = (v) => h - bottom - (v - yRange[0]) / (yRange[1] - yRange[0]) * (h - top - bottom);
+    // Axes with a few ticks.
+    g.strokeStyle = '#d2d2d7';
+    g.fillStyle = '#6e6e73';
+    g.font = '11px system-ui, sans-serif';
+    g.lineWidth = 1;
+    g.strokeRect(left, top, w - left - right, h - top - bottom);
+    for (let i = 0; i <= 4; i++) {
+      const yv = yRange[0] + (yRange[1] - yRange[0]) * i / 4;
+      g.fillText(fmt(yv, 3), 4, sy(yv) + 4);
+      const xv = xRange[0] + (xRange[1] - xRange[0]) * i / 4;
+      g.fillText(fmt(xv, 3), sx(xv) - 10, h - 6);
+    }
+    return { g, sx, sy, w, h };
+  }
+
+  function line(f, xs, ys, color, scaleX = 1, scaleY = 1, start = 0, width = 1.5) {
+    const { g, sx, sy } = f;
+    g.strokeStyle = color;
+    g.lineWidth = width;
+    g.beginPath();
+    for (let i = start; i < xs.length; i++) {
+      const px = sx(xs[i] * scaleX), py = sy(ys[i] * scaleY);
+      if (i === start) g.moveTo(px, py); else g.lineTo(px, py);
+    }
+    g.stroke();
+  }
+
+  function hline(f, y, xRange, color) {
+    const { g, sx, sy } = f;
+    g.strokeStyle = color;
+    g.setLineDash([5, 4]);
+    g.beginPath();
+    g.moveTo(sx(xRange[0]), sy(y));
+    g.lineTo(sx(xRange[1]), sy(y));
+    g.stroke();
+    g.setLineDash([]);
+  }
+
+  const css = (name) => getComputedStyle(document.documentElement).getPropertyValue(name).trim();
+  const magnitude = (a, b) => a.map((v, i) => Math.hypot(v, b[i]));
+
+  function draw() {
+    requestAnimationFrame(draw);
+    if (!scene || ticks.t.length === 0) return;
+    const two = scene.axes === 2;
+    const newest = ticks.t[ticks.t.length - 1];
+    const tRange = [Math.max(0, newest - WINDOW_S), Math.max(WINDOW_S, newest)];
+    const limit = scene.device.max_force_N;
+    const lo = scene.device.workspace_min_m, hi = scene.device.workspace_max_m;
+
+    // Position against time.
+    const posRange = two ? [Math.min(lo[0], lo[1]) * 1e3, Math.max(hi[0], hi[1]) * 1e3] : [lo * 1e3, hi * 1e3];
+    const fp = frame($('plot-position'), tRange, posRange);
+    line(fp, ticks.t, ticks.x, css('--x'), 1, 1e3);
+    if (two) line(fp, ticks.t, ticks.y, css('--y'), 1, 1e3);
+
+    // Force against time, with the limit.
+    const forceRange = two ? [0, limit * 1.15] : [-limit * 1.15, limit * 1.15];
+    const ff = frame($('plot-force'), tRange, forceRange);
+    hline(ff, limit, tRange, css('--limit'));
+    if (!two) hline(ff, -limit, tRange, css('--limit'));
+    if (two) {
+      line(ff, ticks.t, magnitude(ticks.ox, ticks.oy), css('--commanded'), 1, 1, 0, 3);
+      line(ff, ticks.t, magnitude(ticks.fx, ticks.fy), css('--asked'));
+    } else {
+      // Commanded first and wider: where it equals the asked force both show.
+      line(ff, ticks.t, ticks.ox, css('--commanded'), 1, 1, 0, 3);
+      line(ff, ticks.t, ticks.fx, css('--asked'));
+    }
+
+    // Force against position over the last TRACE_S s (1-D), or the plane (2-D).
+    let start = 0;
+    while (start < ticks.t.length && ticks.t[start] < newest - TRACE_S) start++;
+    if (two) drawPlane(start); else {
+      const ft = frame($('plot-trace'), [lo * 1e3, hi * 1e3], [-limit * 1.15, limit * 1.15]);
+      hline(ft, limit, [lo * 1e3, hi * 1e3], css('--limit'));
+      hline(ft, -limit, [lo * 1e3, hi * 1e3], css('--limit'));
+      line(ft, ticks.x, ticks.ox, css('--commanded'), 1e3, 1, start, 3);
+      line(ft, ticks.x, ticks.fx, css('--asked'), 1e3, 1, start);
+    }
+    view.frames++;
+    view.plotted = Object.assign({ drawn_at_ms: performance.now() }, view.last);
+  }
+
+  function drawPlane(start) {
+    const canvas = $('plot-trace');
+    const lo = scene.device.workspace_min_m, hi = scene.device.workspace_max_m;
+    // Equal scales in x and y: widen the shorter range to the canvas's aspect.
+    const w = canvas.clientWidth - 62, h = canvas.clientHeight - 28;  // the frame's margins
+    let xr = [lo[0] * 1e3, hi[0] * 1e3], yr = [lo[1] * 1e3, hi[1] * 1e3];
+    const mmPerPx = Math.max((xr[1] - xr[0]) / w, (yr[1] - yr[0]) / h);
+    const cx = (xr[0] + xr[1]) / 2, cy = (yr[0] + yr[1]) / 2;
+    xr = [cx - mmPerPx * w / 2, cx + mmPerPx * w / 2];
+    yr = [cy - mmPerPx * h / 2, cy + mmPerPx * h / 2];
+    const f = frame(canvas, xr, yr);
+    const { g, sx, sy } = f;
+    // The workspace and the shapes.
+    g.strokeStyle = css('--limit');
+    g.setLineDash([4, 3]);
+    g.strokeRect(sx(lo[0] * 1e3), sy(hi[1] * 1e3), sx(hi[0] * 1e3) - sx(lo[0] * 1e3), sy(lo[1] * 1e3) - sy(hi[1] * 1e3));
+    g.setLineDash([]);
+    g.fillStyle = 'rgba(31, 119, 180, 0.15)';
+    g.strokeStyle = '#1f77b4';
+    for (const s of scene.shapes) {
+      g.beginPath();
+      if (s.kind === 'circle') {
+        g.arc(sx(s.center_m[0] * 1e3), sy(s.center_m[1] * 1e3), s.radius_m * 1e3 / mmPerPx, 0, 2 * Math.PI);
+      } else if (s.kind === 'wall') {
+        // The wall's line across the workspace.
+        const p = s.point_m, n = s.normal, d = [-n[1], n[0]], span = 1;
+        g.moveTo(sx((p[0] - d[0] * span) * 1e3), sy((p[1] - d[1] * span) * 1e3));
+        g.lineTo(sx((p[0] + d[0] * span) * 1e3), sy((p[1] + d[1] * span) * 1e3));
+      } else {
+        s.points_m.forEach((p, i) => (i ? g.lineTo : g.moveTo).call(g, sx(p[0] * 1e3), sy(p[1] * 1e3)));
+        g.closePath();
+      }
+      if (s.kind !== 'wall' && s.solid_inside) g.fill();
+      g.stroke();
+    }
+    // The handle's path, the handle, the proxies and the commanded force.
+    line(f, ticks.x, ticks.y, css('--x'), 1e3, 1e3, start);
+    const k = ticks.t.length - 1;
+    const hx = sx(ticks.x[k] * 1e3), hy = sy(ticks.y[k] * 1e3);
+    g.fillStyle = css('--x');
+    g.beginPath(); g.arc(hx, hy, 5, 0, 2 * Math.PI); g.fill();
+    g.fillStyle = css('--asked');
+    for (const p of proxies) { g.beginPath(); g.arc(sx(p[0] * 1e3), sy(p[1] * 1e3), 3.5, 0, 2 * Math.PI); g.fill(); }
+    const pxPerN = 40;
+    g.strokeStyle = css('--commanded');
+    g.lineWidth = 2;
+    g.beginPath(); g.moveTo(hx, hy); g.lineTo(hx + ticks.ox[k] * pxPerN, hy - ticks.oy[k] * pxPerN); g.stroke();
+  }
+
+  loadScene().then(() => { connect(); requestAnimationFrame(draw); }).catch((error) => {
+    $('connection').textContent = String(error.message || error);
+    $('connection').className = 'badge lost';
+  });
+})();
