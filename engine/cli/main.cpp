@@ -38,6 +38,12 @@ usage:
                                           draw force-displacement and time series as SVG
                                           (2-DOF: the force field, a run's paths and
                                           time series; also --grid N, --width PX)
+  hapscene devices [--json] [--no-probe] [--timeout T]
+                                          serial ports that look like boards, and which
+                                          answer hapscene's handshake (firmware version)
+  hapscene calibrate --device SPEC [--profile NAME] [--output FILE] [--yes]
+                                          measure a kit (centre, travel, motor direction)
+                                          and write a profile that extends the shipped one
   hapscene help | --help                  this text
   hapscene version | --version
 
@@ -65,7 +71,9 @@ validate options:
   --scenario NAMES      sweep, press, release, hold, shake, free (comma-separated; default all)
   --hand-stiffness K    --hand-damping B    --hand-mass M    (default 200 N/m, 2 N*s/m, 20 g)
   --noise COUNTS        --seed N            --start X (free scenario start, default 4 mm)
-  --report FILE.json    --plot FILE.svg     --quiet
+  --report FILE.json    --plot FILE.svg     --quiet (a line per file)
+  --verbose             every check of every scenario (default: a line per
+                        scenario and the rows of the checks that failed)
   2-DOF: --scenario sweep, press, swipe, release, hold, shake, free; --start X,Y
                         (free scenario start, default the profile's home)
 
@@ -99,6 +107,8 @@ int dispatch(std::vector<std::string> args) {
     if (command == "validate") return hapscene::validate_command(args);
     if (command == "plot") return hapscene::plot_command(args);
     if (command == "test") return hapscene::test_command(args);
+    if (command == "devices") return hapscene::devices_command(args);
+    if (command == "calibrate") return hapscene::calibrate_command(args);
     std::cerr << "hapscene: unknown command \"" << hapscene::printable(command) << "\" (try: hapscene --help)\n";
     return hapscene::kExitInvalidInput;
   } catch (const hapscene::InputError& error) {

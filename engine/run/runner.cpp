@@ -93,6 +93,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   if (real_time) prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   const RealtimeGuard realtime(real_time);
   summary.realtime_note = realtime.note();
+  summary.realtime_hint = realtime.hint();
   std::uint32_t miss_streak = 0;
   MissWindow miss_window(options.overrun_window_deadlines);
 
