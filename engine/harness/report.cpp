@@ -141,8 +141,7 @@ std::string format_report_summary(const std::string& header, const std::vector<R
       if (!c.pass) out += format_check_row(c);
     }
   }
-  out += all.failed == 0 ? "\nresult: pass (" + counted(all) + "; --verbose for every check)\n"
-                         : "\nresult: FAIL (" + failed_text(all) + "; --verbose for every check)\n";
+  out += all.failed == 0 ? "\nresult: pass (" + counted(all) + ")\n" : "\nresult: FAIL (" + failed_text(all) + ")\n";
   return out;
 }
 
