@@ -77,6 +77,17 @@ validate options:
   2-DOF: --scenario sweep, press, swipe, release, hold, shake, free; --start X,Y
                         (free scenario start, default the profile's home)
 
+calibrate options:
+  --device SPEC         serial:/dev/ttyACM0 (a kit), or sim and hil (the simulated hand
+                        plays the user; default sim)
+  --profile NAME|FILE   the profile calibrated (default hapkit3)
+  --output FILE         the profile written (default NAME-calibrated.json)
+  --yes                 no prompts: each step runs for its time
+  --travel-time T       the travel step (default 15 s; 4 s on sim and hil)
+  --pulse-force F       the direction pulse's largest force (default 0.5 N)
+  --simulated-kit FILE  sim and hil: build the simulated Hapkit from this profile
+  --baud N              serial speed (default 1000000)
+
 Values take SI numbers or strings with units ("10 mm", "2 kHz"); each numeric option
 has a range (README, "Using it"), and a value outside it is invalid input.
 Exit codes: 0 success, 2 invalid input (file, arguments), 1 anything else
