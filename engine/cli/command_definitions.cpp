@@ -146,13 +146,39 @@ constexpr OptionDefinition kValidateOptions[] = {
      &option::free_start},
     {"report", 'r', "FILE.json", "the JSON report (one environment)", "", nullptr, nullptr, "", C::output},
     {"plot", 'p', "FILE.svg", "the figure (one environment)", "", nullptr, nullptr, "", C::output},
-    {"quiet", 'q', "", "one line per environment instead of the table"},
+    {"quiet", 'q', "", "one line per environment instead of the summary"},
+    {"verbose", 'v', "", "every check of every scenario (default: a line per scenario and the rows of the checks that failed)"},
 };
 constexpr std::string_view kValidateExamples[] = {
     "validate environments/wall.json",
     "validate environments/wall.json --report wall-report.json --plot wall.svg",
     "validate -q environments/*.json",
 };
+
+// ---- devices
+constexpr OptionDefinition kDevicesOptions[] = {
+    {"json", 0, "", "the list as JSON"},
+    {"no-probe", 0, "", "list the ports only, without the handshake (opening a port resets an Uno-style board)"},
+    {"timeout", 0, "T", "how long each port has to answer the handshake", "2.5 s", &option::devices_timeout},
+    {"baud", 0, "N", "serial speed in bits per second", "1000000", nullptr, &option::baud},
+};
+constexpr std::string_view kDevicesExamples[] = {"devices", "devices --json --timeout 1s"};
+
+// ---- calibrate
+constexpr OptionDefinition kCalibrateOptions[] = {
+    {"device", 'D', "SPEC", "serial:PORT (a kit), or sim and hil (the simulated hand plays the user)", "sim", nullptr,
+     nullptr, "sim hil serial:", C::device},
+    {"profile", 0, "NAME|FILE", "the profile calibrated", "hapkit3", nullptr, nullptr, "", C::json},
+    {"output", 'o', "FILE", "the profile written", "NAME-calibrated.json", nullptr, nullptr, "", C::output},
+    {"yes", 0, "", "no prompts: each step runs for its time"},
+    {"travel-time", 0, "T", "the travel step", "15 s; 4 s on sim and hil", &option::calibrate_travel_time},
+    {"pulse-force", 0, "F", "the direction pulse's largest force", "0.5 N", &option::calibrate_pulse_force},
+    {"simulated-kit", 0, "FILE", "sim and hil: build the simulated Hapkit from this profile", "", nullptr, nullptr, "",
+     C::json},
+    {"baud", 0, "N", "serial speed in bits per second", "1000000", nullptr, &option::baud},
+};
+constexpr std::string_view kCalibrateExamples[] = {"calibrate --device serial:/dev/ttyACM0",
+                                                   "calibrate --device hil --yes --output my_hapkit.json"};
 
 // ---- test
 constexpr OptionDefinition kTestOptions[] = {
@@ -198,6 +224,15 @@ constexpr CommandDefinition kCommands[] = {
      "Runs test specs (*.test.json; a folder: every one under it; nothing given: every one under environments/ "
      "and scripts/) and prints PASS or FAIL per spec with each unmet expectation.",
      kTestOptions, C::spec, kTestExamples},
+    {"devices", "", "[options]", "serial ports that look like boards, and which answer the handshake",
+     "Lists /dev/ttyACM*, /dev/ttyUSB* and /dev/serial/by-id with their USB vendor, product and serial number, "
+     "and which of them answer hapscene's handshake, with the firmware version.",
+     kDevicesOptions, C::none, kDevicesExamples},
+    {"calibrate", "", "--device SPEC [options]", "measure a kit and write a profile that extends the shipped one",
+     "Walks through the kit's checks: the sensor's centre, the travel found while the handle is moved across its "
+     "range, and the motor's direction with a small, slow, force-limited pulse; writes a profile that extends "
+     "the calibrated one and overrides only the keys found to differ.",
+     kCalibrateOptions, C::none, kCalibrateExamples},
     {"plot", "", "ENV [options]", "draw the force-displacement curve and a scenario as SVG",
      "Draws the force-displacement curve and one scenario's time series as an SVG figure (2-DOF: the force "
      "field, the run's paths and time series per axis).",

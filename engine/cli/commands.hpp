@@ -12,5 +12,7 @@ int bench_command(std::vector<std::string> args);
 int validate_command(std::vector<std::string> args);
 int plot_command(std::vector<std::string> args);
 int test_command(std::vector<std::string> args);
+int devices_command(std::vector<std::string> args);
+int calibrate_command(std::vector<std::string> args);
 
 }  // namespace hapscene

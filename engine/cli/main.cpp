@@ -97,6 +97,8 @@ int dispatch(std::vector<std::string> args) {
     if (command == "validate") return hapscene::validate_command(args);
     if (command == "plot") return hapscene::plot_command(args);
     if (command == "test") return hapscene::test_command(args);
+    if (command == "devices") return hapscene::devices_command(args);
+    if (command == "calibrate") return hapscene::calibrate_command(args);
     std::cerr << "hapscene: " << unknown_command(command) << " (try: hapscene --help)\n";
     return hapscene::kExitInvalidInput;
   } catch (const hapscene::InputError& error) {

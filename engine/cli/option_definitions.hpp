@@ -28,6 +28,14 @@ inline constexpr QuantityOption hold{"hold", Quantity::length_m, -1.0, 1.0};
 inline constexpr QuantityOption release{"release", Quantity::time_s, 0.0, kDay_s};
 inline constexpr QuantityOption run_start{"start", Quantity::length_m, -1.0, 1.0};
 
+// devices: how long to wait for boards to answer the handshake (an Uno-style board resets
+// when its port opens and answers after its bootloader's wait, about 1 s)
+inline constexpr QuantityOption devices_timeout{"timeout", Quantity::time_s, 0.0, 30.0, true};
+
+// calibrate: how long the travel step lasts, and the direction pulse's largest force
+inline constexpr QuantityOption calibrate_travel_time{"travel-time", Quantity::time_s, 1.0, 300.0};
+inline constexpr QuantityOption calibrate_pulse_force{"pulse-force", Quantity::force_N, 0.05, 2.0};
+
 // run, validate, plot: the sensor noise and its seed
 inline constexpr QuantityOption noise = from_range("noise", value_range::noise);
 inline constexpr WholeOption seed{"seed", 0, std::numeric_limits<std::uint64_t>::max()};

@@ -89,6 +89,7 @@ void print_timing(const RunSettings&, const RunSummaryOf<N>& summary) {
   bands += "  >1ms " + std::to_string(late.count() - below);
   print_out("  jitter bands     %s\n", bands.c_str());
   print_out("  scheduling       %s\n", summary.realtime_note.c_str());
+  if (!summary.realtime_hint.empty()) print_out("  to allow it      %s\n", summary.realtime_hint.c_str());
   if (summary.overrun_warnings > 0 || summary.overrun_fault) {  // (a window fault may come without a warning)
     print_out("  overruns         %llu warnings (first at %.3f s), longest streak %u misses, "
               "at most %u misses in %u deadlines\n",

@@ -1,6 +1,7 @@
 // `hapscene validate ENV [ENV...]`: runs each environment closed loop on the simulated
 // Hapkit through the virtual-hand scenarios in simulated time, prints a table of
-// verdicts (--quiet: one line per file), optionally writes a JSON report and an SVG
+// verdicts (by default a line per scenario and the checks that failed; --verbose: every
+// check; --quiet: one line per file), optionally writes a JSON report and an SVG
 // figure. Exit 0 when every check passes or is not judged, 1 when any fails (a script
 // fault always fails the "script" check), 2 for invalid input (options, or any of the
 // files: the others still get their verdicts).
@@ -40,6 +41,9 @@ int validate_command(std::vector<std::string> args) {
   const std::optional<std::string> report_path = arguments.take_value("report");
   const std::optional<std::string> plot_path = arguments.take_value("plot");
   const bool quiet = arguments.take_flag("quiet");
+  // The table of every check; by default a line per scenario and the failed checks.
+  const bool verbose = arguments.take_flag("verbose");
+  if (quiet && verbose) arguments.fail("--quiet and --verbose contradict each other: give one");
   const std::vector<std::string> files = arguments.positionals();
   if (files.empty()) arguments.fail("expected at least one environment file");
   if ((report_path || plot_path) && files.size() != 1) {
@@ -112,7 +116,8 @@ int validate_command(std::vector<std::string> args) {
         if (quiet) {
           print_out("%s", format_planar_report_line(shown).c_str());
         } else {
-          print_out("%s%s", i > 0 ? "\n" : "", format_planar_report_table(shown).c_str());
+          print_out("%s%s", i > 0 ? "\n" : "",
+                    (verbose ? format_planar_report_table(shown) : format_planar_report_summary(shown)).c_str());
         }
         if (report_path) write_output_file(*report_path, planar_report_to_json(report).dump(2) + "\n");
         if (plot_path) write_output_file(*plot_path, planar_validation_figure_svg(scene, report));
@@ -129,7 +134,7 @@ int validate_command(std::vector<std::string> args) {
       if (quiet) {
         print_out("%s", format_report_line(shown).c_str());
       } else {
-        print_out("%s%s", i > 0 ? "\n" : "", format_report_table(shown).c_str());
+        print_out("%s%s", i > 0 ? "\n" : "", (verbose ? format_report_table(shown) : format_report_summary(shown)).c_str());
       }
       if (report_path) write_output_file(*report_path, report_to_json(report).dump(2) + "\n");
       if (plot_path) write_output_file(*plot_path, validation_figure_svg(scene, report));

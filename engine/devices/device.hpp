@@ -3,6 +3,7 @@
 // joints and a motor command per joint (DeviceIo<N> names the types; the scene's device
 // model turns readings into the handle position and a force into commands). Simulated
 // devices also advance their physics by one tick period.
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -37,6 +38,17 @@ class SimulationTruthOf {
   virtual Axes<N> v_m_per_s() const noexcept = 0;     // handle velocity
   virtual Axes<N> motor_force_N() const noexcept = 0; // what the motors apply now, at the handle
   virtual Axes<N> hand_force_N() const noexcept = 0;  // the hand's force on the handle
+  // Where the virtual hand is pulling the handle now (its target motion), NaN while it
+  // does not grip; devices without a hand keep this default.
+  virtual Axes<N> hand_target_m() const noexcept {
+    Axes<N> none{};
+    if constexpr (N == 1) {
+      none = std::nan("");
+    } else {
+      for (int i = 0; i < N; ++i) none[i] = std::nan("");
+    }
+    return none;
+  }
 };
 
 using SimulationTruth = SimulationTruthOf<1>;

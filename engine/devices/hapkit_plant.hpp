@@ -5,6 +5,7 @@
 // wrapping every sensor period, optionally noisy). Shared by the simulated device (which
 // turns the host's command into the force) and the firmware-in-the-loop device (which
 // measures the force from the simulated board's PWM pin). Deterministic for a given seed.
+#include <cmath>
 #include <cstdint>
 
 #include "engine/devices/noise.hpp"
@@ -40,6 +41,10 @@ class HapkitPlant {
   double v_m_per_s() const noexcept { return v_m_per_s_; }
   double t_s() const noexcept { return t_s_; }
   double hand_force_N() const noexcept { return hand_force_N_; }
+  // Where the hand pulls the handle now; NaN while it does not grip.
+  double hand_target_m() const noexcept {
+    return config_.hand.motion != HandMotion::none && hand_.gripping(t_s_) ? hand_.reference_m(t_s_) : std::nan("");
+  }
   // Sensor readings that could not be formed (a non-finite or absurd position), answered
   // with the last good reading.
   std::uint64_t sensor_faults() const noexcept { return sensor_faults_; }

@@ -115,6 +115,8 @@ bool looks_like_path(const std::string& name_or_path) {
          (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
 }
 
+constexpr int kMaxProfileExtends = 8;
+
 }  // namespace
 
 DeviceProfile parse_device_profile(std::string_view json_text, const std::string& display_name) {
@@ -149,21 +151,18 @@ std::string profile_kind_of(std::string_view json_text) noexcept {
 
 bool names_planar_profile(const std::string& name_or_path, const std::string& base_dir) noexcept {
   try {
-    if (looks_like_path(name_or_path)) {
-      std::filesystem::path path(name_or_path);
-      if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
-      return profile_kind_of(read_text_file(path.lexically_normal().string(), kMaxJsonFileBytes)) == "planar";
-    }
-    for (const BuiltinProfile& builtin : builtin_profiles()) {
-      if (builtin.name == name_or_path) return profile_kind_of(builtin.json_text) == "planar";
-    }
+    // Resolved: a profile that extends a planar one is planar.
+    return profile_kind_of(find_profile_text(name_or_path, base_dir, false).json_text) == "planar";
   } catch (...) {
     // Unreadable: the loader that reads it reports why.
   }
   return false;
 }
 
-ProfileText find_profile_text(const std::string& name_or_path, const std::string& base_dir, bool planar) {
+namespace {
+
+// A profile's own text, by name (shipped) or by path.
+ProfileText find_profile_file(const std::string& name_or_path, const std::string& base_dir, bool planar) {
   if (looks_like_path(name_or_path)) {
     std::filesystem::path path(name_or_path);
     if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
@@ -182,6 +181,48 @@ ProfileText find_profile_text(const std::string& name_or_path, const std::string
   const std::string suggestion = nearest_name(name_or_path, names);
   if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
   throw UnknownProfileError(message);
+}
+
+// A profile that "extends" another: the parent's JSON (itself resolved, at most
+// kMaxProfileExtends deep) with the child's keys merged over it (objects key by key,
+// anything else replaced; RFC 7386, so a null removes a parent's key). Without "extends"
+// the text is returned as it is, so errors keep their line and column.
+ProfileText resolve_extends(ProfileText profile, const std::string& base_dir, bool planar, int depth) {
+  const nlohmann::json child = parse_json_text(profile.json_text, profile.display_name);
+  if (!child.is_object() || !child.contains("extends")) return profile;
+  const nlohmann::json& extends = child["extends"];
+  if (!extends.is_string() || extends.get<std::string>().empty()) {
+    throw InputError(profile.display_name + ": /extends: expected the name or path of the profile to extend, got " +
+                     json_type_name(extends));
+  }
+  if (depth >= kMaxProfileExtends) {
+    throw InputError(profile.display_name + ": /extends: more than " + std::to_string(kMaxProfileExtends) +
+                     " profiles extend each other (a loop?)");
+  }
+  const std::string parent_name = extends.get<std::string>();
+  ProfileText parent;
+  try {
+    parent = find_profile_file(parent_name, base_dir, planar);
+  } catch (const InputError& error) {
+    throw InputError(profile.display_name + ": /extends: " + error.what());
+  }
+  const std::string parent_dir = std::filesystem::path(parent.display_name).parent_path().string();
+  parent = resolve_extends(std::move(parent), looks_like_path(parent_name) ? parent_dir : base_dir, planar, depth + 1);
+  nlohmann::json merged = nlohmann::json::parse(parent.json_text);
+  nlohmann::json patch = child;
+  patch.erase("extends");
+  merged.merge_patch(patch);
+  return ProfileText{merged.dump(), profile.display_name + " (extends " + parent_name + ")"};
+}
+
+}  // namespace
+
+ProfileText find_profile_text(const std::string& name_or_path, const std::string& base_dir, bool planar) {
+  ProfileText profile = find_profile_file(name_or_path, base_dir, planar);
+  const std::string dir = looks_like_path(name_or_path)
+                              ? std::filesystem::path(profile.display_name).parent_path().string()
+                              : base_dir;
+  return resolve_extends(std::move(profile), dir, planar, 0);
 }
 
 DeviceProfile load_device_profile(const std::string& name_or_path, const std::string& base_dir) {

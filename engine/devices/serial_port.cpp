@@ -1,7 +1,10 @@
 #include "engine/devices/serial_port.hpp"
 
 #include <fcntl.h>
+#include <grp.h>
 #include <poll.h>
+#include <pwd.h>
+#include <sys/stat.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -38,6 +41,31 @@ std::string supported_baud_rates() {
   return list;
 }
 
+std::string serial_open_failure(const std::string& path, int error) {
+  std::string text = std::strerror(error);
+  if (error == EACCES || error == EPERM) {
+    // The group that owns the port (dialout for USB serial adapters on Debian), and who we are.
+    std::string group_name = "dialout";
+    struct stat info {};
+    if (::stat(path.c_str(), &info) == 0) {
+      if (const group* entry = ::getgrgid(info.st_gid); entry != nullptr && entry->gr_name != nullptr) {
+        group_name = entry->gr_name;
+      }
+    }
+    std::string user = "$USER";
+    if (const passwd* entry = ::getpwuid(::geteuid()); entry != nullptr && entry->pw_name != nullptr) {
+      user = entry->pw_name;
+    }
+    text += " (the port belongs to the group \"" + group_name + "\" and this user is not allowed to use it: run `sudo usermod -aG " +
+            group_name + " " + user + "`, then log out and in again so the group takes effect; `groups` lists yours)";
+  } else if (error == ENOENT) {
+    text += " (no such port: is the board plugged in? `hapscene devices` lists the ports that look like boards)";
+  } else if (error == EBUSY) {
+    text += " (another program holds the port: close the Arduino serial monitor or stop ModemManager)";
+  }
+  return text;
+}
+
 SerialPort::SerialPort(std::string path, int baud, const std::string& what) : path_(std::move(path)) {
   bool found = false;
   for (const BaudRate& rate : kBaudRates) {
@@ -51,7 +79,7 @@ SerialPort::SerialPort(std::string path, int baud, const std::string& what) : pa
                      supported_baud_rates() + ")");
   }
   fd_ = open_configured();
-  if (fd_ < 0) throw InputError(what + ": cannot open " + path_ + ": " + std::strerror(errno));
+  if (fd_ < 0) throw InputError(what + ": cannot open " + path_ + ": " + serial_open_failure(path_, errno));
 }
 
 SerialPort::~SerialPort() { close_port(); }

@@ -36,4 +36,10 @@ class SerialPort final : public ByteLink {
 // The baud rates termios offers, for messages ("9600, 19200, ...").
 std::string supported_baud_rates();
 
+// Why a port could not be opened, and what to do about it, for `what: cannot open PATH:
+// ...`: `error` is the errno of open(). Permission denied names the group that owns the
+// port (dialout on Debian) and the command that adds the user to it; a missing port
+// points at `hapscene devices`; a busy one names the usual holders.
+std::string serial_open_failure(const std::string& path, int error);
+
 }  // namespace hapscene

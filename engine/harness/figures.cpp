@@ -15,7 +15,11 @@ const char* const kColors[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#946
 std::vector<PlotLine> limit_lines(const Scene& scene) {
   char label[64];
   std::snprintf(label, sizeof label, "safety limit +/-%g N", scene.safety.max_force_N);
-  return {{scene.safety.max_force_N, label}, {-scene.safety.max_force_N, ""}};
+  // The axis scales to the forces drawn; the limit is drawn where it falls inside.
+  PlotLine upper{scene.safety.max_force_N, label};
+  PlotLine lower{-scene.safety.max_force_N, ""};
+  upper.sets_range = lower.sets_range = false;
+  return {upper, lower};
 }
 
 }  // namespace
@@ -87,6 +91,7 @@ std::vector<PlotPanel> time_series_panels(const Scene& scene, const std::vector<
   PlotPanel force{"force: " + what, "time t (s)", "force (N)", {}, limit_lines(scene)};
   PlotSeries x_true{"x (simulated, true)", kColors[0], {}, {}, false};
   PlotSeries x_measured{"x (measured)", kColors[1], {}, {}, true};
+  PlotSeries x_target{"hand target", kColors[2], {}, {}, true};
   PlotSeries v_true{"v (simulated, true)", kColors[0], {}, {}, false};
   PlotSeries v_estimated{"v (estimated)", kColors[1], {}, {}, true};
   PlotSeries asked{"asked by the scene", "#999999", {}, {}, true};
@@ -95,6 +100,7 @@ std::vector<PlotPanel> time_series_panels(const Scene& scene, const std::vector<
   for (const TickRecord& r : records) {
     x_true.x.push_back(r.t_s), x_true.y.push_back(r.x_true_m * 1e3);
     x_measured.x.push_back(r.t_s), x_measured.y.push_back(r.x_m * 1e3);
+    x_target.x.push_back(r.t_s), x_target.y.push_back(r.hand_target_m * 1e3);
     v_true.x.push_back(r.t_s), v_true.y.push_back(r.v_true_m_per_s);
     v_estimated.x.push_back(r.t_s), v_estimated.y.push_back(r.v_m_per_s);
     asked.x.push_back(r.t_s), asked.y.push_back(std::clamp(r.requested_N, -2.0 * scene.safety.max_force_N,
@@ -103,19 +109,36 @@ std::vector<PlotPanel> time_series_panels(const Scene& scene, const std::vector<
     hand.x.push_back(r.t_s), hand.y.push_back(r.hand_N);
   }
   position.series = {x_true, x_measured};
+  // The hand's target motion, where a hand grips (NaN elsewhere breaks the line).
+  if (std::any_of(x_target.y.begin(), x_target.y.end(), [](double y) { return std::isfinite(y); })) {
+    position.series.push_back(std::move(x_target));
+  }
   velocity.series = {v_true};
   if (scene.needs.velocity) velocity.series.push_back(v_estimated);
   force.series = {asked, output, hand};
   return {position, velocity, force};
 }
 
+PlotPanel run_force_position_panel(const Scene& scene, const std::vector<TickRecord>& records,
+                                   const std::string& what) {
+  PlotPanel panel{"force against position: " + what, "handle position x (mm)", "force (N)", {}, limit_lines(scene)};
+  PlotSeries output{"commanded (after safety)", kColors[3], {}, {}, false};
+  PlotSeries hand{"hand on the handle", kColors[2], {}, {}, false};
+  for (const TickRecord& r : records) {
+    output.x.push_back(r.x_true_m * 1e3), output.y.push_back(r.output_N);
+    hand.x.push_back(r.x_true_m * 1e3), hand.y.push_back(r.hand_N);
+  }
+  panel.series = {output};
+  if (std::any_of(hand.y.begin(), hand.y.end(), [](double y) { return y != 0.0; })) panel.series.push_back(hand);
+  return panel;
+}
+
 std::string scene_figure_svg(const Scene& scene, const ScenarioResult& scenario, ScriptFaultLog* faults) {
   std::vector<PlotPanel> panels{force_displacement_panel(scene, faults)};
   if (scenario.scenario.applicable) {
-    for (PlotPanel& p : time_series_panels(scene, scenario.records,
-                                           scenario.scenario.name + " (" + scenario.scenario.description + ")")) {
-      panels.push_back(std::move(p));
-    }
+    const std::string what = scenario.scenario.name + " (" + scenario.scenario.description + ")";
+    for (PlotPanel& p : time_series_panels(scene, scenario.records, what)) panels.push_back(std::move(p));
+    panels.push_back(run_force_position_panel(scene, scenario.records, what));
   }
   return render_svg(scene.name + " (" + scene.source_path + ") on " + scene.device.name, panels);
 }
@@ -133,6 +156,7 @@ std::string validation_figure_svg(const Scene& scene, const ValidationReport& re
 std::string run_figure_svg(const Scene& scene, const std::vector<TickRecord>& records, const std::string& what) {
   std::vector<PlotPanel> panels{force_displacement_panel(scene)};
   for (PlotPanel& p : time_series_panels(scene, records, what)) panels.push_back(std::move(p));
+  panels.push_back(run_force_position_panel(scene, records, what));
   return render_svg(scene.name + " (" + scene.source_path + ") on " + scene.device.name, panels);
 }
 

@@ -22,13 +22,19 @@ PlotPanel force_displacement_panel(const Scene& scene, ScriptFaultLog* faults = 
 std::vector<PlotPanel> time_series_panels(const Scene& scene, const std::vector<TickRecord>& records,
                                           const std::string& what);
 
-// `hapscene plot`: the force-displacement curve and one scenario's time series.
+// The force commanded (and the hand's) against the true handle position, tick by tick: a
+// run's own force-displacement loop, where hysteresis and limit cycles show.
+PlotPanel run_force_position_panel(const Scene& scene, const std::vector<TickRecord>& records,
+                                   const std::string& what);
+
+// `hapscene plot`: the force-displacement curve, one scenario's time series and its
+// force against position.
 std::string scene_figure_svg(const Scene& scene, const ScenarioResult& scenario, ScriptFaultLog* faults = nullptr);
 
 // `validate --plot`: the curve and the first failing scenario (else the first one run).
 std::string validation_figure_svg(const Scene& scene, const ValidationReport& report);
 
-// `run --plot`: the curve and the run's time series.
+// `run --plot`: the curve, the run's time series and its force against position.
 std::string run_figure_svg(const Scene& scene, const std::vector<TickRecord>& records,
                            const std::string& what);
 

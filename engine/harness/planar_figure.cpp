@@ -444,7 +444,8 @@ PlanarFieldGrid planar_field_grid(const PlanarScene& scene, int grid) {
 std::string planar_figure_svg(const PlanarScene& scene, const PlanarFigureOptions& options,
                               const std::vector<PlanarTickRecord>& records, const std::string& what,
                               const std::string& proxy_label) {
-  const double field_top_px = kSvgTitleHeight_px;
+  const std::string title = scene.name + " (" + scene.source_path + ") on " + scene.device.name;
+  const double field_top_px = svg_title_height(title, options.width_px);
   const PlanarFieldView view = planar_field_view(scene, options.width_px, field_top_px);
   const PlanarFieldGrid grid = planar_field_grid(scene, options.grid);
   std::string body = field_panel_svg(scene, view, grid, records, what, proxy_label, field_top_px);
@@ -455,8 +456,7 @@ std::string planar_figure_svg(const PlanarScene& scene, const PlanarFigureOption
       height_px += kTimePanelHeight_px;
     }
   }
-  return svg_document(scene.name + " (" + scene.source_path + ") on " + scene.device.name, options.width_px,
-                      std::ceil(height_px), body);
+  return svg_document(title, options.width_px, std::ceil(height_px), body);
 }
 
 }  // namespace hapscene

@@ -110,6 +110,15 @@ std::string format_planar_report_table(const PlanarValidationReport& report) {
   return out;
 }
 
+std::string format_planar_report_summary(const PlanarValidationReport& report) {
+  std::vector<ReportSection> sections;
+  if (!report.scene_checks.empty()) sections.push_back({"scene", "the environment as loaded", true, report.scene_checks});
+  for (const PlanarScenarioResult& s : report.scenarios) {
+    sections.push_back({s.scenario.name, s.scenario.description, s.scenario.applicable, s.checks});
+  }
+  return format_report_summary(report_table_header(format_planar_report_table(report)), sections);
+}
+
 json planar_report_to_json(const PlanarValidationReport& report) {
   const PlanarStiffnessBound& b = report.bound;
   json poses = json::array();

@@ -12,6 +12,9 @@ namespace hapscene {
 
 std::string format_planar_report_table(const PlanarValidationReport& report);
 std::string format_planar_report_line(const PlanarValidationReport& report);
+// `validate` by default: the table's header, a line per scenario, the failed checks'
+// rows (format_report_summary in report.hpp).
+std::string format_planar_report_summary(const PlanarValidationReport& report);
 nlohmann::json planar_report_to_json(const PlanarValidationReport& report);
 
 // The figure of a 2-D validate run: the force field with the shapes and the workspace,

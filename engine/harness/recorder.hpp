@@ -3,6 +3,7 @@
 // the host saw. Memory is reserved before the run; a run longer than the reservation
 // stops recording (and says so) rather than allocate in the loop. Without a simulated
 // device (a real one), the "true" fields repeat what the host measured.
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct TickRecord {
   double output_N{};          // after safety
   double motor_N{};           // what the motor applies (PWM quantized, saturated)
   double hand_N{};            // the hand's force on the handle
+  double hand_target_m{NAN};  // where the hand pulls the handle (NaN: no hand gripping)
 };
 
 // One tick as the host saw it, beside the simulator's truth (`truth` null: a real device,
@@ -32,7 +34,7 @@ inline TickRecord tick_record(const TickState& s, const SimulationTruth* truth) 
   }
   return {s.t_s,           truth->x_m(),      truth->v_m_per_s(),        s.x_m,
           s.v_m_per_s,     s.effects_force_N, s.output_N,                truth->motor_force_N(),
-          truth->hand_force_N()};
+          truth->hand_force_N(),   truth->hand_target_m()};
 }
 
 class Recorder final : public TickObserver {

@@ -115,6 +115,47 @@ std::string format_report_table(const ValidationReport& report) {
   return out;
 }
 
+std::string report_table_header(const std::string& table) {
+  const std::size_t rows = table.find("scenario  check ");
+  return rows == std::string::npos ? table : table.substr(0, rows);
+}
+
+std::string format_report_summary(const std::string& header, const std::vector<ReportSection>& sections) {
+  std::string out = header;
+  Tally all;
+  for (const ReportSection& section : sections) {
+    if (!section.applicable) {
+      out += padded(section.name, 10) + padded("-", 6) + padded("not applicable", 26) + section.description + "\n";
+      continue;
+    }
+    Tally t;
+    for (const CheckResult& c : section.checks) {
+      t.add(section.name, c);
+      all.add(section.name, c);
+    }
+    const std::string counts = t.failed > 0 ? printf_string("%d of %d checks failed", t.failed, t.total)
+                                            : counted(t);
+    out += padded(section.name, 10) + padded(t.failed > 0 ? "FAIL" : "pass", 6) + padded(counts, 26) +
+           section.description + "\n";
+    for (const CheckResult& c : section.checks) {
+      if (!c.pass) out += format_check_row(c);
+    }
+  }
+  out += all.failed == 0 ? "\nresult: pass (" + counted(all) + ")\n" : "\nresult: FAIL (" + failed_text(all) + ")\n";
+  return out;
+}
+
+std::string format_report_summary(const ValidationReport& report) {
+  std::vector<ReportSection> sections;
+  if (!report.scene_checks.empty()) {
+    sections.push_back({"scene", "the environment as loaded and probed open loop", true, report.scene_checks});
+  }
+  for (const ScenarioResult& s : report.scenarios) {
+    sections.push_back({s.scenario.name, s.scenario.description, s.scenario.applicable, s.checks});
+  }
+  return format_report_summary(report_table_header(format_report_table(report)), sections);
+}
+
 nlohmann::json check_to_json(const CheckResult& c) {
   return {{"name", c.name}, {"value", c.value}, {"threshold", c.threshold}, {"unit", c.unit},
           {"pass", c.pass}, {"verdict", c.judged ? (c.pass ? "pass" : "fail") : "not judged"},

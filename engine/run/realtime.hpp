@@ -18,6 +18,10 @@ class RealtimeGuard {
 
   // One line for the summary: what was obtained, or why not.
   const std::string& note() const noexcept { return note_; }
+  // When the system refused SCHED_FIFO or the memory lock for lack of privilege: how to
+  // allow them (limits.conf or a capability) and what running without them costs. Empty
+  // otherwise.
+  const std::string& hint() const noexcept { return hint_; }
 
   // Above ordinary processes and most kernel threads, below the watchdogs (1..99).
   static constexpr int kPriority = 80;
@@ -29,6 +33,12 @@ class RealtimeGuard {
   int old_policy_{};
   int old_priority_{};
   std::string note_;
+  std::string hint_;
 };
+
+// The hint above for a refused SCHED_FIFO (`fifo_refused`) and/or memory lock, naming the
+// running binary (`executable`, for setcap) and the user (for limits.conf).
+std::string realtime_permission_hint(bool fifo_refused, bool lock_refused, const std::string& executable,
+                                     const std::string& user);
 
 }  // namespace hapscene

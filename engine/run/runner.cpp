@@ -89,6 +89,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   if (real_time) prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   const RealtimeGuard realtime(real_time);
   summary.realtime_note = realtime.note();
+  summary.realtime_hint = realtime.hint();
   std::uint32_t miss_streak = 0;
   const OverrunLimits limits = overrun_limits_at(options, scene.rate_hz);
   summary.overrun_limits = limits;

@@ -125,6 +125,7 @@ struct RunSummaryOf {
   LatencyHistogram wake_late_ns;    // real time: how late each tick started
   std::vector<ScriptReport> scripts;  // one per script effect, in scene order
   std::string realtime_note;        // real time: the scheduling obtained, or why not
+  std::string realtime_hint;        // real time, when refused: how to allow it and what it costs not to
   std::uint32_t longest_miss_streak{};  // most deadline misses in a row
   std::uint64_t overrun_warnings{};     // times a streak reached overrun_warn_ticks
   double first_overrun_warning_s{-1.0}; // device time of the first warning (-1: none)

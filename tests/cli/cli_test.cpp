@@ -82,7 +82,8 @@ TEST_CASE("cli: invalid input exits with 2 and says where") {
   const Outcome no_port = run_cli("run environments/wall.json --device serial:/dev/hapscene-none");
   CHECK(no_port.exit_code == 2);
   CHECK(no_port.err == "error: hapscene run: --device serial:/dev/hapscene-none: cannot open "
-                       "/dev/hapscene-none: No such file or directory\n");
+                       "/dev/hapscene-none: No such file or directory (no such port: is the board plugged in? "
+                       "`hapscene devices` lists the ports that look like boards)\n");
   CHECK(run_cli("run environments/wall.json --device serial:").err ==
         "error: hapscene run: --device serial: needs a port path, e.g. serial:/dev/ttyACM0\n");
   const Outcome bad_baud = run_cli("run environments/wall.json --device serial:/dev/null --baud 12345");

@@ -18,7 +18,7 @@ const std::string kBox = "environments/planar/haplink_box_inside.json";
 }  // namespace
 
 TEST_CASE("planar validate cli: the table and the quiet line of a passing lab scene" * doctest::test_suite("threaded")) {
-  const CliOutcome table = run_cli("validate " + kBox);
+  const CliOutcome table = run_cli("validate " + kBox + " --verbose");
   CHECK(table.exit_code == 0);
   CHECK(table.out.rfind("validate haplink_box_inside (" + kBox + "): 2 axes, 1000 Hz, stiffest shape or spring 200 N/m\n"
                         "stiffness bound per pose (110 poses of a 11 x 11 grid): lowest 42.2 N/m (2fc/D) at (-70.0, 165.0) mm, "

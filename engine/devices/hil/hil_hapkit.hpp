@@ -52,6 +52,7 @@ class HilHapkit final : public Device, public SimulationTruth {
   double v_m_per_s() const noexcept override { return plant_.v_m_per_s(); }
   double motor_force_N() const noexcept override { return motor_force_N_; }
   double hand_force_N() const noexcept override { return plant_.hand_force_N(); }
+  double hand_target_m() const noexcept override { return plant_.hand_target_m(); }
 
   // The board pins and the link, for tests.
   double t_s() const noexcept { return plant_.t_s(); }
