@@ -493,16 +493,43 @@ def planar_profile():
         description="a 2-DOF (planar) device profile (docs/devices-2d.md)")
 
 
+def without_required(schema):
+    """The schema with no key required anywhere: a profile that extends another (an RFC 7386
+    merge patch over its parent) gives only the keys it overrides, at any depth."""
+    if isinstance(schema, dict):
+        # Only an object's own list of keys it must have; a bare {"required": [...]} is a
+        # condition (if/then, not, oneOf) whose meaning must stay.
+        drop = "properties" in schema
+        return {key: without_required(value) for key, value in schema.items() if not (drop and key == "required")}
+    if isinstance(schema, list):
+        return [without_required(item) for item in schema]
+    return schema
+
+
+def with_extends(profile):
+    profile["properties"]["extends"] = text("the profile this one extends: a shipped name or a path relative "
+                                            "to this file; the keys here override the parent's")
+    return profile
+
+
 def profile_schema():
-    body = {
-        "type": "object",
+    capstan, planar = with_extends(capstan_profile()), with_extends(planar_profile())
+    whole = {
         "if": {"properties": {"kind": {"const": "planar"}}, "required": ["kind"]},
         "then": {"$ref": "#/$defs/planar"},
         "else": {"$ref": "#/$defs/capstan"},
     }
+    body = {
+        "type": "object",
+        "if": {"required": ["extends"]},
+        "then": {"anyOf": [{"$ref": "#/$defs/capstan_override"}, {"$ref": "#/$defs/planar_override"}]},
+        "else": whole,
+    }
     return root("device-profile", "hapscene device profile",
                 "A device profile (README \"Device profiles and kinematics\"; planar: docs/devices-2d.md).",
-                list(UNITS), body, {"capstan": capstan_profile(), "planar": planar_profile()})
+                list(UNITS), body, {"capstan": capstan, "planar": planar,
+                                    "capstan_override": without_required(capstan),
+                                    "planar_override": without_required(planar)})
 
 
 # --- test specs ----------------------------------------------------------------------------

@@ -204,9 +204,19 @@ bad_profiles = [
     ("a planar joint with one capstan radius", edited(haplink, drop_key(["joints", 0, "sector_radius"]))),
     ("a workspace with a box and a polygon",
      edited(haplink, set_key(["limits", "workspace", "polygon"], [[0, 0], [1, 0], [0, 1]]))),
+    ("an override of a wrong unit in a profile that extends another",
+     {"extends": "hapkit3", "sensor": {"counts_to_deg_offset": "6 mm"}}),
+    ("a misspelt key in a profile that extends another", {"extends": "hapkit3", "drive": {"pwm_level": 255}}),
 ]
 for what, instance in bad_profiles:
     expect_invalid(profile, instance, "profile with " + what)
+# What `hapscene calibrate` writes: a profile that extends the shipped one and overrides a
+# few keys, at any depth (1-D and planar).
+expect_valid(profile, {"extends": "hapkit3", "name": "hapkit3-calibrated", "sensor": {"counts_to_deg_offset": 6.0027},
+                       "drive": {"direction_sign": -1}, "limits": {"workspace": [-0.047, 0.037]}},
+             "a calibrated profile that extends hapkit3")
+expect_valid(profile, {"extends": "hapkit_pantograph", "kind": "planar", "home": ["50 mm", "130 mm"]},
+             "a planar profile that extends hapkit_pantograph")
 
 wall_spec = load(SOURCE / "environments" / "wall.test.json")
 box_spec = load(SOURCE / "environments" / "planar" / "haplink_box_inside.test.json")
