@@ -486,6 +486,9 @@ def planar_profile():
         "kinematics": kinematics,
         "joints": {"type": "array", "items": joint, "minItems": 2, "maxItems": 2},
         "coupling": quantity("plain", minimum=-10, maximum=10),
+        "board_serials": {"type": "array", "items": {"type": "string", "minLength": 1}, "minItems": 2, "maxItems": 2,
+                          "description": "two Hapkit boards: the USB serial numbers of joint 1's and joint 2's "
+                                         "boards (hapscene devices lists them), so swapped cables are caught"},
         "home": point(),
         "limits": limits,
         "plant": plant,

@@ -2,9 +2,13 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
+#include <filesystem>
+
 #include "engine/base/clock.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/devices/board_handshake.hpp"
+#include "engine/devices/port_list.hpp"
 
 namespace hapscene {
 namespace {
@@ -26,14 +30,61 @@ void refuse_same_device(const std::array<std::string, 2>& paths) {
   }
 }
 
+// The USB serial number of the board on `path` (a /dev/ttyACM* node or a by-id link, under
+// `root`), or "" when it has none or is not a USB device listed there.
+std::string usb_serial_of(const std::string& path, const std::string& root) {
+  namespace fs = std::filesystem;
+  const bool under_root = root.empty() || root == "/" || path.starts_with(root);
+  const std::string listed = under_root ? fs::path(path).lexically_normal().string()
+                                        : (fs::path(root) / fs::path(path).relative_path()).lexically_normal().string();
+  const std::vector<SerialPortEntry> ports = list_serial_ports(root);
+  for (const SerialPortEntry& port : ports) {
+    const bool named = port.path == listed || std::find(port.by_id.begin(), port.by_id.end(), listed) != port.by_id.end();
+    if (named) return port.serial;
+  }
+  // Another link to one of them (/dev/serial/by-path/...): the same device node.
+  std::error_code error;
+  const fs::path target = fs::canonical(listed, error);
+  if (error) return {};
+  for (const SerialPortEntry& port : ports) {
+    std::error_code port_error;
+    if (fs::canonical(port.path, port_error) == target && !port_error) return port.serial;
+  }
+  return {};
+}
+
 // The paths, once the profile and the paths are known to make a two-board device.
 std::array<std::string, 2> checked_paths(const PlanarProfile& profile, const HapkitPairConfig& config) {
   require_hapkit_joints(profile, kWhat);
   refuse_same_device(config.paths);
+  check_board_identities(profile, config.paths, devices_root());
   return config.paths;
 }
 
 }  // namespace
+
+void check_board_identities(const PlanarProfile& profile, const std::array<std::string, 2>& paths,
+                            const std::string& devices_root) {
+  const std::array<std::string, 2>& wanted = profile.board_serials;
+  if (wanted[0].empty() && wanted[1].empty()) return;
+  const std::array<std::string, 2> found{usb_serial_of(paths[0], devices_root), usb_serial_of(paths[1], devices_root)};
+  if (found[0] == wanted[1] && found[1] == wanted[0]) {
+    throw InputError(std::string(kWhat) + ":" + paths[0] + "," + paths[1] + ": the cables are swapped: " + paths[0] +
+                     " is joint 2's board (USB serial " + found[0] + ") and " + paths[1] + " joint 1's (" + found[1] +
+                     "), as profile \"" + profile.name + "\" names them; give serial:" + paths[1] + "," + paths[0]);
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (found[i] == wanted[i]) continue;
+    const std::string joint = "joint " + std::to_string(i + 1);
+    if (found[i].empty()) {
+      throw InputError(std::string(kWhat) + " (" + joint + "): " + paths[i] +
+                       ": no USB serial number to check against profile \"" + profile.name + "\"'s board_serials (\"" +
+                       wanted[i] + "\"): not a USB board, or one without a serial number (`hapscene devices` lists them)");
+    }
+    throw InputError(std::string(kWhat) + " (" + joint + "): " + paths[i] + " is the board with USB serial " + found[i] +
+                     ", not " + joint + "'s (\"" + wanted[i] + "\") as profile \"" + profile.name + "\" names it");
+  }
+}
 
 std::array<std::string, 2> parse_board_pair(const std::string& paths_text) {
   const std::size_t comma = paths_text.find(',');

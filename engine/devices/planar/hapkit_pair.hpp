@@ -7,8 +7,9 @@
 // Each tick polls both links (non-blocking) and sends both commands; the loop never waits.
 // The two links are judged as one device by BoardPair (board_pair.hpp): a stale or lost
 // board takes both motors to zero, and both restart together with a soft start.
-// The protocol's HELLO_REPLY names the firmware and the MCU type but no per-board identity,
-// so swapped cables cannot be detected: two paths naming the same device are refused.
+// The protocol's HELLO_REPLY names the firmware and the MCU type but no per-board identity:
+// a profile's board_serials (the boards' USB serial numbers) catch swapped cables; two
+// paths naming the same device are refused.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -60,6 +61,14 @@ class HapkitPair final : public DeviceOf<2> {
   BoardPair pair_;
   std::int64_t start_ns_{};
 };
+
+// The profile's board_serials against the boards on `paths`: each path's USB serial number
+// read from sysfs under `devices_root` ("/"; tests pass a stand-in, as for `hapscene
+// devices`). InputError naming the joint and the path when a board is not the one the
+// profile names (saying so when the two are swapped, with the order to give), or has no
+// serial number to check. Nothing when the profile names none.
+void check_board_identities(const PlanarProfile& profile, const std::array<std::string, 2>& paths,
+                            const std::string& devices_root);
 
 // The two paths of `serial:A,B` (InputError unless exactly two non-empty paths).
 std::array<std::string, 2> parse_board_pair(const std::string& paths_text);

@@ -362,6 +362,17 @@ PlanarProfile parse_planar_profile(std::string_view json_text, const std::string
   }
   const LinkageFamily family = profile.linkage.family;
   profile.plant = parse_part(reader, "plant", [family](ObjectReader& plant) { return parse_plant(plant, family); });
+  if (const nlohmann::json* serials = reader.get("board_serials")) {
+    const bool two_names = serials->is_array() && serials->size() == 2 && (*serials)[0].is_string() &&
+                           (*serials)[1].is_string() && !(*serials)[0].get<std::string>().empty() &&
+                           !(*serials)[1].get<std::string>().empty();
+    if (!two_names) {
+      reader.fail("board_serials", "must be two non-empty strings: the USB serial numbers of joint 1's and "
+                                   "joint 2's boards (as `hapscene devices` lists them)");
+    }
+    if ((*serials)[0] == (*serials)[1]) reader.fail("board_serials", "names one board for both joints");
+    profile.board_serials = {(*serials)[0].get<std::string>(), (*serials)[1].get<std::string>()};
+  }
   reader.finish();
   return profile;
 }

@@ -143,6 +143,10 @@ struct PlanarProfile {
   Vec2 home_m{};                   // the handle at rest / reference pose, task frame
   PlanarLimits limits;
   PlanarPlantEstimates plant;
+  // Two Hapkit boards (`--device serial:A,B`): the USB serial number of joint 1's board and
+  // of joint 2's, as `hapscene devices` lists them, so swapped cables are caught. Empty:
+  // not checked (a kit's own profile sets them, usually one that extends the shipped one).
+  std::array<std::string, 2> board_serials{};
 };
 
 // Loads a planar profile by name ("haplink": shipped and compiled in) or by path (contains
