@@ -28,7 +28,7 @@ static_assert(sizeof(PlanarWorkspace) == 64 && sizeof(PlanarLimits) == 104,
               "PlanarLimits changed: update compare_profiles (planar)");
 static_assert(sizeof(PlanarLinkMass) == 24 && sizeof(PlanarPlantEstimates) == 208,
               "PlanarPlantEstimates changed: update compare_profiles (planar)");
-static_assert(sizeof(PlanarProfile) == 880, "PlanarProfile changed: update compare_profiles (planar)");
+static_assert(sizeof(PlanarProfile) == 944, "PlanarProfile changed: update compare_profiles (planar)");
 
 struct Changes {
   std::vector<std::string> items;
@@ -132,6 +132,9 @@ void compare_profiles(const PlanarProfile& a, const PlanarProfile& b, Changes* c
   }
   c->compare("coupling", a.coupling, b.coupling);
   c->compare("home_m", a.home_m, b.home_m);
+  // The boards were checked against these when the device opened.
+  c->compare_text("board_serials[0]", a.board_serials[0], b.board_serials[0]);
+  c->compare_text("board_serials[1]", a.board_serials[1], b.board_serials[1]);
   const PlanarLimits& la = a.limits;
   const PlanarLimits& lb = b.limits;
   c->compare("limits.max_force_N", la.max_force_N, lb.max_force_N);

@@ -18,7 +18,7 @@ namespace {
 using hapscene::test::CliOutcome;
 using hapscene::test::run_cli;
 
-constexpr const char* kCommands[] = {"run", "probe", "validate", "test", "plot", "bench"};
+constexpr const char* kCommands[] = {"run", "probe", "validate", "test", "plot", "bench", "devices", "calibrate"};
 
 bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
 
@@ -265,7 +265,9 @@ TEST_CASE("command line: every option in the help is one its command reads") {
       {"noise", "0"}, {"seed", "1"}, {"log", out + ".csv"}, {"plot", out + ".svg"}, {"report", out + ".json"},
       {"output", out + ".svg"}, {"svg", out + ".svg"}, {"x", "0:1mm:1mm"}, {"y", "0:1mm:1mm"}, {"v", "0"},
       {"t", "0"}, {"scenario", "hold"}, {"grid", "10"}, {"width", "500"}, {"seconds", "0.1"}, {"passes", "1"},
-      {"scripts", "scripts"}, {"rate", "1000"}, {"axes", "1"}, {"ticks", "10000"}, {"impl", "builtin"}};
+      {"scripts", "scripts"}, {"rate", "1000"}, {"axes", "1"}, {"ticks", "10000"}, {"impl", "builtin"},
+      {"ui", "8080"}, {"timeout", "1s"}, {"profile", "hapkit3"}, {"travel-time", "2s"}, {"pulse-force", "0.5"},
+      {"simulated-kit", "nowhere.json"}};
   std::size_t checked = 0;
   for (const char* command : kCommands) {
     std::istringstream help(run_cli(std::string("help ") + command).out);

@@ -4,6 +4,8 @@
 // has simavr and the AVR toolchain; otherwise one skipped case says so.
 #include <doctest/doctest.h>
 
+#include <signal.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -242,6 +244,47 @@ TEST_CASE("hil pair: a silent link on one board zeroes both motors, and both rec
   CHECK(saw_silent);
   CHECK(hil.report().find("joint 1 link event") != std::string::npos);
   CHECK_FALSE(hil.fault_seen());
+}
+
+TEST_CASE("hil pair: one board's process killed mid-run stops the run with zero force on both motors" *
+          doctest::test_suite("threaded")) {
+  const PlanarScene scene = load_planar_environment_text(kBoxScene, "box.json");
+  PlanarSimulationConfig simulation;
+  simulation.start_q_rad = planar_joint_angles_at(scene.device, scene.device.home_m);
+  simulation.hand.motion = PlanarHandMotion::hold;
+  simulation.hand.hold_m = scene.device.home_m + Vec2{{0.014, 0.0}};
+  simulation.hand.stiffness_N_per_m = 1000.0;
+  HilPair hil(scene.device, hil_config(simulation));
+  // Joint 2's board process dies at tick 800, while the box pushes.
+  struct Killer final : TickObserverOf<2> {
+    HilPair* hil;
+    std::uint64_t tick{};
+    double force_before_N{};
+    void on_tick(const TickStateOf<2>& s) noexcept override {
+      if (++tick != 800) return;
+      force_before_N = norm(s.output_N);
+      kill(hil->board(1).process_id(), SIGKILL);
+    }
+  } killer;
+  killer.hil = &hil;
+  ObserverListOf<2> observers;
+  observers.add(&killer);
+  const RunOptions options{.duration_s = 2.0, .pacing = Pacing::simulated_time};
+  const RunSummaryOf<2> summary = run_scene(scene, hil, options, &observers);
+  CHECK(summary.device_lost);
+  CHECK(summary.ticks >= 800);
+  CHECK(summary.ticks < 805);  // stopped at once, not run to 2000 ticks
+  CHECK(killer.force_before_N > 0.5);
+  CHECK(hil.lost());
+  CHECK(hil.fault_seen());
+  // Both motors off once the last command arrives: joint 2's board is gone (its pins read
+  // zero) and joint 1's was sent zero.
+  hil.advance(0.002);
+  CHECK(hil.board(0).motor_duty() == 0.0);
+  CHECK(norm(hil.motor_force_N()) == 0.0);
+  const std::string report = hil.report();
+  CHECK(report.find("FAULT            joint 2's board: ") != std::string::npos);
+  CHECK(report.find("killed by signal 9") != std::string::npos);
 }
 
 TEST_CASE("hil pair: runs are deterministic" * doctest::test_suite("threaded")) {
