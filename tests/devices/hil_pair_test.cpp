@@ -43,6 +43,16 @@ PlanarSimulationConfig line_into_box(const PlanarScene& scene) {
   return config;
 }
 
+// The hand holds the handle 4 mm into the box (1000 N/m against the box's 400 N/m).
+PlanarSimulationConfig held_in_box(const PlanarScene& scene) {
+  PlanarSimulationConfig config;
+  config.start_q_rad = planar_joint_angles_at(scene.device, scene.device.home_m);
+  config.hand.motion = PlanarHandMotion::hold;
+  config.hand.hold_m = scene.device.home_m + Vec2{{0.014, 0.0}};
+  config.hand.stiffness_N_per_m = 1000.0;
+  return config;
+}
+
 HilPairConfig hil_config(const PlanarSimulationConfig& simulation) {
   HilPairConfig config;
   config.simulation = simulation;
@@ -137,11 +147,7 @@ TEST_CASE("hil pair: a box contact renders the same forces as the simulated pant
 TEST_CASE("hil pair: faults on either board are survived, both motors zero meanwhile, no jolt" *
           doctest::test_suite("threaded")) {
   const PlanarScene scene = load_planar_environment_text(kBoxScene, "box.json");
-  PlanarSimulationConfig simulation;
-  simulation.start_q_rad = planar_joint_angles_at(scene.device, scene.device.home_m);
-  simulation.hand.motion = PlanarHandMotion::hold;
-  simulation.hand.hold_m = scene.device.home_m + Vec2{{0.014, 0.0}};  // 4 mm into the box
-  simulation.hand.stiffness_N_per_m = 1000.0;
+  const PlanarSimulationConfig simulation = held_in_box(scene);
   HilPair hil(scene.device, hil_config(simulation));
 
   // Faults at chosen ticks, on joint 2's board and then joint 1's, from inside the run.
@@ -200,11 +206,7 @@ TEST_CASE("hil pair: faults on either board are survived, both motors zero meanw
 TEST_CASE("hil pair: a silent link on one board zeroes both motors, and both recover together" *
           doctest::test_suite("threaded")) {
   const PlanarScene scene = load_planar_environment_text(kBoxScene, "box.json");
-  PlanarSimulationConfig simulation;
-  simulation.start_q_rad = planar_joint_angles_at(scene.device, scene.device.home_m);
-  simulation.hand.motion = PlanarHandMotion::hold;
-  simulation.hand.hold_m = scene.device.home_m + Vec2{{0.014, 0.0}};
-  simulation.hand.stiffness_N_per_m = 1000.0;
+  const PlanarSimulationConfig simulation = held_in_box(scene);
   HilPair hil(scene.device, hil_config(simulation));
 
   // Joint 1's board stops answering for 150 ms (its replies lost on the way to the host).
@@ -249,11 +251,7 @@ TEST_CASE("hil pair: a silent link on one board zeroes both motors, and both rec
 TEST_CASE("hil pair: one board's process killed mid-run stops the run with zero force on both motors" *
           doctest::test_suite("threaded")) {
   const PlanarScene scene = load_planar_environment_text(kBoxScene, "box.json");
-  PlanarSimulationConfig simulation;
-  simulation.start_q_rad = planar_joint_angles_at(scene.device, scene.device.home_m);
-  simulation.hand.motion = PlanarHandMotion::hold;
-  simulation.hand.hold_m = scene.device.home_m + Vec2{{0.014, 0.0}};
-  simulation.hand.stiffness_N_per_m = 1000.0;
+  const PlanarSimulationConfig simulation = held_in_box(scene);
   HilPair hil(scene.device, hil_config(simulation));
   // Joint 2's board process dies at tick 800, while the box pushes.
   struct Killer final : TickObserverOf<2> {
