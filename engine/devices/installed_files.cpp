@@ -28,6 +28,22 @@ std::filesystem::path beside_executable(const char* relative) {
   return (std::filesystem::path(dir) / relative).lexically_normal();
 }
 
+// Whether this code is loaded as a shared object (the Python module) rather than being the
+// executable: dladdr names a file other than the program.
+bool code_in_shared_object() {
+  Dl_info info{};
+  return dladdr(reinterpret_cast<void*>(&code_in_shared_object), &info) != 0 && info.dli_fname != nullptr &&
+         std::string_view(info.dli_fname).find(".so") != std::string_view::npos;
+}
+
+// `from_bin` (a path from PREFIX/bin) from the Python module's folder instead, which is
+// installed two levels deeper (PREFIX/lib/python3.X/dist-packages or
+// PREFIX/lib/python3/dist-packages); empty for an executable.
+std::filesystem::path beside_module(const char* from_bin) {
+  if (!code_in_shared_object()) return {};
+  return beside_executable(("../../" + std::string(from_bin)).c_str());
+}
+
 // This build's file, for an executable inside the build folder (or one whose folder is
 // unknown); empty for an installed executable.
 std::filesystem::path from_this_build(const char* build_path) {
@@ -46,6 +62,7 @@ std::filesystem::path from_this_build(const char* build_path) {
 std::vector<std::filesystem::path> board_places() {
   std::vector<std::filesystem::path> places;
   for (std::filesystem::path place : {beside_executable("hapscene-board"), beside_executable(install_layout().board_from_bin),
+                                      beside_module(install_layout().board_from_bin),
                                       from_this_build(install_layout().board_build),
                                       std::filesystem::path(install_layout().board_installed)}) {
     if (!place.empty()) places.push_back(std::move(place));
@@ -56,7 +73,8 @@ std::vector<std::filesystem::path> board_places() {
 std::vector<std::filesystem::path> firmware_places() {
   std::vector<std::filesystem::path> places;
   for (std::filesystem::path place :
-       {beside_executable(install_layout().firmware_from_bin), from_this_build(install_layout().firmware_build),
+       {beside_executable(install_layout().firmware_from_bin), beside_module(install_layout().firmware_from_bin),
+        from_this_build(install_layout().firmware_build),
         std::filesystem::path(install_layout().firmware_installed)}) {
     if (!place.empty()) places.push_back(std::move(place));
   }
@@ -75,8 +93,7 @@ std::string executable_dir() {
   std::error_code error;
   // Loaded as a shared object (the Python module): that file's folder.
   Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&executable_dir), &info) != 0 && info.dli_fname != nullptr &&
-      std::string_view(info.dli_fname).find(".so") != std::string_view::npos) {
+  if (code_in_shared_object() && dladdr(reinterpret_cast<void*>(&executable_dir), &info) != 0) {
     const auto self = std::filesystem::weakly_canonical(info.dli_fname, error);
     if (!error) return self.parent_path().string();
   }

@@ -27,7 +27,8 @@ const InstallLayout& install_layout();
 std::string executable_dir();
 
 // The board simulator: $HAPSCENE_BOARD when set, else hapscene-board next to the
-// executable (a build tree), else the installed one, else (for an executable inside the
+// executable (a build tree), else the installed one (from the Python module: the one in
+// the prefix it is installed under, two folders deeper than bin/), else (for an executable inside the
 // build folder, such as the tests) this build's, else the one under the configured install
 // prefix. Empty when none is an executable file.
 std::string find_board_program();
