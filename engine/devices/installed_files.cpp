@@ -28,13 +28,15 @@ std::filesystem::path beside_executable(const char* relative) {
   return (std::filesystem::path(dir) / relative).lexically_normal();
 }
 
-// Whether this code is loaded as a shared object (the Python module) rather than being the
-// executable: dladdr names a file other than the program.
-bool code_in_shared_object() {
+// The shared object holding this code (the Python module), or "" when it is the executable
+// (dladdr names a file other than a .so).
+std::string shared_object_file() {
   Dl_info info{};
-  return dladdr(reinterpret_cast<void*>(&code_in_shared_object), &info) != 0 && info.dli_fname != nullptr &&
-         std::string_view(info.dli_fname).find(".so") != std::string_view::npos;
+  const bool found = dladdr(reinterpret_cast<void*>(&shared_object_file), &info) != 0 && info.dli_fname != nullptr;
+  return found && std::string_view(info.dli_fname).find(".so") != std::string_view::npos ? info.dli_fname : "";
 }
+
+bool code_in_shared_object() { return !shared_object_file().empty(); }
 
 // `from_bin` (a path from PREFIX/bin) from the Python module's folder instead, which is
 // installed two levels deeper (PREFIX/lib/python3.X/dist-packages or
@@ -92,9 +94,8 @@ std::string listed(const std::vector<std::filesystem::path>& places) {
 std::string executable_dir() {
   std::error_code error;
   // Loaded as a shared object (the Python module): that file's folder.
-  Dl_info info{};
-  if (code_in_shared_object() && dladdr(reinterpret_cast<void*>(&executable_dir), &info) != 0) {
-    const auto self = std::filesystem::weakly_canonical(info.dli_fname, error);
+  if (const std::string module = shared_object_file(); !module.empty()) {
+    const auto self = std::filesystem::weakly_canonical(module, error);
     if (!error) return self.parent_path().string();
   }
   const auto self = std::filesystem::read_symlink("/proc/self/exe", error);

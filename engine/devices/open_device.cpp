@@ -15,19 +15,27 @@ namespace hapscene {
 
 std::string default_firmware_elf() { return find_default_firmware(); }
 
-bool simulates_plant(const std::string& spec) {
-  return spec == "sim" || spec == "hil" || spec.starts_with("hil:");
-}
-
-const PlanarPlant* simulated_planar_plant(const DeviceOf<2>& device) {
-  if (const auto* sim = dynamic_cast<const SimulatedPlanar*>(&device)) return &sim->plant();
-#if HAPSCENE_HAVE_HIL
-  if (const auto* hil = dynamic_cast<const HilPair*>(&device)) return &hil->plant();
-#endif
-  return nullptr;
-}
-
 namespace {
+
+bool is_hil(const std::string& spec) { return spec == "hil" || spec.starts_with("hil:"); }
+
+#if HAPSCENE_HAVE_HIL
+// The firmware of `hil:ELF`, or the one this build or install has (InputError when none is
+// found).
+std::string hil_firmware_elf(const std::string& spec) {
+  const std::string elf = spec.size() > 4 ? spec.substr(4) : default_firmware_elf();
+  if (elf.empty()) {
+    throw InputError("--device hil: no firmware found (looked for " + firmware_places_text() +
+                     "); name one with hil:PATH.elf");
+  }
+  return elf;
+}
+#else
+[[noreturn]] void refuse_hil() {
+  throw InputError("--device hil: this build has no firmware-in-the-loop (it needs simavr, "
+                   "libsimavr-dev and the AVR toolchain when building; see .ci/install-deps)");
+}
+#endif
 
 // The hapscene firmware reads an MR sensor and drives the Hapkit's sqrt law: a profile that
 // describes other hardware cannot be rendered through it.
@@ -41,10 +49,20 @@ void require_hapkit_board(const std::string& spec, const DeviceProfile& profile)
 
 }  // namespace
 
+bool simulates_plant(const std::string& spec) { return spec == "sim" || is_hil(spec); }
+
+const PlanarPlant* simulated_planar_plant(const DeviceOf<2>& device) {
+  if (const auto* sim = dynamic_cast<const SimulatedPlanar*>(&device)) return &sim->plant();
+#if HAPSCENE_HAVE_HIL
+  if (const auto* hil = dynamic_cast<const HilPair*>(&device)) return &hil->plant();
+#endif
+  return nullptr;
+}
+
 std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile& profile,
                                     const SimulationConfig& simulation, const LinkOptions& link) {
   if (spec == "sim") return std::make_unique<SimulatedHapkit>(profile, simulation);
-  if (spec == "serial" || spec.starts_with("serial:") || spec == "hil" || spec.starts_with("hil:")) {
+  if (spec == "serial" || spec.starts_with("serial:") || is_hil(spec)) {
     require_hapkit_board(spec, profile);
   }
 
@@ -63,19 +81,14 @@ std::unique_ptr<Device> open_device(const std::string& spec, const DeviceProfile
   }
 
   // hil or hil:ELF
-  if (spec == "hil" || spec.starts_with("hil:")) {
+  if (is_hil(spec)) {
 #if HAPSCENE_HAVE_HIL
     HilConfig config;
     config.simulation = simulation;
-    config.firmware_elf = spec.size() > 4 ? spec.substr(4) : default_firmware_elf();
-    if (config.firmware_elf.empty()) {
-      throw InputError("--device hil: no firmware found (looked for " + firmware_places_text() +
-                       "); name one with hil:PATH.elf");
-    }
+    config.firmware_elf = hil_firmware_elf(spec);
     return std::make_unique<HilHapkit>(profile, config);
 #else
-    throw InputError("--device hil: this build has no firmware-in-the-loop (it needs simavr, "
-                     "libsimavr-dev and the AVR toolchain when building; see .ci/install-deps)");
+    refuse_hil();
 #endif
   }
   if (spec == "haply" || spec.starts_with("haply:")) {
@@ -103,15 +116,14 @@ std::unique_ptr<DeviceOf<2>> open_planar_device(const std::string& spec, const P
     return std::make_unique<HaplyDevice>(profile, config);
   }
   // hil or hil:ELF: two simulated boards, joint 1's and joint 2's
-  if (spec == "hil" || spec.starts_with("hil:")) {
+  if (is_hil(spec)) {
 #if HAPSCENE_HAVE_HIL
     HilPairConfig config;
     config.simulation = simulation;
-    config.firmware_elf = spec.size() > 4 ? spec.substr(4) : default_firmware_elf();
+    config.firmware_elf = hil_firmware_elf(spec);
     return std::make_unique<HilPair>(profile, config);
 #else
-    throw InputError("--device hil: this build has no firmware-in-the-loop (it needs simavr, "
-                     "libsimavr-dev and the AVR toolchain when building; see .ci/install-deps)");
+    refuse_hil();
 #endif
   }
   throw InputError("--device: unknown device \"" + spec + "\" for a 2-DOF scene (available: " +

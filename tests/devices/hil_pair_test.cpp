@@ -154,7 +154,6 @@ TEST_CASE("hil pair: faults on either board are survived, both motors zero meanw
   struct Faults final : TickObserverOf<2> {
     HilPair* hil;
     std::uint64_t tick{};
-    std::uint64_t zero_both_ticks{};  // ticks where one board's motor ran and the other's was off
     void on_tick(const TickStateOf<2>&) noexcept override {
       Wire& wire_1 = hil->wire(0);
       Wire& wire_2 = hil->wire(1);

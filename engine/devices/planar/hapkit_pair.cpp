@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <vector>
 
 #include "engine/base/clock.hpp"
 #include "engine/base/errors.hpp"
@@ -31,13 +32,12 @@ void refuse_same_device(const std::array<std::string, 2>& paths) {
 }
 
 // The USB serial number of the board on `path` (a /dev/ttyACM* node or a by-id link, under
-// `root`), or "" when it has none or is not a USB device listed there.
-std::string usb_serial_of(const std::string& path, const std::string& root) {
+// `root`) among `ports` (listed under `root`), or "" when it has none or is not listed.
+std::string usb_serial_of(const std::string& path, const std::string& root, const std::vector<SerialPortEntry>& ports) {
   namespace fs = std::filesystem;
   const bool under_root = root.empty() || root == "/" || path.starts_with(root);
   const std::string listed = under_root ? fs::path(path).lexically_normal().string()
                                         : (fs::path(root) / fs::path(path).relative_path()).lexically_normal().string();
-  const std::vector<SerialPortEntry> ports = list_serial_ports(root);
   for (const SerialPortEntry& port : ports) {
     const bool named = port.path == listed || std::find(port.by_id.begin(), port.by_id.end(), listed) != port.by_id.end();
     if (named) return port.serial;
@@ -67,7 +67,9 @@ void check_board_identities(const PlanarProfile& profile, const std::array<std::
                             const std::string& devices_root) {
   const std::array<std::string, 2>& wanted = profile.board_serials;
   if (wanted[0].empty() && wanted[1].empty()) return;
-  const std::array<std::string, 2> found{usb_serial_of(paths[0], devices_root), usb_serial_of(paths[1], devices_root)};
+  const std::vector<SerialPortEntry> ports = list_serial_ports(devices_root);
+  const std::array<std::string, 2> found{usb_serial_of(paths[0], devices_root, ports),
+                                         usb_serial_of(paths[1], devices_root, ports)};
   if (found[0] == wanted[1] && found[1] == wanted[0]) {
     throw InputError(std::string(kWhat) + ":" + paths[0] + "," + paths[1] + ": the cables are swapped: " + paths[0] +
                      " is joint 2's board (USB serial " + found[0] + ") and " + paths[1] + " joint 1's (" + found[1] +
