@@ -1,6 +1,6 @@
-// Reads a function's code from lua_dump's binary chunk (Lua 5.4 format: a header, then
-// the function's source, line range, three bytes, and its code as a counted array of
-// 32-bit instructions) and looks for jumps that go backwards. The opcode numbers are
+// Reads a function's code from lua_dump's binary chunk (Lua 5.4 format, ldump.c: a header,
+// then the function's source, line range, three bytes, its code as a counted array of
+// 32-bit instructions, its constants and its upvalues) and looks for jumps that go backwards. The opcode numbers are
 // those of lopcodes.h, unchanged from Lua 5.4.0 to 5.4.8; a chunk from any other
 // version fails the header check and is treated as "can loop".
 #include "engine/lua/bytecode.hpp"
@@ -48,6 +48,11 @@ constexpr int kSignedJumpOffset = (1 << 24) - 1;  // OFFSET_sJ for a 25-bit sJ
 constexpr char kHeader[] = "\x1bLua\x54\x00\x19\x93\r\n\x1a\n\x04\x08\x08";
 constexpr std::size_t kHeaderBytes = sizeof kHeader - 1;
 constexpr std::size_t kCheckNumbersBytes = 16;
+// Type tags of constants in a dump (lobject.h: type | variant << 4).
+constexpr unsigned kTagInteger = 3;
+constexpr unsigned kTagFloat = 3 | (1 << 4);
+constexpr unsigned kTagShortString = 4;
+constexpr unsigned kTagLongString = 4 | (1 << 4);
 
 int append_chunk(lua_State*, const void* bytes, std::size_t size, void* out) {
   static_cast<std::string*>(out)->append(static_cast<const char*>(bytes), size);
@@ -59,8 +64,9 @@ struct Reader {
   const unsigned char* at;
   const unsigned char* end;
 
-  bool skip(std::size_t n) {
-    if (static_cast<std::size_t>(end - at) < n) return false;
+  bool has(std::uint64_t n) const { return static_cast<std::uint64_t>(end - at) >= n; }
+  bool skip(std::uint64_t n) {
+    if (!has(n)) return false;
     at += n;
     return true;
   }
@@ -112,36 +118,74 @@ bool uses_first_register(unsigned opcode, std::uint32_t instruction) {
 
 }  // namespace
 
-FunctionCode read_function_code(lua_State* L, int index) {
-  FunctionCode code;
-  if (lua_type(L, index) != LUA_TFUNCTION || lua_iscfunction(L, index)) return code;
+bool read_function_chunk(lua_State* L, int index, FunctionChunk* out) {
+  *out = FunctionChunk{};
+  if (lua_type(L, index) != LUA_TFUNCTION || lua_iscfunction(L, index)) return false;
   std::string chunk;
   lua_pushvalue(L, index);
   const int status = lua_dump(L, append_chunk, &chunk, 1);
   lua_pop(L, 1);
   if (status != 0 || chunk.size() < kHeaderBytes ||
       std::memcmp(chunk.data(), kHeader, kHeaderBytes) != 0) {
-    return code;
+    return false;
   }
   Reader reader{reinterpret_cast<const unsigned char*>(chunk.data()),
                 reinterpret_cast<const unsigned char*>(chunk.data()) + chunk.size()};
-  std::uint64_t source_size = 0, line = 0, code_size = 0;
-  if (!reader.skip(kHeaderBytes + kCheckNumbersBytes + 1)) return code;  // + number of upvalues
-  if (!reader.size(&source_size)) return code;                             // 0 when stripped
-  if (source_size > 0 && !reader.skip(source_size - 1)) return code;
-  if (!reader.size(&line) || !reader.size(&line)) return code;             // line range
-  if (static_cast<std::size_t>(reader.end - reader.at) < 3) return code;
-  const bool is_vararg = reader.at[1] != 0;
-  reader.skip(3);                                                          // params, vararg, stack
-  if (!reader.size(&code_size) || code_size == 0) return code;
-  if (code_size > static_cast<std::uint64_t>(reader.end - reader.at) / 4) return code;
+  std::uint64_t source_size = 0, line = 0, code_size = 0, constant_count = 0, upvalue_count = 0;
+  if (!reader.skip(kHeaderBytes + kCheckNumbersBytes + 1)) return false;  // + number of upvalues
+  if (!reader.size(&source_size)) return false;                             // 0 when stripped
+  if (source_size > 0 && !reader.skip(source_size - 1)) return false;
+  if (!reader.size(&line) || !reader.size(&line)) return false;             // line range
+  if (static_cast<std::size_t>(reader.end - reader.at) < 3) return false;
+  out->parameters = reader.at[0];
+  out->vararg = reader.at[1] != 0;
+  out->stack_size = reader.at[2];
+  reader.skip(3);
+  if (!reader.size(&code_size) || code_size == 0) return false;
+  if (code_size > static_cast<std::uint64_t>(reader.end - reader.at) / 4) return false;
+  out->code.resize(code_size);
+  std::memcpy(out->code.data(), reader.at, 4 * code_size);  // dumped in the machine's byte order
+  reader.skip(4 * code_size);
 
+  // Constants: a type tag (lobject.h variant tags), then the value.
+  if (!reader.size(&constant_count) || constant_count > static_cast<std::uint64_t>(reader.end - reader.at)) {
+    return false;
+  }
+  out->constants.resize(constant_count);
+  for (LuaConstant& constant : out->constants) {
+    if (reader.at == reader.end) return false;
+    const unsigned tag = *reader.at++;
+    if (tag == kTagInteger || tag == kTagFloat) {
+      if (!reader.has(8)) return false;
+      if (tag == kTagInteger) {
+        constant.kind = LuaConstant::Kind::integer;
+        std::memcpy(&constant.integer, reader.at, 8);
+      } else {
+        constant.kind = LuaConstant::Kind::number;
+        std::memcpy(&constant.number, reader.at, 8);
+      }
+      reader.skip(8);
+    } else if (tag == kTagShortString || tag == kTagLongString) {
+      std::uint64_t size = 0;
+      if (!reader.size(&size) || size == 0 || !reader.has(size - 1)) return false;
+      constant.kind = LuaConstant::Kind::string;
+      constant.text.assign(reinterpret_cast<const char*>(reader.at), size - 1);
+      reader.skip(size - 1);
+    }  // nil, false, true: no value
+  }
+  if (!reader.size(&upvalue_count) || !reader.has(3 * upvalue_count)) return false;
+  out->upvalue_count = static_cast<int>(upvalue_count);
+  return true;
+}
+
+FunctionCode read_function_code(lua_State* L, int index) {
+  FunctionCode code;
+  FunctionChunk chunk;
+  if (!read_function_chunk(L, index, &chunk)) return code;
   bool loops = false;
   bool calls = false;
-  bool first_escapes = is_vararg;  // `...` holds the arguments too
-  for (std::uint64_t i = 0; i < code_size; ++i) {
-    std::uint32_t instruction = 0;
-    std::memcpy(&instruction, reader.at + 4 * i, 4);  // dumped in the machine's byte order
+  bool first_escapes = chunk.vararg;  // `...` holds the arguments too
+  for (const std::uint32_t instruction : chunk.code) {
     const unsigned opcode = instruction & ((1u << kOpcodeBits) - 1);
     if (opcode == kOpForLoop || opcode == kOpTForLoop) loops = true;
     if (opcode == kOpCall || opcode == kOpTailCall) calls = true;
@@ -153,7 +197,7 @@ FunctionCode read_function_code(lua_State* L, int index) {
   }
   code.calls = calls;
   code.first_parameter_read_by_field_only = !first_escapes;
-  if (!loops) code.straight_line_length = static_cast<std::int64_t>(code_size);
+  if (!loops) code.straight_line_length = static_cast<std::int64_t>(chunk.code.size());
   return code;
 }
 

@@ -3,6 +3,8 @@
 #include <lua.hpp>
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 namespace hapscene::detail {
 
@@ -13,6 +15,28 @@ namespace hapscene::detail {
 // `calls` (when given) is set to whether the function's own code has a call instruction
 // (a call or a tail call); true whenever the answer is 0.
 std::int64_t straight_line_length(lua_State* L, int index, bool* calls = nullptr);
+
+// One constant of a function's constant table.
+struct LuaConstant {
+  enum class Kind { other, integer, number, string };  // other: nil, false, true
+  Kind kind{Kind::other};
+  std::int64_t integer{};
+  double number{};
+  std::string text;
+};
+
+// A Lua 5.4 function's own code, as lua_dump writes it (nested functions are not read).
+struct FunctionChunk {
+  int parameters{};  // fixed parameters: registers 0 .. parameters - 1 on entry
+  bool vararg{};
+  int stack_size{};  // registers the function uses
+  std::vector<std::uint32_t> code;
+  std::vector<LuaConstant> constants;
+  int upvalue_count{};
+};
+// Reads the Lua function at `index`; false (and an empty chunk) when it is not a Lua 5.4
+// function or its dump cannot be read.
+bool read_function_chunk(lua_State* L, int index, FunctionChunk* out);
 
 // What read_function_code found in a Lua function's own code (not in what it calls).
 struct FunctionCode {

@@ -66,6 +66,10 @@ struct ScriptLimits {
   // log()/print(): messages admitted per second of run time (s.t), and the burst.
   double log_messages_per_s{10.0};
   std::size_t log_burst{20};
+  // Run a force(s) that is straight-line arithmetic on numbers from a translation of its
+  // bytecode instead of the VM (same results to the bit; see ScriptInstance::
+  // force_translated). Not read from files: tests and the bench turn it off to compare.
+  bool translate_force{true};
 };
 
 // The CPU-time backstop of one force()/reset() call: 1 us per budgeted instruction, at
@@ -194,7 +198,8 @@ class ScriptInstance {
   // sandbox's own that reads s.x, through the same call path force() takes. Only when
   // force() runs unhooked (no budget is charged: the function runs a fixed 3
   // instructions); otherwise does nothing. Changes nothing the script can see; never
-  // allocates, throws or blocks.
+  // allocates, throws or blocks. A translated force (force_translated) is run instead, its
+  // results dropped: it has no side effects.
   void warm() noexcept;
 
   bool disabled() const noexcept;
@@ -231,6 +236,12 @@ class ScriptInstance {
   // proxy: its code only reads constant fields of s (s.x), so s cannot be written or
   // escape; an unknown field is an error either way.
   bool force_reads_state_directly() const noexcept;
+  // force(s) currently runs from its translation, without the VM: its bytecode is
+  // straight-line arithmetic on fields of s and numeric upvalues and constants (see
+  // engine/lua/force_program.hpp), the results are the VM's to the bit, and any result
+  // that is not plainly good (not a finite number, or the wrong count) is asked of the VM
+  // again, which then reports the fault as it always does.
+  bool force_translated() const noexcept;
 
  private:
   friend ScriptProgram compile_script(std::string, std::string, const nlohmann::json&, std::string,

@@ -2,10 +2,12 @@
 // sequence (sandbox, text-only chunk, top-level code, checks); the calls in the tick
 // (force_N, reset) run under the instruction budget and allocation limits and turn any
 // failure into "disabled, 0 N, one message".
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
@@ -169,6 +171,23 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   // A force that only reads fields of `s` gets the data table itself (no proxy hop): it
   // cannot write it or let it escape, and an unknown field is still an error there.
   vm->state_slot = force_code.first_parameter_read_by_field_only ? detail::kSlotData : detail::kSlotState;
+  // A force that would run unhooked, reads s by field only and is arithmetic on numbers
+  // runs from its translation (force_program.hpp).
+  if (program.limits.translate_force && force_code.first_parameter_read_by_field_only && !vm->force_calls &&
+      force_code.straight_line_length > 0 && force_code.straight_line_length <= detail::kMaxStraightLine &&
+      force_code.straight_line_length < vm->limits.instructions_per_call) {
+    detail::FunctionChunk chunk;
+    if (detail::read_function_chunk(L, detail::kSlotForce, &chunk)) {
+      std::array<bool, detail::kFieldCount> present{};
+      present[detail::kFieldX] = present[detail::kFieldDt] = true;
+      present[detail::kFieldT] = vm->needs_time;
+      present[detail::kFieldV] = vm->axes == 1 && vm->needs_velocity;
+      present[detail::kFieldY] = vm->axes == 2;
+      present[detail::kFieldVx] = present[detail::kFieldVy] = vm->axes == 2 && vm->needs_velocity;
+      vm->force_program = detail::ForceProgram::translate(chunk, present, L, detail::kSlotForce);
+    }
+  }
+  vm->force_translated = vm->force_program.has_value() && !vm->script_metamethods;
   vm->phase = detail::Phase::running;
   vm->source = nullptr;
   vm->params_override = nullptr;
@@ -185,6 +204,16 @@ double ScriptInstance::force_N(const ScriptInput& input) noexcept {
   }
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
+  if (vm->force_translated) {
+    detail::ForceProgram& program = *vm->force_program;
+    program.set_field(detail::kFieldX, input.x_m);
+    program.set_field(detail::kFieldV, input.v_m_per_s);
+    program.set_field(detail::kFieldT, input.t_s);
+    program.set_field(detail::kFieldDt, input.dt_s);
+    double results[2];
+    if (program.run(results) >= 1 && std::isfinite(results[0])) return results[0];
+    vm->last_dt_s = std::numeric_limits<double>::quiet_NaN();  // the VM's s was not kept up to date
+  }
   detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
                      vm->force_straight_line, vm->force_calls);
 
@@ -248,6 +277,20 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
   }
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
+  if (vm->force_translated) {
+    detail::ForceProgram& program = *vm->force_program;
+    program.set_field(detail::kFieldX, input.x_m);
+    program.set_field(detail::kFieldY, input.y_m);
+    program.set_field(detail::kFieldVx, input.vx_m_per_s);
+    program.set_field(detail::kFieldVy, input.vy_m_per_s);
+    program.set_field(detail::kFieldT, input.t_s);
+    program.set_field(detail::kFieldDt, input.dt_s);
+    double results[2];
+    if (program.run(results) == 2 && std::isfinite(results[0]) && std::isfinite(results[1])) {
+      return {results[0], results[1]};
+    }
+    vm->last_dt_s = std::numeric_limits<double>::quiet_NaN();  // the VM's s was not kept up to date
+  }
   detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
                      vm->force_straight_line, vm->force_calls);
 
@@ -342,6 +385,13 @@ void ScriptInstance::reset() noexcept {
     disable(vm);
   }
   lua_settop(L, detail::kSlotCount);
+  // reset() may have changed force's upvalues, or set a metamethod: the translation reads
+  // them again, or stops for good.
+  if (vm->force_translated &&
+      (vm->script_metamethods || !vm->force_program->read_upvalues(L, detail::kSlotForce))) {
+    vm->force_translated = false;
+    vm->last_dt_s = std::numeric_limits<double>::quiet_NaN();
+  }
 }
 
 void ScriptInstance::collect_garbage(int max_steps) noexcept {
@@ -362,6 +412,13 @@ void ScriptInstance::collect_garbage(int max_steps) noexcept {
 
 void ScriptInstance::warm() noexcept {
   ScriptVm* vm = vm_.get();
+  // A translated force is pure: running it (on the last call's s) warms its code and data.
+  if (vm->force_translated && !vm->disabled) {
+    double results[2];
+    vm->force_program->run(results);
+    asm volatile("" : : "m"(results));
+    return;
+  }
   if (vm->disabled || !vm->unhooked || vm->warm_ref == LUA_NOREF) return;
   lua_State* L = vm->L;
   lua_rawgeti(L, LUA_REGISTRYINDEX, vm->warm_ref);
@@ -377,6 +434,8 @@ std::int64_t ScriptInstance::force_straight_line_instructions() const noexcept {
 }
 
 bool ScriptInstance::force_reads_state_directly() const noexcept { return vm_->state_slot == detail::kSlotData; }
+
+bool ScriptInstance::force_translated() const noexcept { return vm_->force_translated; }
 
 bool ScriptInstance::force_runs_without_hooks() const noexcept {
   return vm_->force_straight_line > 0 && !vm_->force_calls && !vm_->script_metamethods;

@@ -12,9 +12,11 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "engine/lua/force_program.hpp"
 #include "engine/lua/log_queue.hpp"
 #include "engine/lua/script.hpp"
 
@@ -72,6 +74,10 @@ struct ScriptVm {
   // field read may then run script code, or a C function that calls it, without a call
   // instruction. Never cleared: metatables are frozen copies, and stay.
   bool script_metamethods{};
+  // force translated to run without the VM (force_program.hpp), and whether it may run:
+  // set after load, re-checked after every reset(); the VM answers whenever it may not.
+  std::optional<ForceProgram> force_program;
+  bool force_translated{};
 
   // Instruction budget of the current call (see budget.cpp).
   std::int64_t remaining_instructions{};

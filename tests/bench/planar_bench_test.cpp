@@ -156,8 +156,16 @@ TEST_CASE("planar bench: the command prints the 2-D table and goals after the 1-
   REQUIRE(lua_2d != std::string::npos);
   CHECK(table < lua_1d);
   CHECK(lua_1d < lua_2d);
-  CHECK(out.find("spring_lua_2d: Lua ") != std::string::npos);
-  CHECK(out.find("the Lua 1-D spring (goal <= 1.2x): ") != std::string::npos);
+  // The force calls alone (translated, then in the VM alone), and the goal on the calls.
+  const std::size_t call_1d = out.find("spring (1-D)             force call ");
+  const std::size_t call_2d = out.find("spring_lua_2d            force call ");
+  const std::size_t vm_call_2d = out.find("spring_lua_2d            force call, VM only");
+  CHECK(lua_2d < call_1d);
+  CHECK(call_1d < call_2d);
+  CHECK(call_2d < vm_call_2d);
+  CHECK(vm_call_2d != std::string::npos);
+  CHECK(out.find("spring_lua_2d: its force call ") != std::string::npos);
+  CHECK(out.find("the 1-D Lua spring's (goal <= 1.2x): ") != std::string::npos);
   CHECK(out.find("not measured") == std::string::npos);
 
   // Planar files given: only they are benched, in the 2-D table.

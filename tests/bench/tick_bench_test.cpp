@@ -98,6 +98,9 @@ TEST_CASE("bench: the command prints the three implementations of a lab environm
   CHECK(outcome.out.find("spring     sketch, call") != std::string::npos);
   CHECK(outcome.out.find("spring     built-in (JSON)") != std::string::npos);
   CHECK(outcome.out.find("spring     Lua script") != std::string::npos);
+  // The spring's force is translated: the row beside it runs the same script in the VM alone.
+  CHECK(outcome.out.find("spring     Lua script") < outcome.out.find("spring     Lua, VM only"));
+  CHECK(outcome.out.find("spring     Lua, VM only") != std::string::npos);
   CHECK(outcome.out.find("spring: built-in ") != std::string::npos);
   CHECK(outcome.out.find("the hand-folded floor (goal <= 1.5x)") != std::string::npos);
   CHECK(outcome.out.find("texture: 50000 fields ") != std::string::npos);

@@ -173,15 +173,15 @@ TEST_CASE("cli values: bench refuses values whose recordings or timings would no
   std::ofstream(fast) << R"({"rate_hz": "100 kHz", "effects": [{"type": "spring", "stiffness": 100}]})";
   std::ofstream(medium) << R"({"rate_hz": "20 kHz", "effects": [{"type": "spring", "stiffness": 100}]})";
   CHECK(refused("bench --seconds 600 " + fast.string()) ==
-        "error: hapscene bench: --seconds 600 x --passes 10 over 1 environment(s) needs about 1218 MiB (readings 231 "
-        "MiB, round timings 72 MiB, tail timings 916 MiB), more than the 1024 MiB a bench may use; lower --seconds or "
+        "error: hapscene bench: --seconds 600 x --passes 10 over 1 environment(s) needs about 1223 MiB (readings 231 "
+        "MiB, round timings 76 MiB, tail timings 916 MiB), more than the 1024 MiB a bench may use; lower --seconds or "
         "--passes, or give fewer environments\n");
   CHECK(refused("bench --seconds 600 --passes 1000 " + medium.string()).starts_with(
-      "error: hapscene bench: --seconds 600 x --passes 1000 over 1 environment(s) needs about 19789 MiB"));
+      "error: hapscene bench: --seconds 600 x --passes 1000 over 1 environment(s) needs about 19878 MiB"));
   // The largest values of both ranges over the default rows (the four lab environments,
   // the four 2-D scenes, whose readings are 24 bytes and an index a tick, and the Lua
-  // spring's 2-D recording and its two loops) are over.
-  CHECK(refused("bench --seconds 600 --passes 1000").find("over 8 environment(s) needs about 1190 MiB (readings 92 MiB") !=
+  // spring's 2-D recording, its two loops and its four force-call loops) are over.
+  CHECK(refused("bench --seconds 600 --passes 1000").find("over 8 environment(s) needs about 1225 MiB (readings 92 MiB") !=
         std::string::npos);
   std::filesystem::remove(fast);
   std::filesystem::remove(medium);

@@ -1,0 +1,83 @@
+#pragma once
+// Internal: a force(s) that is straight-line arithmetic on numbers, run without the Lua VM.
+//
+// Most lab scripts' force is a formula: `return -K * (s.x - x0)`, or a comparison and two
+// returns. Its bytecode can be read (bytecode.hpp) and, when every value it touches is a
+// number (fields of s, numeric upvalues, numeric constants) and every instruction is one
+// of a small set (moves, loads, float arithmetic, comparisons, forward jumps, returns),
+// translated into a program over an array of doubles that computes the same results to
+// the bit: Lua's float arithmetic is the C library's (the same `fmod`, `pow`, `floor`,
+// with Lua's rules for `%`, `//` and `^ 2` reproduced), and a translation is refused
+// wherever Lua would use integer arithmetic (an operation on two integers) or could
+// raise (a missing field, a non-number). What cannot be translated runs in the VM.
+//
+// Such a force has no side effects: calling it, or not, changes nothing else, so the VM
+// can always be asked instead (ScriptInstance falls back to it for any result that is not
+// plainly good, and the VM then reports the fault exactly as it always has).
+#include <lua.hpp>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "engine/lua/bytecode.hpp"
+
+namespace hapscene::detail {
+
+// The fields of s, in the order of the key slots (kSlotKeyX .. kSlotKeyVy).
+enum StateField : int { kFieldX, kFieldV, kFieldT, kFieldDt, kFieldY, kFieldVx, kFieldVy, kFieldCount };
+
+class ForceProgram {
+ public:
+  // Translates the function at `function_index` (its chunk already read into `chunk`),
+  // whose first parameter is s and is only read by constant field (bytecode.hpp);
+  // `present[f]` says which fields s has in this scene (a missing one is an error in Lua).
+  // Reads the upvalues' current values. nullopt: not translatable.
+  static std::optional<ForceProgram> translate(const FunctionChunk& chunk,
+                                               const std::array<bool, kFieldCount>& present, lua_State* L,
+                                               int function_index);
+
+  // Reads the upvalues again (after Lua code ran: reset()). False when one is no longer a
+  // number of the kind the translation assumed: the program must not run any more.
+  bool read_upvalues(lua_State* L, int function_index) noexcept;
+
+  // The value of s.<field> for the next run.
+  void set_field(StateField field, double value) noexcept { values_[field_slot_[field]] = value; }
+
+  // Runs the program; writes up to two results to `results` and returns how many values
+  // the function returned (0, 1, 2 or more).
+  int run(double* results) noexcept;
+
+  std::size_t op_count() const noexcept { return ops_.size(); }
+  // The program's working memory, for warming the caches before a tick.
+  const void* ops_data() const noexcept { return ops_.data(); }
+  std::size_t ops_bytes() const noexcept { return ops_.size() * sizeof(Op); }
+  const void* values_data() const noexcept { return values_.data(); }
+  std::size_t values_bytes() const noexcept { return values_.size() * sizeof(double); }
+
+ private:
+  enum class Kind : std::uint8_t {
+    copy, negate, add, sub, mul, div, mod, pow, floor_div,   // values[a] = values[b] op values[c]
+    branch_lt, branch_le, branch_eq,                         // if ((b op c) != expect) goto target
+    jump, give_back                                          // give_back: values[a], count c
+  };
+  struct Op {
+    Kind kind{};
+    bool expect{};
+    std::uint16_t a{}, b{}, c{};
+    std::uint16_t target{};
+  };
+  struct Upvalue {
+    int index{};    // 1-based, for lua_getupvalue
+    int slot{};
+    bool integer{};  // the value was an integer at translation
+  };
+
+  std::vector<Op> ops_;
+  std::vector<double> values_;  // registers, then constants, upvalues, fields
+  std::vector<Upvalue> upvalues_;
+  std::array<int, kFieldCount> field_slot_{};
+};
+
+}  // namespace hapscene::detail
