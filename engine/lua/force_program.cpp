@@ -60,39 +60,49 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
   const int count = static_cast<int>(chunk.code.size());
   const int registers = chunk.stack_size;
   if (chunk.vararg || chunk.parameters < 1 || count == 0 || count > 1024 || registers < 1) return std::nullopt;
+  const auto u = [](auto v) { return static_cast<std::size_t>(v); };
 
+  // Slots: the fields of s, the registers, then constants and upvalues as they are met.
   ForceProgram program;
-  program.values_.assign(static_cast<std::size_t>(registers), 0.0);
-  const auto add_value = [&](double value) {
+  program.values_.assign(u(kFieldCount + registers), 0.0);
+  const auto register_slot = [&](unsigned r) { return kFieldCount + static_cast<int>(r); };
+  std::vector<bool> constant_slots(program.values_.size(), false);
+  const auto constant_slot = [&](double value) {
+    for (std::size_t slot = 0; slot < program.values_.size(); ++slot) {
+      // The same bits (0.0 and -0.0 stay apart).
+      if (constant_slots[slot] && std::memcmp(&program.values_[slot], &value, sizeof value) == 0) {
+        return static_cast<int>(slot);
+      }
+    }
     program.values_.push_back(value);
+    constant_slots.push_back(true);
     return static_cast<int>(program.values_.size()) - 1;
   };
-  for (int f = 0; f < kFieldCount; ++f) program.field_slot_[f] = add_value(0.0);
   static constexpr std::string_view kFieldNames[kFieldCount] = {"x", "v", "t", "dt", "y", "vx", "vy"};
 
-  // Upvalues this function reads: their values now, as numbers.
-  std::vector<int> upvalue_slot(static_cast<std::size_t>(chunk.upvalue_count), -1);
-  std::vector<Holds> upvalue_holds(static_cast<std::size_t>(chunk.upvalue_count), Holds::none);
+  // Upvalues that hold numbers now: a slot each, filled by read_upvalues.
+  std::vector<int> upvalue_slot(u(chunk.upvalue_count), -1);
+  std::vector<Holds> upvalue_holds(u(chunk.upvalue_count), Holds::none);
   const int function = lua_absindex(L, function_index);
-  for (int u = 0; u < chunk.upvalue_count; ++u) {
-    if (lua_getupvalue(L, function, u + 1) == nullptr) return std::nullopt;
+  for (int up = 0; up < chunk.upvalue_count; ++up) {
+    if (lua_getupvalue(L, function, up + 1) == nullptr) return std::nullopt;
     if (lua_type(L, -1) == LUA_TNUMBER) {
       const bool integer = lua_isinteger(L, -1) != 0;
-      const double value = lua_tonumber(L, -1);
-      if (!integer || std::fabs(value) <= kExactIntegerLimit) {
-        upvalue_holds[static_cast<std::size_t>(u)] = integer ? Holds::integer : Holds::number;
-        upvalue_slot[static_cast<std::size_t>(u)] = -2;  // slot made when first read
+      if (!integer || std::fabs(lua_tonumber(L, -1)) <= kExactIntegerLimit) {
+        upvalue_holds[u(up)] = integer ? Holds::integer : Holds::number;
       }
     }
     lua_pop(L, 1);
   }
-
-  // Pass 1: what each register holds at each reachable instruction.
-  std::vector<std::vector<Holds>> holds(static_cast<std::size_t>(count) + 1,
-                                        std::vector<Holds>(static_cast<std::size_t>(registers), Holds::unreached));
-  std::vector<bool> reached(static_cast<std::size_t>(count) + 1, false);
-  reached[0] = true;
-  for (int r = 0; r < registers; ++r) holds[0][static_cast<std::size_t>(r)] = r == 0 ? Holds::state : Holds::none;
+  const auto upvalue_value_slot = [&](unsigned up) {
+    if (upvalue_slot[up] < 0) {
+      program.values_.push_back(0.0);
+      constant_slots.push_back(false);
+      upvalue_slot[up] = static_cast<int>(program.values_.size()) - 1;
+      program.upvalues_.push_back({static_cast<int>(up) + 1, upvalue_slot[up], upvalue_holds[up] == Holds::integer});
+    }
+    return upvalue_slot[up];
+  };
 
   const auto constant_holds = [&](unsigned index) {
     if (index >= chunk.constants.size()) return Holds::none;
@@ -109,20 +119,38 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
     return k.kind == LuaConstant::Kind::number ? k.number : static_cast<double>(k.integer);
   };
   const auto is_number = [](Holds h) { return h == Holds::integer || h == Holds::number; };
-  const auto flow = [&](int to, const std::vector<Holds>& state) {
+
+  // What each register holds at each reachable instruction, and which slot it equals
+  // there when it was loaded from one that a run never changes (a field, an upvalue, a
+  // constant): operands read that slot directly, and the load is left out unless some
+  // read of the register does not know the slot (paths that loaded different slots meet).
+  constexpr int kComputed = -1;  // written by an op that is always kept: read the register
+  constexpr int kMixed = -2;     // paths meet with different slots: the loads must be kept
+  struct State {
+    std::vector<Holds> holds;
+    std::vector<int> alias;
+  };
+  std::vector<State> states(u(count) + 1, State{std::vector<Holds>(u(registers), Holds::unreached),
+                                                 std::vector<int>(u(registers), kComputed)});
+  std::vector<bool> reached(u(count) + 1, false);
+  reached[0] = true;
+  for (int r = 0; r < registers; ++r) states[0].holds[u(r)] = r == 0 ? Holds::state : Holds::none;
+  const auto flow = [&](int to, const State& state) {
     if (to < 0 || to > count) return false;
-    auto& into = holds[static_cast<std::size_t>(to)];
-    for (std::size_t r = 0; r < into.size(); ++r) into[r] = merge(into[r], state[r]);
-    reached[static_cast<std::size_t>(to)] = true;
+    State& into = states[u(to)];
+    for (std::size_t r = 0; r < state.holds.size(); ++r) {
+      into.alias[r] = (into.holds[r] == Holds::unreached || into.alias[r] == state.alias[r]) ? state.alias[r] : kMixed;
+      into.holds[r] = merge(into.holds[r], state.holds[r]);
+    }
+    reached[u(to)] = true;
     return true;
   };
   // After an arithmetic instruction Lua skips the MMBIN that follows (it only runs when
   // an operand is not a number).
   const auto after_arithmetic = [&](int pc) {
-    const bool mm = pc + 1 < count && (op_of(chunk.code[static_cast<std::size_t>(pc + 1)]) == kMmBin ||
-                                       op_of(chunk.code[static_cast<std::size_t>(pc + 1)]) == kMmBinI ||
-                                       op_of(chunk.code[static_cast<std::size_t>(pc + 1)]) == kMmBinK);
-    return mm ? pc + 2 : pc + 1;
+    if (pc + 1 >= count) return pc + 1;
+    const unsigned next = op_of(chunk.code[u(pc + 1)]);
+    return (next == kMmBin || next == kMmBinI || next == kMmBinK) ? pc + 2 : pc + 1;
   };
   // Lua's integer arithmetic applies when both operands are integers, except for / and ^.
   const auto arithmetic_result = [](unsigned op, Holds left, Holds right) {
@@ -131,214 +159,212 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
     return Holds::number;
   };
 
+  // Each reachable instruction as an op (with `loads_into` >= 0 for a load that may be
+  // left out), its operands resolved to slots.
+  struct Planned {
+    Op op;
+    int loads_into = -1;  // the register a pure load writes
+  };
+  std::vector<Planned> planned(u(count));
+  std::vector<bool> read_unaliased(u(registers), false);  // some read does not know the slot
+  const auto fail = std::nullopt;
+
   for (int pc = 0; pc < count; ++pc) {
-    if (!reached[static_cast<std::size_t>(pc)]) continue;
-    const std::uint32_t i = chunk.code[static_cast<std::size_t>(pc)];
-    std::vector<Holds> state = holds[static_cast<std::size_t>(pc)];
-    const auto reg = [&](unsigned r) { return r < static_cast<unsigned>(registers) ? state[r] : Holds::none; };
+    if (!reached[u(pc)]) continue;
+    const std::uint32_t i = chunk.code[u(pc)];
+    State state = states[u(pc)];
     const unsigned a = a_of(i);
-    if (a >= static_cast<unsigned>(registers) && op_of(i) != kJmp) return std::nullopt;
-    switch (op_of(i)) {
+    const unsigned opcode = op_of(i);
+    if (a >= static_cast<unsigned>(registers) && opcode != kJmp) return fail;
+    const auto holds = [&](unsigned r) { return r < static_cast<unsigned>(registers) ? state.holds[r] : Holds::none; };
+    // The slot an operand register is read from (and whether it is a number).
+    const auto operand = [&](unsigned r) {
+      if (state.alias[r] >= 0) return state.alias[r];
+      if (state.alias[r] == kMixed) read_unaliased[r] = true;
+      return register_slot(r);
+    };
+    const auto define = [&](unsigned r, Holds h, int alias) {
+      state.holds[r] = h;
+      state.alias[r] = alias;
+    };
+    Op& op = planned[u(pc)].op;
+    op.a = static_cast<std::uint16_t>(register_slot(a));
+    const auto load = [&](int slot, Holds h) {
+      op.kind = Kind::copy;
+      op.b = static_cast<std::uint16_t>(slot);
+      planned[u(pc)].loads_into = static_cast<int>(a);
+      define(a, h, slot);
+    };
+    // An arithmetic op on constants and upvalues only: computed once per read of the
+    // upvalues into a slot of its own, which the register then equals (like a load).
+    const auto hoist_if_invariant = [&]() {
+      const int first_invariant = kFieldCount + registers;
+      if (op.b < first_invariant || (op.kind != Kind::negate && op.c < first_invariant)) return;
+      Op invariant = op;
+      program.values_.push_back(0.0);
+      constant_slots.push_back(false);
+      invariant.a = static_cast<std::uint16_t>(program.values_.size() - 1);
+      program.invariant_ops_.push_back(invariant);
+      load(invariant.a, state.holds[a]);
+    };
+    int next = pc + 1;  // where control goes on (-1: nowhere, a return)
+    switch (opcode) {
       case kMove:
-        if (!is_number(reg(b_of(i)))) return std::nullopt;
-        state[a] = reg(b_of(i));
-        flow(pc + 1, state);
+        if (!is_number(holds(b_of(i)))) return fail;
+        if (state.alias[b_of(i)] >= 0) {
+          load(state.alias[b_of(i)], holds(b_of(i)));
+        } else {
+          op.kind = Kind::copy;
+          op.b = static_cast<std::uint16_t>(operand(b_of(i)));
+          define(a, holds(b_of(i)), kComputed);
+        }
         break;
-      case kLoadI: state[a] = Holds::integer; flow(pc + 1, state); break;
-      case kLoadF: state[a] = Holds::number; flow(pc + 1, state); break;
+      case kLoadI: load(constant_slot(sbx_of(i)), Holds::integer); break;
+      case kLoadF: load(constant_slot(sbx_of(i)), Holds::number); break;
       case kLoadK: {
         const Holds h = constant_holds(bx_of(i));
-        if (!is_number(h)) return std::nullopt;
-        state[a] = h;
-        flow(pc + 1, state);
+        if (!is_number(h)) return fail;
+        load(constant_slot(constant_value(bx_of(i))), h);
         break;
       }
       case kGetUpval: {
-        const unsigned u = b_of(i);
-        if (u >= upvalue_holds.size() || !is_number(upvalue_holds[u])) return std::nullopt;
-        state[a] = upvalue_holds[u];
-        flow(pc + 1, state);
+        const unsigned up = b_of(i);
+        if (up >= upvalue_holds.size() || !is_number(upvalue_holds[up])) return fail;
+        load(upvalue_value_slot(up), upvalue_holds[up]);
         break;
       }
       case kGetField: {
-        if (reg(b_of(i)) != Holds::state || c_of(i) >= chunk.constants.size()) return std::nullopt;
+        if (holds(b_of(i)) != Holds::state || c_of(i) >= chunk.constants.size()) return fail;
         const LuaConstant& key = chunk.constants[c_of(i)];
-        if (key.kind != LuaConstant::Kind::string) return std::nullopt;
-        bool known = false;
-        for (int f = 0; f < kFieldCount; ++f) known = known || (present[f] && key.text == kFieldNames[f]);
-        if (!known) return std::nullopt;  // Lua raises "s has no field ...": the VM says so
-        state[a] = Holds::number;
-        flow(pc + 1, state);
+        if (key.kind != LuaConstant::Kind::string) return fail;
+        int field = -1;
+        for (int f = 0; f < kFieldCount; ++f) {
+          if (present[u(f)] && key.text == kFieldNames[f]) field = f;
+        }
+        if (field < 0) return fail;  // Lua raises "s has no field ...": the VM says so
+        load(field, Holds::number);
         break;
       }
-      case kAddI: {
-        const Holds r = arithmetic_result(kAdd, reg(b_of(i)), Holds::integer);
-        if (!is_number(reg(b_of(i))) || r == Holds::none) return std::nullopt;
-        state[a] = r;
-        flow(after_arithmetic(pc), state);
-        break;
-      }
-      case kAddK: case kSubK: case kMulK: case kModK: case kPowK: case kDivK: case kIDivK: {
-        const Holds k = constant_holds(c_of(i));
-        if (!is_number(reg(b_of(i))) || !is_number(k)) return std::nullopt;
-        const Holds r = arithmetic_result(op_of(i), reg(b_of(i)), k);
-        if (r == Holds::none) return std::nullopt;
-        state[a] = r;
-        flow(after_arithmetic(pc), state);
-        break;
-      }
+      case kAddI: case kAddK: case kSubK: case kMulK: case kModK: case kPowK: case kDivK: case kIDivK:
       case kAdd: case kSub: case kMul: case kMod: case kPow: case kDiv: case kIDiv: {
-        if (!is_number(reg(b_of(i))) || !is_number(reg(c_of(i)))) return std::nullopt;
-        const Holds r = arithmetic_result(op_of(i), reg(b_of(i)), reg(c_of(i)));
-        if (r == Holds::none) return std::nullopt;
-        state[a] = r;
-        flow(after_arithmetic(pc), state);
+        const Holds left = holds(b_of(i));
+        Holds right = Holds::none;
+        int right_slot = 0;
+        if (opcode == kAddI) {
+          right = Holds::integer;
+          right_slot = constant_slot(sc_of(i));
+        } else if (opcode >= kAddK && opcode <= kIDivK) {
+          right = constant_holds(c_of(i));
+          if (is_number(right)) right_slot = constant_slot(constant_value(c_of(i)));
+        } else {
+          right = holds(c_of(i));
+          if (is_number(right)) right_slot = operand(c_of(i));
+        }
+        if (!is_number(left) || !is_number(right)) return fail;
+        const Holds result = arithmetic_result(opcode, left, right);
+        if (result == Holds::none) return fail;
+        switch (opcode) {
+          case kAdd: case kAddK: case kAddI: op.kind = Kind::add; break;
+          case kSub: case kSubK: op.kind = Kind::sub; break;
+          case kMul: case kMulK: op.kind = Kind::mul; break;
+          case kMod: case kModK: op.kind = Kind::mod; break;
+          case kPow: case kPowK: op.kind = Kind::pow; break;
+          case kDiv: case kDivK: op.kind = Kind::div; break;
+          default: op.kind = Kind::floor_div; break;
+        }
+        op.b = static_cast<std::uint16_t>(operand(b_of(i)));
+        op.c = static_cast<std::uint16_t>(right_slot);
+        define(a, result, kComputed);
+        hoist_if_invariant();
+        next = after_arithmetic(pc);
         break;
       }
       case kUnm:
         // -integer stays an integer, exact as a double within 2^53 (the only integers here).
-        if (!is_number(reg(b_of(i)))) return std::nullopt;
-        state[a] = reg(b_of(i));
-        flow(pc + 1, state);
+        if (!is_number(holds(b_of(i)))) return fail;
+        op.kind = Kind::negate;
+        op.b = static_cast<std::uint16_t>(operand(b_of(i)));
+        define(a, holds(b_of(i)), kComputed);
+        hoist_if_invariant();
         break;
       case kJmp:
-        if (sj_of(i) < 0 || !flow(pc + 1 + sj_of(i), state)) return std::nullopt;
+        if (sj_of(i) < 0) return fail;
+        op.kind = Kind::jump;
+        next = pc + 1 + sj_of(i);
+        if (!flow(next, state)) return fail;
+        next = -1;
         break;
-      case kEq: case kLt: case kLe:
-        if (!is_number(reg(a)) || !is_number(reg(b_of(i)))) return std::nullopt;
-        if (pc + 1 >= count || op_of(chunk.code[static_cast<std::size_t>(pc + 1)]) != kJmp) return std::nullopt;
-        flow(pc + 1, state);
-        flow(pc + 2, state);
-        break;
-      case kEqK:
-        if (!is_number(reg(a)) || !is_number(constant_holds(b_of(i)))) return std::nullopt;
-        if (pc + 1 >= count || op_of(chunk.code[static_cast<std::size_t>(pc + 1)]) != kJmp) return std::nullopt;
-        flow(pc + 1, state);
-        flow(pc + 2, state);
-        break;
-      case kEqI: case kLtI: case kLeI: case kGtI: case kGeI:
-        if (!is_number(reg(a))) return std::nullopt;
-        if (pc + 1 >= count || op_of(chunk.code[static_cast<std::size_t>(pc + 1)]) != kJmp) return std::nullopt;
-        flow(pc + 1, state);
-        flow(pc + 2, state);
-        break;
-      case kReturn: {
-        const unsigned b = b_of(i);
-        if (b == 0) return std::nullopt;  // as many values as on the stack
-        for (unsigned r = a; r + 1 < a + b; ++r) {
-          if (!is_number(reg(r))) return std::nullopt;
-        }
-        break;
-      }
-      case kReturn0: break;
-      case kReturn1:
-        if (!is_number(reg(a))) return std::nullopt;
-        break;
-      default: return std::nullopt;
-    }
-  }
-
-  if (reached[static_cast<std::size_t>(count)]) return std::nullopt;  // runs off the end
-
-  // Pass 2: one op per reachable instruction (MMBINs are never reached).
-  std::vector<int> op_index(static_cast<std::size_t>(count) + 1, -1);
-  int next = 0;
-  for (int pc = 0; pc < count; ++pc) {
-    if (reached[static_cast<std::size_t>(pc)]) op_index[static_cast<std::size_t>(pc)] = next++;
-  }
-  const auto constant_slot = [&](double value) {
-    for (std::size_t s = static_cast<std::size_t>(registers); s < program.values_.size(); ++s) {
-      // Same bits (so 0.0 and -0.0 stay apart), and not a field or upvalue slot.
-      bool is_constant = true;
-      for (int f = 0; f < kFieldCount; ++f) is_constant = is_constant && program.field_slot_[f] != static_cast<int>(s);
-      for (const Upvalue& u : program.upvalues_) is_constant = is_constant && u.slot != static_cast<int>(s);
-      if (is_constant && std::memcmp(&program.values_[s], &value, sizeof value) == 0) return static_cast<int>(s);
-    }
-    return add_value(value);
-  };
-  const auto upvalue_value_slot = [&](unsigned u) {
-    if (upvalue_slot[u] < 0) {
-      upvalue_slot[u] = add_value(0.0);
-      program.upvalues_.push_back({static_cast<int>(u) + 1, upvalue_slot[u], upvalue_holds[u] == Holds::integer});
-    }
-    return upvalue_slot[u];
-  };
-  const auto field_value_slot = [&](const std::string& name) {
-    for (int f = 0; f < kFieldCount; ++f) {
-      if (name == kFieldNames[f]) return program.field_slot_[f];
-    }
-    return -1;  // not reached: pass 1 checked the name
-  };
-  const auto to16 = [](int v) { return static_cast<std::uint16_t>(v); };
-  const auto binary = [](unsigned op) {
-    switch (op) {
-      case kAdd: case kAddK: case kAddI: return Kind::add;
-      case kSub: case kSubK: return Kind::sub;
-      case kMul: case kMulK: return Kind::mul;
-      case kMod: case kModK: return Kind::mod;
-      case kPow: case kPowK: return Kind::pow;
-      case kDiv: case kDivK: return Kind::div;
-      default: return Kind::floor_div;
-    }
-  };
-  for (int pc = 0; pc < count; ++pc) {
-    if (!reached[static_cast<std::size_t>(pc)]) continue;
-    const std::uint32_t i = chunk.code[static_cast<std::size_t>(pc)];
-    const unsigned a = a_of(i);
-    Op op;
-    op.a = to16(static_cast<int>(a));
-    switch (op_of(i)) {
-      case kMove: op.kind = Kind::copy; op.b = to16(static_cast<int>(b_of(i))); break;
-      case kLoadI: case kLoadF: op.kind = Kind::copy; op.b = to16(constant_slot(sbx_of(i))); break;
-      case kLoadK: op.kind = Kind::copy; op.b = to16(constant_slot(constant_value(bx_of(i)))); break;
-      case kGetUpval: op.kind = Kind::copy; op.b = to16(upvalue_value_slot(b_of(i))); break;
-      case kGetField: op.kind = Kind::copy; op.b = to16(field_value_slot(chunk.constants[c_of(i)].text)); break;
-      case kAddI:
-        op.kind = Kind::add;
-        op.b = to16(static_cast<int>(b_of(i)));
-        op.c = to16(constant_slot(sc_of(i)));
-        break;
-      case kAddK: case kSubK: case kMulK: case kModK: case kPowK: case kDivK: case kIDivK:
-        op.kind = binary(op_of(i));
-        op.b = to16(static_cast<int>(b_of(i)));
-        op.c = to16(constant_slot(constant_value(c_of(i))));
-        break;
-      case kAdd: case kSub: case kMul: case kMod: case kPow: case kDiv: case kIDiv:
-        op.kind = binary(op_of(i));
-        op.b = to16(static_cast<int>(b_of(i)));
-        op.c = to16(static_cast<int>(c_of(i)));
-        break;
-      case kUnm: op.kind = Kind::negate; op.b = to16(static_cast<int>(b_of(i))); break;
-      case kJmp: op.kind = Kind::jump; op.target = to16(op_index[static_cast<std::size_t>(pc + 1 + sj_of(i))]); break;
       case kEq: case kLt: case kLe: case kEqK: case kEqI: case kLtI: case kLeI: case kGtI: case kGeI: {
         // Lua: if ((R[A] op operand) != k) skip the JMP that follows, else take it. Here:
-        // if ((b op c) != expect) goto the instruction after the JMP.
-        const unsigned code = op_of(i);
-        const int reg_a = static_cast<int>(a);
-        int left = reg_a;
+        // if ((b op c) != expect) go to the instruction after the JMP.
+        if (!is_number(holds(a))) return fail;
+        if (pc + 1 >= count || op_of(chunk.code[u(pc + 1)]) != kJmp) return fail;
+        int left = operand(a);
         int right = 0;
-        if (code == kEq || code == kLt || code == kLe) right = static_cast<int>(b_of(i));
-        else if (code == kEqK) right = constant_slot(constant_value(b_of(i)));
-        else right = constant_slot(sb_of(i));
-        if (code == kGtI || code == kGeI) std::swap(left, right);  // R[A] > im is im < R[A]
-        op.kind = (code == kEq || code == kEqK || code == kEqI) ? Kind::branch_eq
-                  : (code == kLt || code == kLtI || code == kGtI) ? Kind::branch_lt
-                                                                  : Kind::branch_le;
-        op.b = to16(left);
-        op.c = to16(right);
+        if (opcode == kEq || opcode == kLt || opcode == kLe) {
+          if (!is_number(holds(b_of(i)))) return fail;
+          right = operand(b_of(i));
+        } else if (opcode == kEqK) {
+          if (!is_number(constant_holds(b_of(i)))) return fail;
+          right = constant_slot(constant_value(b_of(i)));
+        } else {
+          right = constant_slot(sb_of(i));
+        }
+        if (opcode == kGtI || opcode == kGeI) std::swap(left, right);  // R[A] > im is im < R[A]
+        op.kind = (opcode == kEq || opcode == kEqK || opcode == kEqI) ? Kind::branch_eq
+                  : (opcode == kLt || opcode == kLtI || opcode == kGtI) ? Kind::branch_lt
+                                                                        : Kind::branch_le;
+        op.b = static_cast<std::uint16_t>(left);
+        op.c = static_cast<std::uint16_t>(right);
         op.expect = k_of(i);
-        op.target = to16(op_index[static_cast<std::size_t>(pc + 2)]);
+        flow(pc + 2, state);  // the target is set once the ops are numbered
         break;
       }
-      case kReturn: op.kind = Kind::give_back; op.c = to16(static_cast<int>(b_of(i)) - 1); break;
-      case kReturn0: op.kind = Kind::give_back; op.c = 0; break;
-      case kReturn1: op.kind = Kind::give_back; op.c = 1; break;
-      default: return std::nullopt;  // not reached: pass 1 refused it
+      case kReturn: case kReturn0: case kReturn1: {
+        const unsigned values = opcode == kReturn ? b_of(i) - 1 : opcode == kReturn1 ? 1u : 0u;
+        if (opcode == kReturn && b_of(i) == 0) return fail;  // as many values as on the stack
+        for (unsigned r = a; r < a + values; ++r) {
+          if (!is_number(holds(r))) return fail;
+        }
+        op.kind = Kind::give_back;
+        op.a = static_cast<std::uint16_t>(values);
+        if (values >= 1) op.b = static_cast<std::uint16_t>(operand(a));
+        if (values >= 2) op.c = static_cast<std::uint16_t>(operand(a + 1));
+        next = -1;
+        break;
+      }
+      default: return fail;
+    }
+    if (next >= 0 && !flow(next, state)) return fail;
+  }
+  if (reached[u(count)]) return fail;  // runs off the end
+
+  // Number the ops that are kept (a load is kept when some read of its register does not
+  // know the slot; MMBINs are never reached), then fill in the targets.
+  const auto kept = [&](int pc) {
+    return reached[u(pc)] && (planned[u(pc)].loads_into < 0 || read_unaliased[u(planned[u(pc)].loads_into)]);
+  };
+  std::vector<int> op_index(u(count) + 1, 0);
+  int numbered = 0;
+  for (int pc = 0; pc <= count; ++pc) {
+    op_index[u(pc)] = numbered;
+    if (pc < count && kept(pc)) ++numbered;
+  }
+  for (int pc = 0; pc < count; ++pc) {
+    if (!kept(pc)) continue;
+    Op op = planned[u(pc)].op;
+    const std::uint32_t i = chunk.code[u(pc)];
+    if (op.kind == Kind::jump) op.a = static_cast<std::uint16_t>(op_index[u(pc + 1 + sj_of(i))]);
+    if (op.kind == Kind::branch_lt || op.kind == Kind::branch_le || op.kind == Kind::branch_eq) {
+      op.a = static_cast<std::uint16_t>(op_index[u(pc + 2)]);
     }
     program.ops_.push_back(op);
   }
-  if (program.values_.size() > 0xffff) return std::nullopt;
-  if (!program.read_upvalues(L, function)) return std::nullopt;
+  Op end_invariants;
+  end_invariants.kind = Kind::give_back;
+  program.invariant_ops_.push_back(end_invariants);
+  if (program.values_.size() > 0xffff) return fail;
+  if (!program.read_upvalues(L, function)) return fail;
   return program;
 }
 
@@ -352,12 +378,14 @@ bool ForceProgram::read_upvalues(lua_State* L, int function_index) noexcept {
     if (!ok || (u.integer && std::fabs(value) > kExactIntegerLimit)) return false;
     values_[static_cast<std::size_t>(u.slot)] = value;
   }
+  double unused[2];
+  execute(invariant_ops_.data(), values_.data(), unused);
   return true;
 }
 
-int ForceProgram::run(double* results) noexcept {
-  double* v = values_.data();
-  const Op* ops = ops_.data();
+int ForceProgram::run(double* results) noexcept { return execute(ops_.data(), values_.data(), results); }
+
+int ForceProgram::execute(const Op* ops, double* v, double* results) noexcept {
   for (std::size_t pc = 0;;) {
     const Op& op = ops[pc++];
     switch (op.kind) {
@@ -385,19 +413,19 @@ int ForceProgram::run(double* results) noexcept {
       }
       case Kind::floor_div: v[op.a] = std::floor(v[op.b] / v[op.c]); break;
       case Kind::branch_lt:
-        if ((v[op.b] < v[op.c]) != op.expect) pc = op.target;
+        if ((v[op.b] < v[op.c]) != op.expect) pc = op.a;
         break;
       case Kind::branch_le:
-        if ((v[op.b] <= v[op.c]) != op.expect) pc = op.target;
+        if ((v[op.b] <= v[op.c]) != op.expect) pc = op.a;
         break;
       case Kind::branch_eq:
-        if ((v[op.b] == v[op.c]) != op.expect) pc = op.target;
+        if ((v[op.b] == v[op.c]) != op.expect) pc = op.a;
         break;
-      case Kind::jump: pc = op.target; break;
+      case Kind::jump: pc = op.a; break;
       case Kind::give_back:
-        if (op.c >= 1) results[0] = v[op.a];
-        if (op.c >= 2) results[1] = v[op.a + 1];
-        return op.c;
+        results[0] = v[op.b];
+        results[1] = v[op.c];
+        return op.a;
     }
   }
 }

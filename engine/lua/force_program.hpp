@@ -43,7 +43,7 @@ class ForceProgram {
   bool read_upvalues(lua_State* L, int function_index) noexcept;
 
   // The value of s.<field> for the next run.
-  void set_field(StateField field, double value) noexcept { values_[field_slot_[field]] = value; }
+  void set_field(StateField field, double value) noexcept { values_[field] = value; }
 
   // Runs the program; writes up to two results to `results` and returns how many values
   // the function returned (0, 1, 2 or more).
@@ -59,14 +59,13 @@ class ForceProgram {
  private:
   enum class Kind : std::uint8_t {
     copy, negate, add, sub, mul, div, mod, pow, floor_div,   // values[a] = values[b] op values[c]
-    branch_lt, branch_le, branch_eq,                         // if ((b op c) != expect) goto target
-    jump, give_back                                          // give_back: values[a], count c
+    branch_lt, branch_le, branch_eq,                         // if ((b op c) != expect) goto op a
+    jump, give_back                                          // jump: to op a; give_back: count a, values b, c
   };
-  struct Op {
+  struct Op {  // 8 bytes: one load
     Kind kind{};
     bool expect{};
     std::uint16_t a{}, b{}, c{};
-    std::uint16_t target{};
   };
   struct Upvalue {
     int index{};    // 1-based, for lua_getupvalue
@@ -74,10 +73,16 @@ class ForceProgram {
     bool integer{};  // the value was an integer at translation
   };
 
+  // Runs ops from the first to a give_back on the values `v`; returns its count.
+  [[gnu::always_inline]] static inline int execute(const Op* ops, double* v, double* results) noexcept;
+
   std::vector<Op> ops_;
-  std::vector<double> values_;  // registers, then constants, upvalues, fields
+  // Ops whose operands are all constants and upvalues, taken out of the run: read_upvalues
+  // runs them once (they cannot fail: float arithmetic does not trap). Ends with a give_back.
+  std::vector<Op> invariant_ops_;
+  // The fields of s (slot = StateField), the registers, then constants and upvalues.
+  std::vector<double> values_;
   std::vector<Upvalue> upvalues_;
-  std::array<int, kFieldCount> field_slot_{};
 };
 
 }  // namespace hapscene::detail
