@@ -426,6 +426,7 @@ int ForceProgram::execute(const Op* ops, double* v, double* results) noexcept {
         results[0] = v[op.b];
         results[1] = v[op.c];
         return op.a;
+      default: __builtin_unreachable();  // every op is one of the kinds above
     }
   }
 }
