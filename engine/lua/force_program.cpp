@@ -17,7 +17,7 @@ namespace {
 
 // Opcodes (lopcodes.h, Lua 5.4).
 enum Opcode : unsigned {
-  kMove = 0, kLoadI = 1, kLoadF = 2, kLoadK = 3,
+  kMove = 0, kLoadI = 1, kLoadF = 2, kLoadK = 3, kLoadNil = 8,
   kGetUpval = 9, kGetField = 14,
   kAddI = 21, kAddK = 22, kSubK = 23, kMulK = 24, kModK = 25, kPowK = 26, kDivK = 27, kIDivK = 28,
   kAdd = 34, kSub = 35, kMul = 36, kMod = 37, kPow = 38, kDiv = 39, kIDiv = 40,
@@ -164,6 +164,7 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
   struct Planned {
     Op op;
     int loads_into = -1;  // the register a pure load writes
+    bool dropped = false;  // nothing to run (a nil that is never read as a number)
   };
   std::vector<Planned> planned(u(count));
   std::vector<bool> read_unaliased(u(registers), false);  // some read does not know the slot
@@ -218,6 +219,11 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
           op.b = static_cast<std::uint16_t>(operand(b_of(i)));
           define(a, holds(b_of(i)), kComputed);
         }
+        break;
+      case kLoadNil:  // `local a` before an `if` assigns it: reading it as nil is refused
+        if (a + b_of(i) >= static_cast<unsigned>(registers)) return fail;
+        for (unsigned r = a; r <= a + b_of(i); ++r) define(r, Holds::none, kComputed);
+        planned[u(pc)].dropped = true;
         break;
       case kLoadI: load(constant_slot(sbx_of(i)), Holds::integer); break;
       case kLoadF: load(constant_slot(sbx_of(i)), Holds::number); break;
@@ -281,9 +287,16 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
       }
       case kUnm:
         // -integer stays an integer, exact as a double within 2^53 (the only integers here).
+        // An integer is negated as 0 - n: integer zero has no sign, and -0.0 would have one.
         if (!is_number(holds(b_of(i)))) return fail;
-        op.kind = Kind::negate;
-        op.b = static_cast<std::uint16_t>(operand(b_of(i)));
+        if (holds(b_of(i)) == Holds::integer) {
+          op.kind = Kind::sub;
+          op.b = static_cast<std::uint16_t>(constant_slot(0.0));
+          op.c = static_cast<std::uint16_t>(operand(b_of(i)));
+        } else {
+          op.kind = Kind::negate;
+          op.b = static_cast<std::uint16_t>(operand(b_of(i)));
+        }
         define(a, holds(b_of(i)), kComputed);
         hoist_if_invariant();
         break;
@@ -342,7 +355,8 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
   // Number the ops that are kept (a load is kept when some read of its register does not
   // know the slot; MMBINs are never reached), then fill in the targets.
   const auto kept = [&](int pc) {
-    return reached[u(pc)] && (planned[u(pc)].loads_into < 0 || read_unaliased[u(planned[u(pc)].loads_into)]);
+    return reached[u(pc)] && !planned[u(pc)].dropped &&
+           (planned[u(pc)].loads_into < 0 || read_unaliased[u(planned[u(pc)].loads_into)]);
   };
   std::vector<int> op_index(u(count) + 1, 0);
   int numbered = 0;
