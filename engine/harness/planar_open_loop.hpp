@@ -63,6 +63,10 @@ class PlanarOpenLoop {
 // "x 12.00 mm, y 130.00 mm, v (0, 0) m/s, t 0 s": a point, for messages.
 std::string describe_planar_point(const Vec2& x_m, const Vec2& v_m_per_s, double t_s);
 
+// The grid step of 2-D validate's open-loop scan for script faults (README "Validation
+// in 2-D"), as test specs' region and fault scans use (kPlanarSpecGridStep_m).
+inline constexpr double kPlanarFaultScanStep_m = 1e-3;
+
 // The points of the scene's workspace box every `step_m` on both axes from its lower left
 // corner (x outer, y inner), those inside the workspace (its polygon, when it has one).
 std::vector<Vec2> planar_workspace_grid(const PlanarScene& scene, double step_m);
