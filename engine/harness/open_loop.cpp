@@ -272,8 +272,9 @@ OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bo
     return result;
   }
   // State: one instance reset before each point, when nothing faulted and it gives what
-  // fresh instances give at the spread points (the 2-D scan does the same).
-  if (!faulted && values_if_not_static) {
+  // fresh instances give at the spread points (the 2-D scan does the same); only when
+  // that needs fewer creations than fresh instances at every point.
+  if (!faulted && values_if_not_static && n > spread.size() + 1) {
     budget_.require(1 + spread.size());
     ScriptList scripts = create_instances();
     std::vector<bool> live_reset;

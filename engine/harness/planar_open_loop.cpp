@@ -166,8 +166,9 @@ PlanarOpenLoopScan PlanarOpenLoop::scan(const std::vector<Vec2>& x_m, const Vec2
   }
   // State: one instance reset before each point gives what fresh ones give when the
   // script's reset() restores all its state (the maze's proxy); checked against fresh
-  // instances at the spread points, and used only when nothing faulted and all agree.
-  if (!faulted) {
+  // instances at the spread points, and used only when nothing faulted and all agree
+  // (and when that needs fewer creations than fresh instances at every point).
+  if (!faulted && n > spread.size() + 1) {
     budget_.require(1 + spread.size());
     std::vector<bool> live_reset;
     std::vector<Vec2> reset_N = reset_each_N(x_m, v_m_per_s, &live_reset);
