@@ -108,4 +108,22 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const ValidateThresh
   return checks;
 }
 
+std::optional<CheckResult> scene_effects_check(const std::vector<std::string>& load_warnings) {
+  if (load_warnings.empty()) return std::nullopt;
+  std::string detail;
+  for (const std::string& warning : load_warnings) detail += (detail.empty() ? "" : "; ") + warning;
+  return CheckResult{"effects", static_cast<double>(load_warnings.size()), 0.0, "effects", false, detail};
+}
+
+std::optional<CheckResult> scene_script_check(const ScriptFaultLog& faults, std::uint64_t max_script_faults,
+                                              const std::string& scan) {
+  if (faults.empty()) return std::nullopt;
+  const std::vector<std::string>& lines = faults.lines();
+  std::string detail = scan + ": " + lines[0];
+  for (std::size_t i = 1; i < lines.size(); ++i) detail += "; " + lines[i];
+  const auto count = static_cast<double>(lines.size());
+  const auto allowed = static_cast<double>(max_script_faults);
+  return CheckResult{"script", count, allowed, "faults", count <= allowed, detail};
+}
+
 }  // namespace hapscene

@@ -1,6 +1,8 @@
 #pragma once
 // Verdicts: each measurement of a scenario against its threshold (the environment's
 // "validate" block or the defaults).
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,14 @@ inline constexpr const char* kCheckNames[] = {
 
 // "pass", "FAIL" or "not judged".
 const char* verdict_text(const CheckResult& check);
+
+// The checks of the scene as a whole, listed only when there is something to report (1-D
+// and 2-D validate alike): "effects", an effect that can never act (the scene's load
+// warnings; always failing), and "script", the faults an open-loop scan of the workspace
+// met (`scan` names the scan: "in the force-field scan").
+std::optional<CheckResult> scene_effects_check(const std::vector<std::string>& load_warnings);
+std::optional<CheckResult> scene_script_check(const ScriptFaultLog& faults, std::uint64_t max_script_faults,
+                                              const std::string& scan);
 
 std::vector<CheckResult> judge_scenario(const Scene& scene, const ValidateThresholds& thresholds,
                                         const ForceField& field, const ScenarioMetrics& metrics);

@@ -117,6 +117,14 @@ class OpenLoop {
   ScriptCreationBudget budget_;
 };
 
+// One instance per script in `scripts`, reset() before the call at each point of `x_m` in
+// order (at velocity v, run time t): what fresh instances give when the scripts' reset()
+// restores all their state, at two calls a point instead of a creation. `live[i]` is
+// false where a script had faulted at or before point i. (1-D and 2-D open loops.)
+template <int N>
+std::vector<Axes<N>> reset_each_point_N(const SceneOf<N>& scene, ScriptList& scripts, const std::vector<Axes<N>>& x_m,
+                                        const Axes<N>& v_m_per_s, double t_s, std::vector<bool>* live);
+
 // The script faults met in motion and over time, which a scan at rest (v = 0, t = 0)
 // misses: scan_faults over `x_m` at each of kMotionScanVelocities_m_per_s (both signs,
 // up to the fastest the handle can move) and kMotionScanTimes_s, skipping velocities or

@@ -81,6 +81,12 @@ std::vector<Vec2> PlanarOpenLoop::sequential_N(const std::vector<Vec2>& x_m, con
   return force_N;
 }
 
+std::vector<Vec2> PlanarOpenLoop::reset_each_N(const std::vector<Vec2>& x_m, const Vec2& v_m_per_s,
+                                               std::vector<bool>* live) {
+  ScriptList scripts = create_instances();
+  return reset_each_point_N(scene_, scripts, x_m, v_m_per_s, t_s_, live);
+}
+
 void PlanarOpenLoop::scan_faults(const std::vector<Vec2>& x_m, const Vec2& v_m_per_s) {
   if (!has_scripts() || x_m.empty()) return;
   budget_.set_points(x_m.size());
@@ -153,11 +159,30 @@ PlanarOpenLoopScan PlanarOpenLoop::scan(const std::vector<Vec2>& x_m, const Vec2
                             ": not a fixed force field";
   }
 
-  // The values: the forward pass when it is what fresh instances give, else fresh ones.
+  // The values: the forward pass when it is what fresh instances give.
   if (!faulted && !result.behaviour.stateful) {
     result.force_N = std::move(forward_N);
     return result;
   }
+  // State: one instance reset before each point gives what fresh ones give when the
+  // script's reset() restores all its state (the maze's proxy); checked against fresh
+  // instances at the spread points, and used only when nothing faulted and all agree
+  // (and when that needs fewer creations than fresh instances at every point).
+  if (!faulted && n > spread.size() + 1) {
+    budget_.require(1 + spread.size());
+    std::vector<bool> live_reset;
+    std::vector<Vec2> reset_N = reset_each_N(x_m, v_m_per_s, &live_reset);
+    bool agrees = live_reset.back();
+    for (const std::size_t i : spread) {
+      if (!agrees) break;
+      agrees = same_force(fresh_force_N(x_m[i], v_m_per_s, t_s_, false, 0.0), reset_N[i]);
+    }
+    if (agrees) {
+      result.force_N = std::move(reset_N);
+      return result;
+    }
+  }
+  // Else every point from fresh instances.
   budget_.require(n);
   result.force_N.resize(n);
   for (std::size_t i = 0; i < n; ++i) {

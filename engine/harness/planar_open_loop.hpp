@@ -35,8 +35,10 @@ class PlanarOpenLoop {
   // force_N at every point (at v), as the 1-D OpenLoop::scan finds it: one instance
   // called over the points in order and another in reverse order, and fresh ones at a few
   // spread points; when all agree and nothing faulted those are the values, else every
-  // point comes from fresh instances (charged to the budget). Faults are keyed by the
-  // point's index.
+  // point comes from fresh instances (charged to the budget), except for scripts that
+  // keep state and restore it in reset(): one instance reset before each point, when
+  // nothing faulted and it gives what fresh instances give at the spread points. Faults
+  // are keyed by the point's index.
   PlanarOpenLoopScan scan(const std::vector<Vec2>& x_m, const Vec2& v_m_per_s);
 
   // Records the faults fresh instances meet at every point at velocity v: one instance
@@ -52,6 +54,8 @@ class PlanarOpenLoop {
   ScriptList create_instances();
   std::vector<Vec2> sequential_N(const std::vector<Vec2>& x_m, const Vec2& v_m_per_s, bool forward,
                                  std::vector<bool>* live);
+  // One instance per script, reset() before the call at each point, in order.
+  std::vector<Vec2> reset_each_N(const std::vector<Vec2>& x_m, const Vec2& v_m_per_s, std::vector<bool>* live);
 
   const PlanarScene& scene_;
   double t_s_{};
@@ -62,6 +66,10 @@ class PlanarOpenLoop {
 
 // "x 12.00 mm, y 130.00 mm, v (0, 0) m/s, t 0 s": a point, for messages.
 std::string describe_planar_point(const Vec2& x_m, const Vec2& v_m_per_s, double t_s);
+
+// The grid step of 2-D validate's open-loop scan for script faults (README "Validation
+// in 2-D"), as test specs' region and fault scans use (kPlanarSpecGridStep_m).
+inline constexpr double kPlanarFaultScanStep_m = 1e-3;
 
 // The points of the scene's workspace box every `step_m` on both axes from its lower left
 // corner (x outer, y inner), those inside the workspace (its polygon, when it has one).

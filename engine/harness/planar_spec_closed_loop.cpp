@@ -7,15 +7,14 @@
 #include "engine/harness/planar_test_spec.hpp"
 #include "engine/harness/planar_validate.hpp"
 #include "engine/harness/spec_judging.hpp"
-#include "engine/load/environment.hpp"
 
 namespace hapscene {
 
-std::vector<SpecOutcome> closed_loop_outcomes_2d(const PlanarScene& scene, const std::string& environment_path,
+std::vector<SpecOutcome> closed_loop_outcomes_2d(const PlanarScene& scene, const ValidateThresholds& thresholds,
                                                  const PlanarClosedLoopExpectations& expectations,
                                                  std::vector<std::pair<std::string, std::string>>* faults) {
   HarnessOptions options = expectations.options;
-  options.thresholds = load_planar_environment(environment_path).validate;
+  options.thresholds = thresholds;
   if (expectations.start_m) options.free_start_planar_m = expectations.start_m;
   const PlanarValidationReport report = validate_planar_scene(scene, {}, options);
   for (const PlanarScenarioResult& s : report.scenarios) {

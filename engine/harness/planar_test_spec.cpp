@@ -194,13 +194,13 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
   result.spec_path = spec_path;
   result.environment_path = spec.environment_path;
   const std::string referrer = spec_path + ": /environment: ";
-  std::optional<PlanarScene> loaded;
+  std::optional<PlanarEnvironment> loaded;
   try {
-    loaded.emplace(load_planar_environment_file(spec.environment_path));
+    loaded.emplace(load_planar_environment(spec.environment_path));
   } catch (const InputError& error) {
     throw InputError(referrer + error.what());
   }
-  const PlanarScene& scene = *loaded;
+  const PlanarScene& scene = loaded->scene;
   const auto add = [&](std::string what, bool pass, std::string message) {
     result.outcomes.push_back({std::move(what), pass, std::move(message)});
     result.pass = result.pass && pass;
@@ -297,7 +297,7 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
   if (!spec.closed_loop.empty()) {
     std::vector<std::pair<std::string, std::string>> run_faults;
     std::vector<SpecOutcome> outcomes;
-    located([&] { outcomes = closed_loop_outcomes_2d(scene, spec.environment_path, spec.closed_loop, &run_faults); });
+    located([&] { outcomes = closed_loop_outcomes_2d(scene, loaded->validate, spec.closed_loop, &run_faults); });
     for (const auto& [message, line] : run_faults) add_fault(message, line);
     for (SpecOutcome& o : outcomes) add(std::move(o.what), o.pass, std::move(o.message));
   }

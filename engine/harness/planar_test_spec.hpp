@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/base/axes.hpp"
+#include "engine/harness/planar_open_loop.hpp"
 #include "engine/harness/scenario.hpp"
 #include "engine/harness/test_spec.hpp"
 #include "engine/scene/scene.hpp"
@@ -19,7 +20,7 @@ namespace hapscene {
 
 // The grid the 2-D region checks and the scans for faults use: every 1 mm of the
 // workspace box, on both axes.
-inline constexpr double kPlanarSpecGridStep_m = 1e-3;
+inline constexpr double kPlanarSpecGridStep_m = kPlanarFaultScanStep_m;
 
 // A scenario expectation of a 2-D spec, as written: the keys of the 1-D ones (README
 // "Test specs"); the scenario's name and the check names in `fail` are not checked
@@ -43,12 +44,12 @@ struct PlanarClosedLoopExpectations {
   bool empty() const { return !passes_validate && scenarios.empty(); }
 };
 
-// Judges the closed-loop expectations of a 2-D spec on its scene (loaded from
-// `environment_path`): one outcome per expectation ("/passes_validate",
+// Judges the closed-loop expectations of a 2-D spec on its scene (`thresholds`: its
+// environment's "validate" block): one outcome per expectation ("/passes_validate",
 // "/scenarios/N/..."), and each script fault met in the runs in `faults` (message, then
 // the line to print): one run of 2-D validate (all seven scenarios) with the spec's options
 // and the environment's "validate" thresholds.
-std::vector<SpecOutcome> closed_loop_outcomes_2d(const PlanarScene& scene, const std::string& environment_path,
+std::vector<SpecOutcome> closed_loop_outcomes_2d(const PlanarScene& scene, const ValidateThresholds& thresholds,
                                                  const PlanarClosedLoopExpectations& expectations,
                                                  std::vector<std::pair<std::string, std::string>>* faults);
 

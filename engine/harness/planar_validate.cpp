@@ -7,6 +7,8 @@
 
 #include "engine/base/format.hpp"
 #include "engine/devices/planar/simulated_planar.hpp"
+#include "engine/harness/pace.hpp"
+#include "engine/harness/planar_open_loop.hpp"
 #include "engine/run/runner.hpp"
 
 namespace hapscene {
@@ -61,13 +63,26 @@ PlanarValidationReport validate_planar_scene(const PlanarScene& scene, const std
   report.bound = planar_stiffness_bound(scene);
   report.shapes = planar_shape_list(scene).size();
   report.load_warnings = scene.load_warnings;
-  if (!scene.load_warnings.empty()) {
-    std::string detail;
-    for (const std::string& warning : scene.load_warnings) detail += (detail.empty() ? "" : "; ") + warning;
-    report.scene_checks.push_back(CheckResult{"effects", static_cast<double>(scene.load_warnings.size()), 0.0,
-                                              "effects", false, detail});
+  // Scripts too slow for the loop: nothing else is run (as in 1-D).
+  if (const std::optional<CheckResult> pace = check_script_pace(scene)) {
+    report.scene_checks.push_back(*pace);
     report.pass = false;
+    return report;
   }
+  // The scene as a whole: effects that never act, and the faults an open-loop scan of the
+  // workspace meets where no scenario may go (every kPlanarFaultScanStep_m at rest, t = 0,
+  // each fault with the first point that met it, as fresh instances give it).
+  if (auto effects = scene_effects_check(scene.load_warnings)) report.scene_checks.push_back(*effects);
+  if (scene.script_count > 0) {
+    PlanarOpenLoop open_loop(scene);
+    open_loop.scan_faults(planar_workspace_grid(scene, kPlanarFaultScanStep_m), Vec2{});
+    if (auto script = scene_script_check(open_loop.faults(), options.thresholds.max_script_faults,
+                                         printf_string("in the open-loop scan (every %g mm of the workspace, at rest)",
+                                                       kPlanarFaultScanStep_m * 1e3))) {
+      report.scene_checks.push_back(*script);
+    }
+  }
+  for (const CheckResult& check : report.scene_checks) report.pass = report.pass && check.pass;
   std::vector<PlanarValidateKind> chosen = kinds;
   if (chosen.empty()) {
     for (std::size_t i = 0; i < std::size(kPlanarValidateNames); ++i) chosen.push_back(static_cast<PlanarValidateKind>(i));

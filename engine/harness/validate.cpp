@@ -107,19 +107,10 @@ ValidationReport validate_scene(const Scene& scene, const std::vector<ScenarioKi
 
   // The scene as a whole: effects that never act, and faults met by the field scan.
   report.load_warnings = scene.load_warnings;
-  if (!scene.load_warnings.empty()) {
-    std::string detail;
-    for (const std::string& warning : scene.load_warnings) detail += (detail.empty() ? "" : "; ") + warning;
-    report.scene_checks.push_back(CheckResult{"effects", static_cast<double>(scene.load_warnings.size()), 0.0,
-                                              "effects", false, detail});
-  }
-  if (!report.field.faults.empty()) {
-    const std::vector<std::string>& faults = report.field.faults.lines();
-    std::string detail = "in the force-field scan: " + faults[0];
-    for (std::size_t i = 1; i < faults.size(); ++i) detail += "; " + faults[i];
-    const auto count = static_cast<double>(faults.size());
-    const auto allowed = static_cast<double>(options.thresholds.max_script_faults);
-    report.scene_checks.push_back(CheckResult{"script", count, allowed, "faults", count <= allowed, detail});
+  if (auto effects = scene_effects_check(scene.load_warnings)) report.scene_checks.push_back(*effects);
+  if (auto script = scene_script_check(report.field.faults, options.thresholds.max_script_faults,
+                                       "in the force-field scan")) {
+    report.scene_checks.push_back(*script);
   }
   for (const CheckResult& check : report.scene_checks) report.pass = report.pass && check.pass;
 

@@ -1,7 +1,9 @@
 #include "engine/load/effect_warnings.hpp"
 
 #include <limits>
+#include <type_traits>
 #include <utility>
+#include <variant>
 
 #include "engine/base/object_reader.hpp"
 #include "engine/base/units.hpp"
@@ -18,6 +20,42 @@ Gain gain_of(const Spring&) { return {"stiffness", "N/m"}; }
 Gain gain_of(const Wall&) { return {"stiffness", "N/m"}; }
 Gain gain_of(const Damper&) { return {"damping", "N*s/m"}; }
 Gain gain_of(const Texture&) { return {"damping", "N*s/m"}; }
+Gain gain_of(const PlanarSpring&) { return {"stiffness", "N/m"}; }
+Gain gain_of(const PlanarDamper&) { return {"damping", "N*s/m"}; }
+Gain gain_of(const PlanarTexture&) { return {"damping", "N*s/m"}; }
+Gain gain_of(const PlanarWall&) { return {"stiffness", "N/m"}; }
+Gain gain_of(const PlanarBox&) { return {"stiffness", "N/m"}; }
+Gain gain_of(const PlanarCircle&) { return {"stiffness", "N/m"}; }
+Gain gain_of(const PlanarPolygon&) { return {"stiffness", "N/m"}; }
+
+// An effect of either dimension whose gain is zero does nothing anywhere: its warning, or
+// empty. (A built-in effect that cannot act even in an unbounded workspace has a zero gain.)
+template <typename Type, typename Bound>
+std::string zero_gain_warning(const Type& effect, const Bound& unbounded_low, const Bound& unbounded_high) {
+  if (effect.can_act_within(unbounded_low, unbounded_high)) return "";
+  const Gain gain = gain_of(effect);
+  return std::string("(") + Type::kType + "): " + gain.key + " 0 " + gain.unit + ", so the " + Type::kType +
+         " never acts (\"enabled\": false leaves an effect out without a warning)";
+}
+
+// The warning for any effect of a scene of either dimension: scripts never (their force
+// is known only by running them), a zero gain, then what the type's own check adds
+// (`placed`: the effect's solid beyond the workspace).
+template <typename Variant, typename Bound, typename Placed>
+std::string effect_warning(const Variant& effect, const Bound& unbounded_low, const Bound& unbounded_high,
+                           Placed placed) {
+  return std::visit(
+      [&](const auto& e) -> std::string {
+        using Type = std::decay_t<decltype(e)>;
+        if constexpr (std::is_same_v<Type, ScriptEffect>) {
+          return "";
+        } else {
+          std::string zero = zero_gain_warning(e, unbounded_low, unbounded_high);
+          return zero.empty() ? placed(e) : zero;
+        }
+      },
+      effect);
+}
 
 std::string interval(double low_m, double high_m) {
   return "[" + format_number(low_m) + ", " + format_number(high_m) + "] m";
@@ -69,27 +107,86 @@ std::string wall_warning(const Wall& wall, const nlohmann::json& written, const 
   return message;
 }
 
+// "[-0.07, 0.04] x [0.09, 0.165] m": a box of the plane.
+std::string box_text(const Vec2& low_m, const Vec2& high_m) {
+  return "[" + format_number(low_m[0]) + ", " + format_number(high_m[0]) + "] x [" + format_number(low_m[1]) + ", " +
+         format_number(high_m[1]) + "] m";
+}
+std::string point_text(const Vec2& p) { return "(" + format_number(p[0]) + ", " + format_number(p[1]) + ")"; }
+
+// The workspace a planar effect is judged against, named: the environment's own when it
+// set one (as in 1-D), and "box" when the device's workspace is a polygon (the effect is
+// judged against the polygon's bounding box).
+std::string planar_workspace_text(const PlanarScene& scene) {
+  const Vec2& low_m = scene.safety.workspace_min_m;
+  const Vec2& high_m = scene.safety.workspace_max_m;
+  const PlanarWorkspace& device = scene.device.limits.workspace;
+  if (device.is_box && (low_m != device.box_min_m || high_m != device.box_max_m)) {
+    return "the environment's safety workspace " + box_text(low_m, high_m) + " (/safety/workspace; the device's is " +
+           box_text(device.box_min_m, device.box_max_m) + ")";
+  }
+  if (!device.is_box && scene.safety.workspace_polygon_m.empty()) {
+    return "the environment's safety workspace " + box_text(low_m, high_m) + " (/safety/workspace)";
+  }
+  return std::string(device.is_box ? "the workspace " : "the box round the workspace ") + box_text(low_m, high_m);
+}
+
+// What a 2-D effect's solid is, for the warning ("the solid box [...] x [...] m").
+std::string solid_text(const PlanarWall& wall) {
+  return "its solid half-plane (the side of the line through " + point_text(wall.point_m) +
+         " m away from the normal " + point_text(wall.normal) + ")";
+}
+std::string solid_text(const PlanarBox& box) {
+  return box.solid_inside ? "the solid box " + box_text(box.min_m, box.max_m) : "";
+}
+std::string solid_text(const PlanarCircle& circle) {
+  return circle.solid_inside ? "the solid disc of radius " + format_number(circle.radius_m) + " m about " +
+                                   point_text(circle.center_m) + " m"
+                             : "";
+}
+std::string solid_text(const PlanarPolygon& polygon) {
+  return polygon.outline.solid_inside()
+             ? "the solid polygon of " + std::to_string(polygon.outline.edge_count()) + " points"
+             : "";
+}
+
+// A 2-D effect with a gain that still cannot act: its solid beyond the workspace box, or
+// (a cage) the workspace wholly inside its free part. Fields act everywhere.
+template <typename Type>
+std::string planar_placement_warning(const Type& e, const PlanarScene& scene) {
+  if constexpr (!Type::kUsesProxy) {
+    return "";
+  } else {
+    if (e.can_act_within(scene.safety.workspace_min_m, scene.safety.workspace_max_m)) return "";
+    const std::string workspace = planar_workspace_text(scene);
+    const std::string solid = solid_text(e);
+    if (solid.empty()) {
+      return std::string("(") + Type::kType + "): " + workspace + " lies wholly inside the " + Type::kType +
+             "'s free part (\"solid\": \"outside\"), so the " + Type::kType + " never acts";
+    }
+    const char* verb = std::is_same_v<Type, PlanarWall> ? " does not meet " : " lies wholly outside ";
+    return std::string("(") + Type::kType + "): " + solid + verb + workspace + ", so the " + Type::kType +
+           " never acts";
+  }
+}
+
 }  // namespace
 
 std::string inert_effect_warning(const Effect& effect, const nlohmann::json& written, const Scene& scene) {
-  return std::visit(
-      [&](const auto& e) -> std::string {
-        using Type = std::decay_t<decltype(e)>;
-        if constexpr (std::is_same_v<Type, ScriptEffect>) {
-          return "";  // a script's force is known only by running it
-        } else {
-          // A zero gain: the effect does nothing anywhere.
-          constexpr double kInfinity = std::numeric_limits<double>::infinity();
-          if (!e.can_act_within(-kInfinity, kInfinity)) {
-            const Gain gain = gain_of(e);
-            return std::string("(") + Type::kType + "): " + gain.key + " 0 " + gain.unit + ", so the " + Type::kType +
-                   " never acts (\"enabled\": false leaves an effect out without a warning)";
-          }
-          if constexpr (std::is_same_v<Type, Wall>) return wall_warning(e, written, scene);
-          return "";
-        }
-      },
-      effect);
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  return effect_warning(effect, -kInfinity, kInfinity, [&](const auto& e) -> std::string {
+    if constexpr (std::is_same_v<std::decay_t<decltype(e)>, Wall>) return wall_warning(e, written, scene);
+    return "";
+  });
+}
+
+std::string inert_effect_warning(const PlanarEffect& effect, const nlohmann::json&, const PlanarScene& scene) {
+  // A box beyond any workspace, finite so that the shapes' tests stay free of inf - inf.
+  constexpr double kFar_m = 1e300;
+  const Vec2 unbounded_low{{-kFar_m, -kFar_m}};
+  const Vec2 unbounded_high{{kFar_m, kFar_m}};
+  return effect_warning(effect, unbounded_low, unbounded_high,
+                        [&](const auto& e) -> std::string { return planar_placement_warning(e, scene); });
 }
 
 }  // namespace hapscene

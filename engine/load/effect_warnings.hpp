@@ -15,4 +15,10 @@ namespace hapscene {
 // `scene` must have its device and safety set.
 std::string inert_effect_warning(const Effect& effect, const nlohmann::json& written, const Scene& scene);
 
+// The same for a 2-D effect in a planar scene: a zero gain, a shape whose solid lies
+// wholly outside the workspace box ("(circle): the solid disc ... lies wholly outside the
+// workspace [...] x [...] m, so the circle never acts"), or a cage the workspace lies
+// wholly inside. The test is the one add_effect uses (can_act_within on the workspace box).
+std::string inert_effect_warning(const PlanarEffect& effect, const nlohmann::json& written, const PlanarScene& scene);
+
 }  // namespace hapscene

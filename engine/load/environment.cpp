@@ -322,6 +322,8 @@ PlanarScene compile_planar(const nlohmann::json& root, const std::string& file, 
     PlanarEffect effect;
     const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
     if (parse_planar_effect(effects[i], pointer, file, &effect, base_dir, &script_budget)) {
+      std::string warning = inert_effect_warning(effect, effects[i], scene);
+      if (!warning.empty()) scene.load_warnings.push_back(printable(file + ": " + pointer + " " + warning));
       add_effect(&scene, std::move(effect));
     }
   }
@@ -356,11 +358,17 @@ namespace {
 
 // A user's file: its warnings go to stderr at every load, whatever the command (scenes a
 // command builds from its own text, such as the bench's, keep theirs in the scene).
-Environment print_warnings(Environment environment) {
-  for (const std::string& warning : environment.scene.load_warnings) {
-    std::fprintf(stderr, "warning: %s\n", warning.c_str());
-  }
-  return environment;
+template <typename Loaded>
+Loaded print_warnings(Loaded loaded) {
+  const auto& warnings = [&]() -> const std::vector<std::string>& {
+    if constexpr (requires { loaded.scene; }) {
+      return loaded.scene.load_warnings;
+    } else {
+      return loaded.load_warnings;
+    }
+  }();
+  for (const std::string& warning : warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  return loaded;
 }
 
 }  // namespace
@@ -381,7 +389,7 @@ PlanarScene load_planar_environment_text(std::string_view json_text, const std::
 PlanarScene load_planar_environment_file(const std::string& path) {
   const std::filesystem::path file(path);
   const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
-  return load_planar_environment_text(read_text_file(path, kMaxJsonFileBytes), path, base_dir);
+  return print_warnings(load_planar_environment_text(read_text_file(path, kMaxJsonFileBytes), path, base_dir));
 }
 
 PlanarEnvironment compile_planar_environment(std::string_view json_text, const std::string& display_name,
@@ -395,7 +403,7 @@ PlanarEnvironment compile_planar_environment(std::string_view json_text, const s
 PlanarEnvironment load_planar_environment(const std::string& path) {
   const std::filesystem::path file(path);
   const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
-  return compile_planar_environment(read_text_file(path, kMaxJsonFileBytes), path, base_dir);
+  return print_warnings(compile_planar_environment(read_text_file(path, kMaxJsonFileBytes), path, base_dir));
 }
 
 Environment load_environment(const std::string& path) {

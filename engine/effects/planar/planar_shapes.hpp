@@ -153,7 +153,9 @@ struct PlanarPolygon {
     outline.step_proxy(in.x_m, friction, state);
     return proxy_force_N(stiffness_N_per_m, state.proxy_m, in.x_m);
   }
-  bool can_act_within(const Vec2&, const Vec2&) const noexcept { return stiffness_N_per_m != 0.0; }
+  // Solid inside: some of the polygon meets the box; a cage: some of the box lies outside
+  // the polygon. (An outline touching the box counts as meeting it.)
+  bool can_act_within(const Vec2& min_m, const Vec2& max_m) const noexcept;
 };
 
 }  // namespace hapscene
