@@ -176,7 +176,7 @@ TEST_CASE("planar bench: the command prints the 2-D table and goals after the 1-
   CHECK(one.out.find("polygon_1000") == std::string::npos);
 }
 
-TEST_CASE("planar bench: --callgrind runs the 2-D baseline and the built-in scene; Lua but for a spring, and no baseline, are refused") {
+TEST_CASE("planar bench: --callgrind runs the 2-D baseline and the built-in scene, Lua but for a spring, and no baseline, are refused") {
   const test::CliOutcome baseline = test::run_cli(
       "bench --callgrind environments/planar/haplink_box_inside.json --impl baseline --ticks 2000");
   CHECK(baseline.exit_code == 0);

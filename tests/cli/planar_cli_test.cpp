@@ -11,7 +11,7 @@
 
 using namespace hapscene::test;
 
-TEST_CASE("planar probe: one row per grid point with the exact header; the box pushes out through its nearest side") {
+TEST_CASE("planar probe: one row per grid point with the exact header, the box pushes out through its nearest side") {
   const CliOutcome probe = run_cli(
       "probe environments/planar/haplink_box_inside.json --x -30mm:-10mm:10mm --y 125mm:125mm:1mm --v 0.1,0");
   REQUIRE(probe.exit_code == 0);

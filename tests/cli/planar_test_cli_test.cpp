@@ -22,7 +22,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-TEST_CASE("planar test cli: a shipped 2-D spec passes; an unmet one fails with the pointer and the numbers") {
+TEST_CASE("planar test cli: a shipped 2-D spec passes, an unmet one fails with the pointer and the numbers") {
   const test::CliOutcome pass = test::run_cli("test environments/planar/haplink_box_inside.test.json");
   CAPTURE(pass.err);
   CHECK(pass.exit_code == 0);
@@ -113,7 +113,7 @@ TEST_CASE("planar test cli: probe and test of a 2-D script with a slow top level
   }
 }
 
-TEST_CASE("planar test cli: a slow top level without state still probes; a slow force() fails a spec at once") {
+TEST_CASE("planar test cli: a slow top level without state still probes, a slow force() fails a spec at once") {
   const test::ScratchFolder folder("planar_slow_cli");
   folder.write("slow_load.lua",
                "needs = {velocity = false, time = false}\n"

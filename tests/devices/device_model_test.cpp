@@ -78,7 +78,7 @@ TEST_CASE("device model: an MR sensor unwraps a jump across its period, an encod
   CHECK(sense_position_m(encoder, -250000, &encoder_state) == counts_to_position_m(encoder.kinematics, -250000));
 }
 
-TEST_CASE("device model: the linear duty law gives duty = torque / Km; the simulator inverts either law") {
+TEST_CASE("device model: the linear duty law gives duty = torque / Km, the simulator inverts either law") {
   nlohmann::json j = hapkit3_json();
   j["drive"]["duty_law"] = "linear";
   const DeviceProfile linear = profile_of(j);

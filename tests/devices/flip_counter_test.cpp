@@ -187,7 +187,7 @@ TEST_CASE("flip counter: smooth motion unwraps exactly as comparing neighbours d
   }
 }
 
-TEST_CASE("flip counter: garbage readings never overflow; the overflow is counted") {
+TEST_CASE("flip counter: garbage readings never overflow, the overflow is counted") {
   FlipCounter counter = hapkit_counter();
   for (const std::int32_t raw : {INT32_MIN, INT32_MAX, INT32_MIN, 0, INT32_MAX, -1, INT32_MIN}) counter.update(raw);
   CHECK(counter.overflows > 0);

@@ -7,7 +7,7 @@
 using namespace hapscene;
 using namespace hapscene::planar_test;
 
-TEST_CASE("planar parse: vectors in m or unit strings; defaults") {
+TEST_CASE("planar parse: vectors in m or unit strings, defaults") {
   const PlanarSpring spring = parse_as<PlanarSpring>(R"({"type": "spring", "stiffness": "0.2 N/mm", "center": ["10 mm", 0.14]})");
   CHECK(spring.stiffness_N_per_m == 200.0);
   CHECK(spring.center_m == v2(0.01, 0.14));

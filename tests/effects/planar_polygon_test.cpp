@@ -234,7 +234,7 @@ TEST_CASE("planar polygon: a run that starts inside follows the handle until it 
   CHECK(step(square, state, v2(0.019, 0.012))[0] == doctest::Approx(1000.0 * 0.001));
 }
 
-TEST_CASE("planar polygon: open loop is the nearest boundary point; closed loop agrees along normals") {
+TEST_CASE("planar polygon: open loop is the nearest boundary point, closed loop agrees along normals") {
   const PlanarPolygon u = make_polygon(u_shape(), true);
   CHECK(u.open_loop_proxy_m(v2(0.015, 0.02)) == v2(0.015, 0.02));      // in the notch: free
   CHECK(u.open_loop_proxy_m(v2(0.029, 0.015)) == v2(0.03, 0.015));     // near the right side

@@ -159,7 +159,7 @@ TEST_CASE("planar box: the closed-loop proxy stays on the side the handle came i
   CHECK(state.contact == ProxyContact::none);
 }
 
-TEST_CASE("planar box: a handle exactly on an edge is free; from there, in is caught") {
+TEST_CASE("planar box: a handle exactly on an edge is free, from there, in is caught") {
   const PlanarBox box = PlanarBox::make(v2(-0.02, 0.10), v2(0.02, 0.14), 400.0, true);
   PlanarProxyState state;
   CHECK(run(box, state, {v2(0.0, 0.09), v2(0.005, 0.10)}) == v2(0.0, 0.0));
@@ -219,7 +219,7 @@ TEST_CASE("planar circle: open loop, inside and outside, at the centre") {
   CHECK(ring.open_loop_force_N(at(0.0, 0.14))[1] == doctest::Approx(300.0 * -0.005));
 }
 
-TEST_CASE("planar circle: closed loop equals open loop after an approach; passive start; centre") {
+TEST_CASE("planar circle: closed loop equals open loop after an approach, passive start, centre") {
   const PlanarCircle disc{.center_m = v2(0.0, 0.12), .radius_m = 0.015, .stiffness_N_per_m = 300.0, .solid_inside = true};
   PlanarProxyState state;
   for (int k = 0; k <= 20; ++k) {  // along the normal through (0.02, 0.12) towards the centre

@@ -78,7 +78,7 @@ TEST_CASE("texture mirror: about the offset when one is given") {
   }
 }
 
-TEST_CASE("texture mirror: default false keeps today's fields; not a boolean is an error") {
+TEST_CASE("texture mirror: default false keeps today's fields, not a boolean is an error") {
   const Scene plain = test::scene_from(R"({"effects": [{"type": "texture", "width": "5 mm", "damping": 2}]})");
   CHECK_FALSE(only_texture(plain).mirror);
   CHECK(only_texture(plain).in_field(-0.0075));  // (-7.5 mm) mod 10 mm = 2.5 mm: a field

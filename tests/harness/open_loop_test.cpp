@@ -80,7 +80,7 @@ TEST_CASE("open loop: a fault is recorded once with file:line, and later points 
   CHECK(scan.force_N[3] == doctest::Approx(-0.5));  // x = 5 mm
 }
 
-TEST_CASE("open loop: a script that reads time is not a fixed field; t selects the instant") {
+TEST_CASE("open loop: a script that reads time is not a fixed field, t selects the instant") {
   const Scene scene = scene_from(script_scene("function force(s) return math.sin(2 * math.pi * 80 * s.t) end"));
   OpenLoop at_zero(scene);
   const OpenLoopScan scan = at_zero.scan(grid(-0.01, 0.01, 0.005), 0.0);

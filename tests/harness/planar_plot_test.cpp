@@ -225,7 +225,7 @@ TEST_CASE("planar figure: a polygon workspace is drawn, and nothing is rendered 
         std::string::npos);
 }
 
-TEST_CASE("planar figure: the press scenario's paths, deterministic; the proxy stays out of the box") {
+TEST_CASE("planar figure: the press scenario's paths, deterministic, the proxy stays out of the box") {
   const PlanarScene scene = planar_scene(kBox, "box");
   HarnessOptions options;
   const PlanarScenario press = build_planar_scenario(PlanarScenarioKind::press, scene, options);
@@ -260,7 +260,7 @@ TEST_CASE("planar figure: the press scenario's paths, deterministic; the proxy s
   CHECK(svg.find(">commanded y</text>") != std::string::npos);
 }
 
-TEST_CASE("planar figure: every scenario runs and ends on its path; press needs a shape") {
+TEST_CASE("planar figure: every scenario runs and ends on its path, press needs a shape") {
   const PlanarScene scene = planar_scene(kBox);
   HarnessOptions options;
   for (const PlanarScenarioKind kind :
@@ -284,7 +284,7 @@ TEST_CASE("planar figure: every scenario runs and ends on its path; press needs 
   CHECK(count(between(svg, "<g id=\"quiver\"", "</g>"), "<path ") == 0);
 }
 
-TEST_CASE("planar trace: bounded memory; a long run keeps each bucket's first tick and its peak") {
+TEST_CASE("planar trace: bounded memory, a long run keeps each bucket's first tick and its peak") {
   PlanarTrace trace(nullptr, 1'000'000, -1);
   const std::size_t capacity = trace.records().capacity();
   TickStateOf<2> state;

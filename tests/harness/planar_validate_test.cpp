@@ -81,7 +81,7 @@ TEST_CASE("planar validate: every scenario builds from the scene and runs, the s
   CHECK(!planar_validate_kind_named("line"));
 }
 
-TEST_CASE("planar validate: press and swipe need shapes; the swipe finds the thin bar only") {
+TEST_CASE("planar validate: press and swipe need shapes, the swipe finds the thin bar only") {
   const PlanarEnvironment spring = planar_environment(R"({"type": "spring", "stiffness": 50, "center": ["-16 mm", "130 mm"]})");
   HarnessOptions options;
   CHECK(!build_planar_validate_scenario(PlanarValidateKind::press, spring.scene, options).applicable);

@@ -70,7 +70,7 @@ TEST_CASE("scenario: press has nothing to do without a stiff region") {
   CHECK_FALSE(press.applicable);
 }
 
-TEST_CASE("scenario: release lets go and watches; free has no hand; names parse") {
+TEST_CASE("scenario: release lets go and watches, free has no hand, names parse") {
   const Scene scene = load_environment_file(test::source_path("environments/spring.json"));
   const ForceField field = probe_force_field(scene, 200.0);
   const Scenario release = build_scenario(ScenarioKind::release, scene, field, HarnessOptions{});

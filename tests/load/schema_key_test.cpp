@@ -71,7 +71,7 @@ TEST_CASE("$schema: refused when not a string, in 1-D and 2-D environments") {
         }) == "test.json: /$schema: expected a string (the URI of this file's JSON Schema), got object");
 }
 
-TEST_CASE("$schema: only at a file's root; below it, it is an unknown key as before") {
+TEST_CASE("$schema: only at a file's root, below it, it is an unknown key as before") {
   CHECK(load_error(R"({"effects": [{"$schema": "x", "type": "spring", "stiffness": 100}]})") ==
         "test.json: /effects/0/$schema: unknown key \"$schema\"");
   CHECK(load_error(R"({"safety": {"$schema": "x"}, "effects": []})") ==

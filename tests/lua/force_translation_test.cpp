@@ -193,7 +193,7 @@ TEST_CASE("force translation: a bad result is the VM's fault, word for word") {
   CHECK(std::string(script->fault_message()).find("force(s) returned") != std::string::npos);
 }
 
-TEST_CASE("force translation: reset() changing an upvalue is followed; a non-number stops it") {
+TEST_CASE("force translation: reset() changing an upvalue is followed, a non-number stops it") {
   const char* source =
       "local K, n = 2.0, 0\n"
       "function reset() n = n + 1 if n == 4 then K = {} else K = K * 1.5 end end\n"

@@ -301,7 +301,7 @@ TEST_CASE("planar scripts: magnet.lua pulls towards its point as the 1-D magnet 
   CHECK(std::abs(script->planar_force_N(at(mx, my + R)).y_N) < 1e-12);
 }
 
-TEST_CASE("planar scripts: s has x, y, vx, vy, t, dt, read-only; needs hides what is not declared") {
+TEST_CASE("planar scripts: s has x, y, vx, vy, t, dt, read-only, needs hides what is not declared") {
   auto script = ScriptInstance::create(inline_program(
       "function force(s) return s.x + 10 * s.vx + 100 * s.t + 1000 * s.dt, s.y + 10 * s.vy end", 2));
   const PlanarScriptForce f = script->planar_force_N(PlanarScriptInput{1, 2, 3, 4, 5, 0.5});

@@ -26,7 +26,7 @@ TEST_CASE("errors: an error in top-level code fails the load") {
   CHECK(load_error("error({})") == "t.lua: error while loading (error object is a table value)");
 }
 
-TEST_CASE("errors: force must be a function; reset and needs are checked") {
+TEST_CASE("errors: force must be a function, reset and needs are checked") {
   CHECK(load_error("local function force(s) return 0 end") ==
         "t.lua: the script must define a global function force(s) that returns the force in N");
   CHECK(load_error("force = 3") == "t.lua: force must be a function, got a number");

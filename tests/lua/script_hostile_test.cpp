@@ -128,7 +128,7 @@ TEST_CASE("hostile: failed lookups caught by pcall cost one instruction each, no
   check_engine_still_works();
 }
 
-TEST_CASE("hostile: the reported error still gets its suggestion; a crowd of candidates gets none") {
+TEST_CASE("hostile: the reported error still gets its suggestion, a crowd of candidates gets none") {
   auto near = run_inline(
       "local stiffness = 1\nfunction force(s)\n  if s.x > 0 then return stifness end\n"
       "  return 0\nend");
@@ -268,7 +268,7 @@ TEST_CASE("hostile: weak tables, long and looping __index chains are refused at 
         "in scripts");
 }
 
-TEST_CASE("hostile: a metatable is frozen when set; getmetatable still answers the script's table") {
+TEST_CASE("hostile: a metatable is frozen when set, getmetatable still answers the script's table") {
   auto script = run_inline(
       "local mt = { __index = function() return 1 end }\n"
       "local t = setmetatable({}, mt)\n"

@@ -42,7 +42,7 @@ TEST_CASE("log: a message per tick is rate limited, and the drops are counted") 
                             " log messages dropped (at most 10 per second, bursts of 20)");
 }
 
-TEST_CASE("log: the queue is bounded; a full queue drops instead of blocking") {
+TEST_CASE("log: the queue is bounded, a full queue drops instead of blocking") {
   ScriptLimits limits;
   limits.log_messages_per_s = 1e9;
   limits.log_burst = 1000;

@@ -105,7 +105,7 @@ TEST_CASE("sandbox: reading an undefined global is an error, with a suggestion")
         "t.lua:1: math has no field 'sinn' (did you mean 'math.sin'?)");
 }
 
-TEST_CASE("sandbox: globals are declared while loading; new ones while running are errors") {
+TEST_CASE("sandbox: globals are declared while loading, new ones while running are errors") {
   // Top-level state in globals is fine and persists between calls.
   auto counter = run_inline("count = 0\nfunction force(s) count = count + 1 return count end");
   CHECK(counter->force_N(at(0.0)) == 1.0);

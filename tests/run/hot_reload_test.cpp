@@ -89,7 +89,7 @@ TEST_CASE("hot swap: without an exchange nothing changes") {
   CHECK(&swap.scene() == &scene);
 }
 
-TEST_CASE("reload watcher: a changed file is compiled off the loop and offered; a broken one is not" * doctest::test_suite("threaded")) {
+TEST_CASE("reload watcher: a changed file is compiled off the loop and offered, a broken one is not" * doctest::test_suite("threaded")) {
   const auto dir = std::filesystem::temp_directory_path() / ("hapscene_reload_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const auto env = dir / "env.json";

@@ -44,7 +44,7 @@ double largest_output_N(const std::string& csv, double from_s) {
 
 }  // namespace
 
-TEST_CASE("planar run reload: an edit cross-fades in; the summary counts it and names the tightened limit" *
+TEST_CASE("planar run reload: an edit cross-fades in, the summary counts it and names the tightened limit" *
           doctest::test_suite("threaded")) {
   test::ScratchFolder scratch("planar_reload_take");
   const auto env = scratch.write("env.json", spring_env("haplink"));
@@ -74,7 +74,7 @@ TEST_CASE("planar run reload: an edit cross-fades in; the summary counts it and 
   CHECK(largest_output_N(csv, 2.1) <= 1.0 + 1e-9);
 }
 
-TEST_CASE("planar run reload: an invalid edit, a 1-DOF file and another profile are each refused once; the scene runs on" *
+TEST_CASE("planar run reload: an invalid edit, a 1-DOF file and another profile are each refused once, the scene runs on" *
           doctest::test_suite("threaded")) {
   test::ScratchFolder scratch("planar_reload_refuse");
   const auto env = scratch.write("env.json", spring_env("haplink"));

@@ -29,7 +29,7 @@ const char* kSpring = R"("effects": [{"type": "spring", "stiffness": "100 N/m", 
 
 }  // namespace
 
-TEST_CASE("planar reload guard: a loosened limit is named per axis; the profile's content and name are compared") {
+TEST_CASE("planar reload guard: a loosened limit is named per axis, the profile's content and name are compared") {
   const PlanarScene running = planar(std::string(R"({"device": "haplink", "safety": {"max_force": "1 N",
       "workspace": {"min": ["-50 mm", "100 mm"], "max": ["20 mm", "160 mm"]}}, )") + kSpring + "}");
   CHECK(reload_refusal(running, running) == "");

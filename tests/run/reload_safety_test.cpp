@@ -110,7 +110,7 @@ TEST_CASE("reload watcher: a same-named profile file with looser limits is refus
                               ": a reload cannot loosen a safety limit (max_force_N 2 -> 6); restart the run to loosen one");
 }
 
-TEST_CASE("reload watcher: a load that never ends is abandoned; destroying the watcher does not wait for it" * doctest::test_suite("threaded")) {
+TEST_CASE("reload watcher: a load that never ends is abandoned, destroying the watcher does not wait for it" * doctest::test_suite("threaded")) {
   const Scene running = test::scene_from(R"({"effects": []})");
   test::ScratchFolder scratch("reload_hang");
   const auto env = scratch.write("env.json", R"({"effects": []})");

@@ -108,7 +108,7 @@ TEST_CASE("planar scene: the tick renders a spring through the linkage, J^T F to
   CHECK(state.command.motor[0].duty > 0.0);
 }
 
-TEST_CASE("planar safety: the force limit keeps the direction; outside the workspace nothing is rendered") {
+TEST_CASE("planar safety: the force limit keeps the direction, outside the workspace nothing is rendered") {
   const PlanarScene scene = planar(R"({"type": "spring", "stiffness": "1000 N/m", "center": ["30 mm", "160 mm"]})");
   SafetyCounters counters;
   const Vec2 x{{-0.02, 0.12}};
