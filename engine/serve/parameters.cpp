@@ -192,6 +192,7 @@ void set_pose_bounded_stiffness(const PlanarScene& scene, const PlanarShapeGeome
   p->bound_pose = true;
   p->bound_at_m = pose.x_m;
   p->bound_name = pose.name;
+  p->bound_N_per_m = pose.bound_N_per_m;
   p->range_from = printf_string("the stiffness bound %s at (%.1f, %.1f) mm, the lowest %s", pose.name,
                                 pose.x_m[0] * 1e3, pose.x_m[1] * 1e3, where.c_str());
 }
@@ -441,7 +442,8 @@ nlohmann::json parameter_to_json(const LiveParameter& p) {
           {"range_from", p.range_from},
           {"written", p.written},
           {"bound_at_m", p.bound_pose ? nlohmann::json::array({p.bound_at_m[0], p.bound_at_m[1]}) : nlohmann::json(nullptr)},
-          {"bound", p.bound_pose ? nlohmann::json(p.bound_name) : nlohmann::json(nullptr)}};
+          {"bound", p.bound_pose ? nlohmann::json(p.bound_name) : nlohmann::json(nullptr)},
+          {"bound_N_per_m", p.bound_pose ? nlohmann::json(p.bound_N_per_m) : nlohmann::json(nullptr)}};
 }
 
 template std::vector<LiveParameter> live_parameters<1>(const nlohmann::json&, const SceneOf<1>&);

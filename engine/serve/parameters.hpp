@@ -32,6 +32,7 @@ struct LiveParameter {
   bool bound_pose{};
   Vec2 bound_at_m{};
   std::string bound_name;    // "2b/T" or "2fc/D"
+  double bound_N_per_m{};    // the bound there (max, unless the value is above it)
 };
 
 // The parameters of `document` (the environment's JSON) compiled as `scene`, in file order.
