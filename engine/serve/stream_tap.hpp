@@ -62,7 +62,8 @@ class StreamTapOf final : public TickObserverOf<N> {
   StreamTapOf(std::size_t capacity, std::uint64_t stride, double rate_hz = 1000.0)
       : ring_(capacity),
         stride_(stride < 1 ? 1 : stride),
-        health_every_(static_cast<std::uint64_t>(std::max(1.0, std::floor(rate_hz / kLinkHealthPerSecond)))) {}
+        health_every_(static_cast<std::uint64_t>(
+            std::max(1.0, std::floor(rate_hz / kLinkHealthPerSecond / static_cast<double>(stride_))))) {}
 
   // The device whose links to report (null or a device without links: none). Before the run.
   void set_device(const DeviceStatus* device) noexcept { device_ = device; }
@@ -147,7 +148,7 @@ class StreamTapOf final : public TickObserverOf<N> {
 
   SpscRing<StreamSampleOf<N>> ring_;
   std::uint64_t stride_;
-  std::uint64_t health_every_;
+  std::uint64_t health_every_;  // in samples
   ScriptSpan running_;
   std::uint64_t reported_{};  // bit i: script i's fault was published
   StreamScriptFault fault_{};
