@@ -76,7 +76,7 @@ TEST_CASE("live view: a script fault inside the loop reaches the page with its l
   CHECK(run.summary.scripts[0].fault == message);
 }
 
-TEST_CASE("live view: a fault in each version of a script is its own fault; a parameter change brings the script back") {
+TEST_CASE("live view: a fault in each version of a script is its own fault (a parameter change makes new instances)") {
   test::ScratchFolder folder("live_faults_versions");
   folder.write("boom.lua", kBoomScript);
   const std::string file = folder.write("boom.json", kBoomScene).string();

@@ -39,7 +39,7 @@ double last_output_N(const std::vector<test::SseEvent>& events) {
 
 TEST_SUITE("threaded") {
 
-TEST_CASE("live view: every request needs the token; a wrong or missing one is refused with 403") {
+TEST_CASE("live view: every request needs the token, a wrong or missing one is refused with 403") {
   test::ScratchFolder folder("live_token");
   test::LiveRun<1> run(folder.write("spring.json", kSpring).string(), 2.0);
   httplib::Client client = run.client();
@@ -165,7 +165,7 @@ TEST_CASE("live view: the stream is Server-Sent Events, 30 to 120 a second, carr
   CHECK(events_per_s <= 120.0);
 }
 
-TEST_CASE("live view: a parameter change goes through load, check and cross-fade; a bad one gets the loader's message and changes nothing") {
+TEST_CASE("live view: a parameter change goes through load, check and cross-fade, a bad one gets the loader's message and changes nothing") {
   test::ScratchFolder folder("live_params");
   const std::string file = folder.write("spring.json", kSpring).string();
   test::LiveRun<1> run(file, 4.0);

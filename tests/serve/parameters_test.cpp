@@ -13,7 +13,7 @@
 
 namespace hapscene {
 
-TEST_CASE("json text edit: a value is replaced in place; everything else stays byte for byte") {
+TEST_CASE("json text edit: a value is replaced in place, everything else stays byte for byte") {
   const std::string text = "{\n  \"a\" : [1, {\"b\": \"10 mm\"}],\t\"c\":true }\n";
   CHECK(set_json_value(text, {"a", "1", "b"}, "\"12 mm\"") == "{\n  \"a\" : [1, {\"b\": \"12 mm\"}],\t\"c\":true }\n");
   CHECK(set_json_value(text, {"a", "0"}, "2.5") == "{\n  \"a\" : [2.5, {\"b\": \"10 mm\"}],\t\"c\":true }\n");
@@ -71,7 +71,7 @@ TEST_CASE("live parameters: built-in keys with defaults, script parameters, unit
         "value: expected a number (SI) or a string with a unit, got array");
 }
 
-TEST_CASE("--ui: PORT, HOST:PORT, or nothing; loopback unless told otherwise") {
+TEST_CASE("--ui: PORT, HOST:PORT, or nothing, loopback unless told otherwise") {
   CHECK(parse_ui_address("8080").port == 8080);
   CHECK(parse_ui_address("8080").host == "127.0.0.1");
   CHECK(parse_ui_address("8080").loopback);
