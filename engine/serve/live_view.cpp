@@ -66,7 +66,9 @@ bool same_token(const std::string& given, const std::string& token) {
 }
 
 json axes_json(double value) { return value; }
+json axes_json(const Vec2& value) { return json::array({value[0], value[1]}); }
 
+// The stream's name of a script fault's kind.
 const char* script_fault_kind_name(ScriptFault kind) {
   switch (kind) {
     case ScriptFault::none: return "none";
@@ -78,7 +80,6 @@ const char* script_fault_kind_name(ScriptFault kind) {
   }
   return "fault";
 }
-json axes_json(const Vec2& value) { return json::array({value[0], value[1]}); }
 
 std::filesystem::file_time_type stamp_of(const std::string& path) {
   std::error_code error;
