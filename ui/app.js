@@ -16,6 +16,8 @@
     last: null,       // the newest tick received
     plotted: null,    // the newest tick drawn, and when
     changes: 0, refused: 0, lastError: null, droppedEvents: 0,
+    faults: [],       // the script faults shown, each once (their messages)
+    links: [],        // the device's links, as the newest event gave them
   };
 
   let scene = null;
@@ -33,8 +35,10 @@
   async function loadScene() {
     const response = await fetch(api('/api/scene'));
     if (!response.ok) throw new Error((await response.json()).error);
-    setScene(await response.json());
+    const s = await response.json();
+    setScene(s);
     buildParams();
+    for (const f of s.script_faults || []) addFault(f);
   }
 
   function setScene(s) {
@@ -205,6 +209,7 @@
     if (drop > 0) for (const key of Object.keys(ticks)) ticks[key].splice(0, drop);
     status = d.status;
     showStatus(d);
+    for (const f of d.script_faults || []) addFault(f);
     for (const line of d.log) addLog(line);
   }
 
@@ -220,13 +225,44 @@
       ', dropped ' + d.dropped_events + ' events / ' + s.dropped_ticks + ' ticks';
     const rows = Object.entries(s.safety).map(([k, v]) => '<tr><th>' + k.replace(/_/g, ' ') + '</th><td>' + v + '</td></tr>');
     $('safety-table').innerHTML = rows.join('');
-    $('faults').innerHTML = '';
-    for (const i of s.scripts_disabled) {
-      const div = document.createElement('div');
-      div.className = 'error';
-      div.textContent = 'script ' + i + ' disabled by a fault (0 N from then on; the run summary says why)';
-      $('faults').appendChild(div);
-    }
+    $('st-scripts').textContent = 'disabled now: ' + s.scripts_disabled.length + ', faults in the run: ' + s.script_faults;
+    showLinks(s.links || []);
+  }
+
+  // A script fault, shown once (a reconnected stream or the scene's list may repeat it).
+  const faultsShown = new Set();
+  function addFault(f) {
+    if (faultsShown.has(f.number)) return;
+    faultsShown.add(f.number);
+    view.faults.push(f.message);
+    const div = document.createElement('div');
+    div.className = 'error fault';
+    div.textContent = 't ' + fmt(f.t_s, 6) + ' s, script ' + f.script + ' disabled (' + f.kind.replace(/_/g, ' ') +
+      ', 0 N from then on): ' + f.message;
+    $('faults').appendChild(div);
+  }
+
+  // The device's links: one column per board.
+  const LINK_ROWS = [
+    ['state', (l) => l.state], ['commands', (l) => l.commands], ['replies', (l) => l.replies],
+    ['round trip mean', (l) => l.round_trip_us.mean === null ? '-' : fmt(l.round_trip_us.mean, 4) + ' us'],
+    ['round trip max', (l) => fmt(l.round_trip_us.max, 4) + ' us'],
+    ['CRC / length errors', (l) => l.crc_errors + ' / ' + l.length_errors], ['bytes skipped', (l) => l.bytes_skipped],
+    ['lost frames', (l) => l.lost_frames], ['unanswered', (l) => l.unanswered], ['not sent whole', (l) => l.frames_not_sent],
+    ['stale reads', (l) => l.stale_reads], ['board timeouts', (l) => l.board_timeouts], ['implausible', (l) => l.implausible],
+    ['resyncs', (l) => l.resyncs], ['connects', (l) => l.connects], ['board resets', (l) => l.board_resets],
+    ['silences / vanished', (l) => l.silences + ' / ' + l.vanished],
+    ['board saw CRC errors', (l) => l.board_saw ? l.board_saw.crc_errors : '-'],
+    ['board saw lost frames', (l) => l.board_saw ? l.board_saw.lost_frames : '-'],
+  ];
+  function showLinks(links) {
+    view.links = links;
+    $('links-panel').hidden = links.length === 0;
+    if (links.length === 0) return;
+    const esc = (v) => String(v).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
+    const head = '<tr><th></th>' + links.map((l) => '<th>' + esc((l.joint ? 'joint ' + l.joint + ': ' : '') + (l.board || 'link')) + '</th>').join('') + '</tr>';
+    const rows = LINK_ROWS.map(([name, value]) => '<tr><th>' + name + '</th>' + links.map((l) => '<td>' + esc(value(l)) + '</td>').join('') + '</tr>');
+    $('links-table').innerHTML = head + rows.join('');
   }
 
   function addLog(line) {

@@ -12,11 +12,14 @@ class LatencyHistogram {
   void record(std::uint64_t ns) noexcept {
     ++buckets_[bucket_of(ns)];
     ++count_;
+    sum_ns_ += ns;
     if (ns > max_ns_) max_ns_ = ns;
   }
 
   std::uint64_t count() const noexcept { return count_; }
   std::uint64_t max_ns() const noexcept { return max_ns_; }
+  // The sum of the samples (a mean over an interval is the difference of two sums).
+  std::uint64_t sum_ns() const noexcept { return sum_ns_; }
 
   // The smallest recorded value v such that at least `fraction` of samples are <= v
   // (to the bucket's resolution; the bucket's upper edge, never above the max).
@@ -65,6 +68,7 @@ class LatencyHistogram {
 
   std::array<std::uint64_t, kBuckets> buckets_{};
   std::uint64_t count_{};
+  std::uint64_t sum_ns_{};
   std::uint64_t max_ns_{};
 };
 

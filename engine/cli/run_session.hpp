@@ -164,7 +164,7 @@ WatchedRun<N> run_watched(const SceneOf<N>& scene, DeviceOf<N>& device, const st
           std::move(watch));
     }
     if (view) {
-      view->start(watcher.get(), &monitor);
+      view->start(watcher.get(), &monitor, &device);
       if (!settings.ui->loopback) {
         std::fprintf(stderr, "warning: the live view listens on %s, not on loopback: anyone who can reach it "
                              "and has the token can change the forces\n", printable(settings.ui->host).c_str());

@@ -25,8 +25,57 @@ const char* link_event_name(LinkEventKind kind) noexcept {
   return "?";
 }
 
+const char* link_state_name(LinkState state) noexcept {
+  switch (state) {
+    case LinkState::handshaking: return "handshaking";
+    case LinkState::running: return "running";
+    case LinkState::silent: return "silent";
+    case LinkState::vanished: return "vanished";
+  }
+  return "?";
+}
+
+void fill_link_health(const BoardLink& link, LinkHealth* out) noexcept {
+  const LinkCounters& c = link.counters();
+  const hs_decoder& d = link.decoder();
+  LinkHealth h;
+  h.protocol = "hapscene";
+  h.state = link_state_name(link.state());
+  h.commands = c.commands_sent;
+  h.replies = c.states_received;
+  h.crc_errors = d.crc_errors;
+  h.length_errors = d.length_errors;
+  h.bytes_skipped = d.bytes_skipped;
+  h.lost_frames = c.seq_gaps;
+  h.unanswered = c.unanswered;
+  h.frames_not_sent = c.frames_dropped_tx;
+  h.stale_reads = c.stale_reads;
+  h.board_timeouts = c.timeouts_reported;
+  h.implausible = c.implausible_states;
+  h.connects = link.events_of(LinkEventKind::connected);
+  h.board_resets = link.events_of(LinkEventKind::board_reset);
+  h.silences = link.events_of(LinkEventKind::silent);
+  h.vanished = link.events_of(LinkEventKind::vanished);
+  const LatencyHistogram& rtt = link.round_trip_ns();
+  h.round_trip_count = rtt.count();
+  h.round_trip_sum_ns = rtt.sum_ns();
+  h.round_trip_max_ns = rtt.max_ns();
+  h.board_stats = link.has_stats();
+  if (h.board_stats) {
+    const hs_stats& s = link.board_stats();
+    h.board_frames = s.frames_ok;
+    h.board_crc_errors = s.crc_errors;
+    h.board_length_errors = s.length_errors;
+    h.board_bytes_skipped = s.bytes_skipped;
+    h.board_lost_frames = s.seq_gaps;
+    h.board_command_timeouts = s.timeouts;
+  }
+  *out = h;
+}
+
 void BoardLink::record(LinkEventKind kind, std::int64_t now_ns) noexcept {
   ++events_total_;
+  ++events_by_kind_[static_cast<std::size_t>(kind)];
   if (event_count_ < kMaxEvents) events_[event_count_++] = LinkEvent{now_ns, kind};
 }
 

@@ -86,6 +86,7 @@ enum class LinkEventKind {
   position_stale,    // no new STATE for max_position_age_ns
   implausible_state, // a STATE rejected (out of range, or an impossible jump)
 };
+inline constexpr std::size_t kLinkEventKinds = 9;
 
 struct LinkEvent {
   std::int64_t t_ns{};
@@ -152,6 +153,8 @@ class BoardLink {
   std::size_t event_count() const noexcept { return event_count_; }
   const LinkEvent& event(std::size_t i) const noexcept { return events_[i]; }
   std::uint64_t events_total() const noexcept { return events_total_; }
+  // Events of one kind so far (all of them, kept or only counted).
+  std::uint64_t events_of(LinkEventKind kind) const noexcept { return events_by_kind_[static_cast<std::size_t>(kind)]; }
 
   // True once after the link came back (or first came up): the loop should ramp in.
   bool take_restart() noexcept;
@@ -206,8 +209,13 @@ class BoardLink {
   std::array<LinkEvent, kMaxEvents> events_{};
   std::size_t event_count_{};
   std::uint64_t events_total_{};
+  std::array<std::uint64_t, kLinkEventKinds> events_by_kind_{};
 };
 
 const char* link_event_name(LinkEventKind kind) noexcept;
+const char* link_state_name(LinkState state) noexcept;
+
+// The link's counters as the live view shows them (link_health.hpp).
+void fill_link_health(const BoardLink& link, LinkHealth* out) noexcept;
 
 }  // namespace hapscene

@@ -6,9 +6,11 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "engine/base/axes.hpp"
 #include "engine/devices/kinematics.hpp"
+#include "engine/devices/link_health.hpp"
 
 namespace hapscene {
 
@@ -86,6 +88,12 @@ class DeviceStatus {
   // Lines for the run summary (link health, latency, board timing); called outside the
   // loop. Empty for devices with nothing to add.
   virtual std::string report() const { return {}; }
+  // The link counters so far, one entry per board (links 0 for a device without one).
+  // Never allocates or blocks; reads what read() and write() change, so it is called on
+  // the loop's thread (or when the loop is not running).
+  virtual void link_health(DeviceLinkHealth* out) const noexcept { out->links = 0; }
+  // A name per link, in link_health()'s order ("/dev/ttyACM0", "simulated board 1").
+  virtual std::vector<std::string> link_names() const { return {}; }
 };
 
 template <int N>

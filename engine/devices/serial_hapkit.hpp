@@ -36,6 +36,11 @@ class SerialHapkit final : public Device {
   PositionStatus position_status() const noexcept override { return link_.position_status(); }
   bool fault_seen() const noexcept override { return link_.fault_seen(); }
   std::string report() const override;
+  void link_health(DeviceLinkHealth* out) const noexcept override {
+    out->links = 1;
+    fill_link_health(link_, &out->link[0]);
+  }
+  std::vector<std::string> link_names() const override { return {port_.path()}; }
 
   const BoardLink& link() const noexcept { return link_; }
 

@@ -56,7 +56,33 @@ bool bound_at(const PlanarScene& scene, const Vec2& q_rad, PlanarPoseBound* out)
   return true;
 }
 
+enum class PoseJudged { none, held, bounded };
+
+// The bound with the handle at p: none (outside, unreachable, singular), held (past the
+// condition limit: left out and counted), or bounded.
+PoseJudged pose_bound_at(const PlanarScene& scene, const Vec2& p, PlanarPoseBound* pose) {
+  if (!within_workspace(scene.safety, p)) return PoseJudged::none;
+  Vec2 q{};
+  try {
+    q = planar_joint_angles_at(scene.device, p);
+  } catch (const InputError&) {
+    return PoseJudged::none;  // out of the linkage's reach
+  }
+  if (!bound_at(scene, q, pose)) return PoseJudged::none;
+  if (norm(pose->x_m - p) > 1e-6) return PoseJudged::none;  // the nearest reachable pose, not this one
+  // Past the condition limit the safety stage ramps force out: no wall is rendered there.
+  if (!(pose->condition <= scene.device_model.condition_limit)) return PoseJudged::held;
+  return PoseJudged::bounded;
+}
+
 }  // namespace
+
+bool planar_pose_bound_at(const PlanarScene& scene, const Vec2& p_m, PlanarPoseBound* out) {
+  PlanarPoseBound pose;
+  if (pose_bound_at(scene, p_m, &pose) != PoseJudged::bounded) return false;
+  *out = pose;
+  return true;
+}
 
 PlanarStiffnessBound planar_stiffness_bound(const PlanarScene& scene, int grid) {
   PlanarStiffnessBound result;
@@ -66,21 +92,10 @@ PlanarStiffnessBound planar_stiffness_bound(const PlanarScene& scene, int grid) 
   for (int row = 0; row < grid; ++row) {
     for (int column = 0; column < grid; ++column) {
       const Vec2 p{{low[0] + (high[0] - low[0]) * column / (grid - 1), low[1] + (high[1] - low[1]) * row / (grid - 1)}};
-      if (!within_workspace(scene.safety, p)) continue;
-      Vec2 q{};
-      try {
-        q = planar_joint_angles_at(scene.device, p);
-      } catch (const InputError&) {
-        continue;  // out of the linkage's reach
-      }
       PlanarPoseBound pose;
-      if (!bound_at(scene, q, &pose)) continue;
-      if (norm(pose.x_m - p) > 1e-6) continue;  // the nearest reachable pose, not this one
-      // Past the condition limit the safety stage ramps force out: no wall is rendered there.
-      if (!(pose.condition <= scene.device_model.condition_limit)) {
-        ++result.held_poses;
-        continue;
-      }
+      const PoseJudged judged = pose_bound_at(scene, p, &pose);
+      if (judged == PoseJudged::held) ++result.held_poses;
+      if (judged != PoseJudged::bounded) continue;
       if (result.poses.empty() || pose.bound_N_per_m < result.lowest.bound_N_per_m) result.lowest = pose;
       if (result.poses.empty() || pose.bound_N_per_m > result.highest.bound_N_per_m) result.highest = pose;
       result.poses.push_back(pose);

@@ -42,4 +42,9 @@ struct PlanarStiffnessBound {
 // The bound over a grid x grid grid spanning the scene's workspace box.
 PlanarStiffnessBound planar_stiffness_bound(const PlanarScene& scene, int grid = 11);
 
+// The bound with the handle at p_m, judged as a grid point is: false when p_m is outside
+// the workspace, out of the linkage's reach, singular or past the condition limit (no
+// wall is rendered there).
+bool planar_pose_bound_at(const PlanarScene& scene, const Vec2& p_m, PlanarPoseBound* out);
+
 }  // namespace hapscene

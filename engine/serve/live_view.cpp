@@ -68,6 +68,19 @@ bool same_token(const std::string& given, const std::string& token) {
 json axes_json(double value) { return value; }
 json axes_json(const Vec2& value) { return json::array({value[0], value[1]}); }
 
+// The stream's name of a script fault's kind.
+const char* script_fault_kind_name(ScriptFault kind) {
+  switch (kind) {
+    case ScriptFault::none: return "none";
+    case ScriptFault::error: return "error";
+    case ScriptFault::bad_return: return "bad_return";
+    case ScriptFault::instruction_budget: return "instruction_budget";
+    case ScriptFault::time_limit: return "time_limit";
+    case ScriptFault::memory_limit: return "memory_limit";
+  }
+  return "fault";
+}
+
 std::filesystem::file_time_type stamp_of(const std::string& path) {
   std::error_code error;
   const auto stamp = std::filesystem::last_write_time(path, error);
@@ -99,7 +112,7 @@ struct LiveViewOf<N>::Impl {
   Impl(const UiAddress& where, std::string environment_path, const Scene& scene)
       : address(where),
         path(std::move(environment_path)),
-        tap(kTapCapacity, live_stride(scene.rate_hz)),
+        tap(kTapCapacity, live_stride(scene.rate_hz), scene.rate_hz),
         period_s(scene.period_s) {
     base_dir = std::filesystem::path(path).parent_path().string();
     if (base_dir.empty()) base_dir = ".";
@@ -195,9 +208,12 @@ struct LiveViewOf<N>::Impl {
     }
   }
 
-  json scene_with_state() const {
+  json scene_with_state() {
     json out = scene_json;
     out["unsaved"] = text != file_text;
+    out["device"]["links"] = link_names;
+    std::lock_guard lock(clients_mutex);
+    out["script_faults"] = fault_history;
     return out;
   }
 
@@ -348,6 +364,61 @@ struct LiveViewOf<N>::Impl {
         });
   }
 
+  static json fault_json(const StreamScriptFault& f) {
+    return {{"number", f.number},
+            {"script", f.script},
+            {"t_s", f.t_s},
+            {"kind", script_fault_kind_name(f.kind)},
+            {"message", std::string(f.message, f.length)}};
+  }
+
+  // The links' counters for status.links (the pump's): one object per board, the round
+  // trip's mean over the replies since the previous event (fresh: new counters came).
+  json links_json(bool fresh) {
+    json out = json::array();
+    for (std::size_t i = 0; i < health.links && i < kMaxDeviceLinks; ++i) {
+      const LinkHealth& h = health.link[i];
+      LinkHealth& before = health_before.link[i];
+      json rtt{{"replies", h.round_trip_count}, {"max", static_cast<double>(h.round_trip_max_ns) * 1e-3}};
+      const std::uint64_t replies = h.round_trip_count - std::min(h.round_trip_count, before.round_trip_count);
+      rtt["mean"] = replies > 0 ? json(static_cast<double>(h.round_trip_sum_ns - before.round_trip_sum_ns) * 1e-3 /
+                                       static_cast<double>(replies))
+                                : (fresh ? json(nullptr) : last_mean_us[i]);
+      if (replies > 0) last_mean_us[i] = rtt["mean"];
+      json link{{"board", i < link_names.size() ? json(link_names[i]) : json(nullptr)},
+                {"joint", health.links > 1 ? json(i + 1) : json(nullptr)},
+                {"protocol", h.protocol},
+                {"state", h.state},
+                {"commands", h.commands},
+                {"replies", h.replies},
+                {"crc_errors", h.crc_errors},
+                {"length_errors", h.length_errors},
+                {"bytes_skipped", h.bytes_skipped},
+                {"lost_frames", h.lost_frames},
+                {"unanswered", h.unanswered},
+                {"frames_not_sent", h.frames_not_sent},
+                {"stale_reads", h.stale_reads},
+                {"board_timeouts", h.board_timeouts},
+                {"implausible", h.implausible},
+                {"resyncs", h.resyncs},
+                {"connects", h.connects},
+                {"board_resets", h.board_resets},
+                {"silences", h.silences},
+                {"vanished", h.vanished},
+                {"round_trip_us", rtt}};
+      link["board_saw"] = h.board_stats ? json{{"frames", h.board_frames},
+                                                {"crc_errors", h.board_crc_errors},
+                                                {"length_errors", h.board_length_errors},
+                                                {"bytes_skipped", h.board_bytes_skipped},
+                                                {"lost_frames", h.board_lost_frames},
+                                                {"command_timeouts", h.board_command_timeouts}}
+                                        : json(nullptr);
+      out.push_back(link);
+      before = h;
+    }
+    return out;
+  }
+
   // The pump: drains the tap kLiveEventsPerSecond times a second into one event for
   // every client.
   void pump() {
@@ -384,6 +455,14 @@ struct LiveViewOf<N>::Impl {
         previous = sample;
         have_previous = true;
       }
+      // Script faults, each once, as the tap copied them.
+      json new_faults = json::array();
+      StreamScriptFault fault;
+      while (tap.pop_fault(&fault)) new_faults.push_back(fault_json(fault));
+      // The device's links: the newest counters the tap took.
+      bool health_fresh = false;
+      while (tap.pop_link_health(&health)) health_fresh = true;
+      const json links = links_json(health_fresh);
       const auto now = Clock::now();
       const std::uint64_t ticks = tap.ticks();
       const double dt_s = std::chrono::duration<double>(now - last_time).count();
@@ -442,13 +521,20 @@ struct LiveViewOf<N>::Impl {
         if ((previous.scripts_disabled >> i) & 1u) disabled.push_back(i);
       }
       status["scripts_disabled"] = disabled;
+      status["script_faults"] = tap.faults_seen();
+      status["links"] = links;
       event["status"] = status;
+      event["script_faults"] = new_faults;
       // The event, with each client's own count of dropped events at the end. After the
       // run's last event ("event: end") nothing more is sent.
       std::lock_guard lock(clients_mutex);
       if (ended.load()) continue;
       event["log"] = json(pending_log);
       pending_log.clear();
+      for (const json& new_fault : new_faults) {
+        if (fault_history.size() >= kLiveClientQueue) fault_history.erase(fault_history.begin());
+        fault_history.push_back(new_fault);
+      }
       std::string body = event.dump();
       body.pop_back();  // the closing brace: each client's count follows
       const bool finishing = tap.finished() && !any && !ended;
@@ -494,7 +580,13 @@ struct LiveViewOf<N>::Impl {
   std::vector<std::string> pending_log;
   std::uint64_t dropped_events_total{};
 
+  std::vector<std::string> link_names;  // the device's boards (set before serving)
+  std::vector<json> fault_history;      // the run's script faults (the last kLiveClientQueue), with clients_mutex
+
   // The pump thread's own.
+  DeviceLinkHealth health{};
+  DeviceLinkHealth health_before{};
+  json last_mean_us[kMaxDeviceLinks]{};
   StreamSampleOf<N> previous{};
   bool have_previous{};
   double energy_J{};
@@ -541,10 +633,12 @@ void LiveViewOf<N>::stop() {
 }
 
 template <int N>
-void LiveViewOf<N>::start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor) {
+void LiveViewOf<N>::start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, const DeviceStatus* device) {
   Impl& s = *impl_;
   s.watcher = watcher;
   s.monitor = monitor;
+  s.tap.set_device(device);
+  if (device != nullptr) s.link_names = device->link_names();
   httplib::Server& server = s.server;
   // Every request needs the token, checked before routing.
   server.set_pre_routing_handler([&s](const httplib::Request& req, httplib::Response& res) {

@@ -19,6 +19,7 @@
 #include <memory>
 #include <string>
 
+#include "engine/devices/device.hpp"
 #include "engine/run/loop_monitor.hpp"
 #include "engine/run/reload_watcher.hpp"
 #include "engine/run/tick_observer.hpp"
@@ -50,8 +51,9 @@ class LiveViewOf {
   LiveViewOf& operator=(const LiveViewOf&) = delete;
 
   // Starts serving; parameter changes go to `watcher` (not null), the loop's timing is
-  // read from `monitor` (may be null).
-  void start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor);
+  // read from `monitor` (may be null), the link counters of `device` (may be null) are
+  // taken by the tap on the loop's thread. Before the run starts.
+  void start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, const DeviceStatus* device = nullptr);
 
   // Ends the streams (after their last event, "event: end", when the run has finished)
   // and stops serving; after it, nothing uses the watcher any more. Idempotent.

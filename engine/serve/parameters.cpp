@@ -7,6 +7,9 @@
 #include <cstdlib>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
+#include "engine/harness/planar_bound.hpp"
+#include "engine/harness/planar_shape_list.hpp"
 #include "engine/harness/validate.hpp"
 #include "engine/serve/json_text_edit.hpp"
 
@@ -105,6 +108,93 @@ Limits<N> limits_of(const SceneOf<N>& scene) {
     limits.stiffness_from = "the force limit reached at 5 mm of penetration";
   }
   return limits;
+}
+
+// Points of a 2-D shape's boundary, where its stiffness acts (a wall's line across the
+// workspace box; a box's or polygon's edges; a circle's rim), about every 2 mm.
+std::vector<Vec2> boundary_points(const PlanarShapeGeometry& shape, const PlanarScene& scene) {
+  constexpr double kStep_m = 0.002;
+  constexpr int kMaxPerEdge = 128;
+  std::vector<Vec2> out;
+  const auto along = [&](const Vec2& a, const Vec2& b) {
+    const int steps = std::clamp(static_cast<int>(std::ceil(norm(b - a) / kStep_m)), 1, kMaxPerEdge);
+    for (int k = 0; k <= steps; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / steps));
+  };
+  const Vec2 low = scene.safety.workspace_min_m;
+  const Vec2 high = scene.safety.workspace_max_m;
+  switch (shape.kind) {
+    case PlanarShapeKind::wall: {
+      // The line through point_m along the normal's perpendicular, clipped to the workspace box.
+      const Vec2 d{{-shape.normal[1], shape.normal[0]}};
+      double t0 = -INFINITY, t1 = INFINITY;
+      for (int i = 0; i < 2; ++i) {
+        if (std::fabs(d[i]) < 1e-12) {
+          if (shape.point_m[i] < low[i] || shape.point_m[i] > high[i]) return out;
+          continue;
+        }
+        const double a = (low[i] - shape.point_m[i]) / d[i], b = (high[i] - shape.point_m[i]) / d[i];
+        t0 = std::fmax(t0, std::fmin(a, b));
+        t1 = std::fmin(t1, std::fmax(a, b));
+      }
+      if (t0 <= t1) along(shape.point_m + d * t0, shape.point_m + d * t1);
+      break;
+    }
+    case PlanarShapeKind::circle: {
+      const int steps = std::clamp(static_cast<int>(std::ceil(2.0 * 3.14159265358979 * shape.radius_m / kStep_m)), 8, 4 * kMaxPerEdge);
+      for (int k = 0; k < steps; ++k) {
+        const double angle = 2.0 * 3.14159265358979 * k / steps;
+        out.push_back(shape.center_m + Vec2{{std::cos(angle), std::sin(angle)}} * shape.radius_m);
+      }
+      break;
+    }
+    case PlanarShapeKind::box:
+    case PlanarShapeKind::polygon:
+      for (std::size_t i = 0; i < shape.points_m.size(); ++i) along(shape.points_m[i], shape.points_m[(i + 1) % shape.points_m.size()]);
+      break;
+  }
+  return out;
+}
+
+// The smallest per-pose stiffness bound over `points` (false when none is a pose force is
+// rendered at).
+bool lowest_bound(const PlanarScene& scene, const std::vector<Vec2>& points, PlanarPoseBound* lowest) {
+  bool any = false;
+  for (const Vec2& p : points) {
+    PlanarPoseBound pose;
+    if (!planar_pose_bound_at(scene, p, &pose)) continue;
+    if (!any || pose.bound_N_per_m < lowest->bound_N_per_m) *lowest = pose;
+    any = true;
+  }
+  return any;
+}
+
+// A 2-D effect's stiffness range: 0 to the smallest stiffness bound where it acts (a
+// shape: on its boundary inside the workspace; a spring: anywhere in the workspace, the
+// grid validate uses), with that pose. `shape` null: a spring.
+void set_pose_bounded_stiffness(const PlanarScene& scene, const PlanarShapeGeometry* shape, LiveParameter* p) {
+  PlanarPoseBound pose;
+  bool found = false;
+  std::string where;
+  if (shape != nullptr) {
+    found = lowest_bound(scene, boundary_points(*shape, scene), &pose);
+    where = "on the shape's boundary";
+  }
+  if (!found) {
+    const PlanarStiffnessBound grid = planar_stiffness_bound(scene);
+    if (grid.poses.empty()) return;  // nowhere to judge: the force-limit range stays
+    pose = grid.lowest;
+    found = true;
+    where = shape != nullptr ? "in the workspace (the shape's boundary is where no force is rendered)"
+                             : "in the workspace (a spring acts everywhere)";
+  }
+  p->min = 0.0;
+  p->max = pose.bound_N_per_m;
+  p->bound_pose = true;
+  p->bound_at_m = pose.x_m;
+  p->bound_name = pose.name;
+  p->bound_N_per_m = pose.bound_N_per_m;
+  p->range_from = printf_string("the stiffness bound %s at (%.1f, %.1f) mm, the lowest %s", pose.name,
+                                pose.x_m[0] * 1e3, pose.x_m[1] * 1e3, where.c_str());
 }
 
 // The slider's range for a value of `quantity` on axis `axis` (-1: not a component).
@@ -219,6 +309,11 @@ std::vector<LiveParameter> live_parameters(const nlohmann::json& document, const
     if (const auto* script = std::get_if<ScriptEffect>(&effect)) programs.push_back(script->program.get());
   }
   std::size_t next_program = 0;
+  // 2-D: the scene's shapes, grouped by kind in file order (planar_shape_list), and how
+  // many of each kind the file's enabled effects have had so far.
+  std::vector<PlanarShapeGeometry> shapes;
+  if constexpr (N > 1) shapes = planar_shape_list(scene);
+  int seen_of_kind[4] = {0, 0, 0, 0};
   const auto effects = document.find("effects");
   if (effects == document.end() || !effects->is_array()) return out;
   for (std::size_t index = 0; index < effects->size(); ++index) {
@@ -248,6 +343,23 @@ std::vector<LiveParameter> live_parameters(const nlohmann::json& document, const
     const auto& specs = type_specs(N);
     const auto spec = std::find_if(specs.begin(), specs.end(), [&](const TypeSpec& s) { return type == s.type; });
     if (spec == specs.end()) continue;
+    // 2-D: this effect's shape in the scene (null: not a shape, or disabled).
+    const PlanarShapeGeometry* shape = nullptr;
+    if constexpr (N > 1) {
+      static const char* const kKinds[4] = {"wall", "box", "circle", "polygon"};
+      static const PlanarShapeKind kKindOf[4] = {PlanarShapeKind::wall, PlanarShapeKind::box, PlanarShapeKind::circle,
+                                                 PlanarShapeKind::polygon};
+      for (int k = 0; k < 4 && enabled; ++k) {
+        if (type != kKinds[k]) continue;
+        int rank = seen_of_kind[k]++;
+        for (const PlanarShapeGeometry& g : shapes) {
+          if (g.kind == kKindOf[k] && rank-- == 0) {
+            shape = &g;
+            break;
+          }
+        }
+      }
+    }
     for (const KeySpec& key : spec->keys) {
       const bool written = effect.contains(key.key);
       const int components = key.vector && N > 1 ? N : 1;
@@ -272,7 +384,13 @@ std::vector<LiveParameter> live_parameters(const nlohmann::json& document, const
           p.value = key.fallback;
         }
         if (!std::isfinite(p.value)) continue;
-        set_range(limits, key.key, shown_axis, &p);
+        if constexpr (N > 1) {
+          if (p.quantity == Quantity::stiffness_N_per_m && enabled && (shape != nullptr || type == "spring")) {
+            set_pose_bounded_stiffness(scene, shape, &p);
+          }
+        }
+        if (!p.bound_pose) set_range(limits, key.key, shown_axis, &p);
+        if (p.bound_pose && std::isfinite(p.value)) p.max = std::max(p.max, p.value);  // holds the value
         out.push_back(std::move(p));
       }
     }
@@ -322,7 +440,10 @@ nlohmann::json parameter_to_json(const LiveParameter& p) {
           {"min", p.min},
           {"max", p.max},
           {"range_from", p.range_from},
-          {"written", p.written}};
+          {"written", p.written},
+          {"bound_at_m", p.bound_pose ? nlohmann::json::array({p.bound_at_m[0], p.bound_at_m[1]}) : nlohmann::json(nullptr)},
+          {"bound", p.bound_pose ? nlohmann::json(p.bound_name) : nlohmann::json(nullptr)},
+          {"bound_N_per_m", p.bound_pose ? nlohmann::json(p.bound_N_per_m) : nlohmann::json(nullptr)}};
 }
 
 template std::vector<LiveParameter> live_parameters<1>(const nlohmann::json&, const SceneOf<1>&);

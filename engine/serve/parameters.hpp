@@ -28,6 +28,11 @@ struct LiveParameter {
   double max{};
   std::string range_from;    // what the range comes from ("the device's workspace", ...)
   bool written{};            // present in the file (else the loader's default)
+  // 2-D stiffness: the pose whose stiffness bound is the range's max (else none).
+  bool bound_pose{};
+  Vec2 bound_at_m{};
+  std::string bound_name;    // "2b/T" or "2fc/D"
+  double bound_N_per_m{};    // the bound there (max, unless the value is above it)
 };
 
 // The parameters of `document` (the environment's JSON) compiled as `scene`, in file order.

@@ -226,6 +226,40 @@ def check_planar(browser, hapscene, scratch, screenshots):
         end_run(process)
 
 
+BOOM_SCRIPT = """-- faults after 50 ms
+function force(s)
+  if s.t > 0.05 then error('boom') end
+  return 0
+end
+"""
+
+
+def check_script_fault(browser, hapscene, scratch):
+    """A script that faults inside the loop: the page shows its located message, once."""
+    with open(os.path.join(scratch, "boom.lua"), "w") as out:
+        out.write(BOOM_SCRIPT)
+    environment = os.path.join(scratch, "boom.json")
+    with open(environment, "w") as out:
+        json.dump({"name": "boom", "effects": [{"type": "spring", "stiffness": "100 N/m"},
+                                               {"type": "script", "file": "boom.lua"}]}, out)
+    process, url = start_run(hapscene, environment, [])
+    try:
+        browser.open(url)
+        shown = wait_for("the page to show the script's fault", lambda: browser.evaluate(
+            "Array.from(document.querySelectorAll('#faults .fault')).map((e) => e.textContent).join('\\n')"), timeout_s=60)
+        assert "boom.lua:3: boom" in shown, shown
+        # More events come; the fault stays shown once.
+        events = browser.evaluate("window.hapsceneView.events")
+        wait_for("more events", lambda: browser.evaluate("window.hapsceneView.events") > events + 20, timeout_s=30)
+        count = browser.evaluate("document.querySelectorAll('#faults .fault').length")
+        assert count == 1, count
+        scripts = browser.evaluate("document.getElementById('st-scripts').textContent")
+        assert scripts == "disabled now: 1, faults in the run: 1", scripts
+        print("the page shows the script fault once: " + shown)
+    finally:
+        end_run(process)
+
+
 def timing_lines(summary):
     keep = ("deadline misses", "tick compute", "wake-up jitter", "live view")
     return [line.strip() for line in summary.splitlines() if line.strip().startswith(keep)]
@@ -280,6 +314,7 @@ def main():
         try:
             check_one_dof(browser, args.hapscene, scratch, args.screenshots)
             check_planar(browser, args.hapscene, scratch, args.screenshots)
+            check_script_fault(browser, args.hapscene, scratch)
         except AssertionError:
             print("the page: " + page_state(browser), file=sys.stderr)
             raise

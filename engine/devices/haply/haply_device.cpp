@@ -78,6 +78,23 @@ bool HaplyDevice::fault_seen() const noexcept {
   return link_.counters().resyncs > handshake_resyncs_ || (watchdog_ && watchdog_->fired() > 0);
 }
 
+void HaplyDevice::link_health(DeviceLinkHealth* out) const noexcept {
+  const HaplyLinkCounters& c = link_.counters();
+  LinkHealth h;
+  h.protocol = "haply";
+  h.state = link_.state() == HaplyLinkState::running ? "running"
+            : link_.state() == HaplyLinkState::vanished ? "vanished" : "handshaking";
+  h.commands = c.frames_sent;
+  h.replies = c.replies;
+  h.frames_not_sent = c.frames_dropped;
+  h.bytes_skipped = c.bytes_dropped;
+  h.resyncs = c.resyncs;
+  h.silences = c.by_reason[static_cast<std::size_t>(HaplyResyncReason::silence)];
+  h.vanished = c.by_reason[static_cast<std::size_t>(HaplyResyncReason::vanished)];
+  out->links = 1;
+  out->link[0] = h;
+}
+
 std::string HaplyDevice::report() const {
   std::string text = link_.report(start_ns_);
   if (handshake_resyncs_ > 0) {

@@ -40,6 +40,8 @@ class HaplyDevice final : public DeviceOf<2> {
   PositionStatus position_status() const noexcept override { return link_.position_status(); }
   bool fault_seen() const noexcept override;
   std::string report() const override;
+  void link_health(DeviceLinkHealth* out) const noexcept override;
+  std::vector<std::string> link_names() const override { return {port_.path()}; }
 
   const HaplyLink& link() const noexcept { return link_; }
   pid_t watchdog_pid() const noexcept { return watchdog_ ? watchdog_->pid() : -1; }

@@ -45,6 +45,11 @@ class HilHapkit final : public Device, public SimulationTruth {
   bool fault_seen() const noexcept override { return link_.fault_seen() || board_.lost(); }
   bool lost() const noexcept override { return board_.lost(); }
   std::string report() const override;
+  void link_health(DeviceLinkHealth* out) const noexcept override {
+    out->links = 1;
+    fill_link_health(link_, &out->link[0]);
+  }
+  std::vector<std::string> link_names() const override { return {"simulated board"}; }
   const SimulationTruth* truth() const noexcept override { return this; }
 
   // The plant's true state (observers: `run --plot`, the recorder).

@@ -53,6 +53,11 @@ class HilPair final : public DeviceOf<2>, public SimulationTruthOf<2> {
   bool fault_seen() const noexcept override { return pair_.fault_seen() || lost(); }
   bool lost() const noexcept override { return joints_[0].board.lost() || joints_[1].board.lost(); }
   std::string report() const override;
+  void link_health(DeviceLinkHealth* out) const noexcept override {
+    out->links = 2;
+    for (std::size_t i = 0; i < 2; ++i) fill_link_health(joints_[i].link, &out->link[i]);
+  }
+  std::vector<std::string> link_names() const override { return {"simulated board 1", "simulated board 2"}; }
   const SimulationTruthOf<2>* truth() const noexcept override { return this; }
 
   // The plant's true state.

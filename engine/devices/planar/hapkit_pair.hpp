@@ -44,6 +44,11 @@ class HapkitPair final : public DeviceOf<2> {
   PositionStatus position_status() const noexcept override { return pair_.position_status(); }
   bool fault_seen() const noexcept override { return pair_.fault_seen(); }
   std::string report() const override;
+  void link_health(DeviceLinkHealth* out) const noexcept override {
+    out->links = 2;
+    for (std::size_t i = 0; i < 2; ++i) fill_link_health(boards_[i]->link, &out->link[i]);
+  }
+  std::vector<std::string> link_names() const override { return {paths_[0], paths_[1]}; }
 
   const BoardLink& link(int joint_index) const noexcept { return boards_[static_cast<std::size_t>(joint_index)]->link; }
   const BoardPair& pair() const noexcept { return pair_; }
