@@ -178,7 +178,7 @@ TEST_CASE("command line: short forms are the long options" * doctest::test_suite
   CHECK(run_cli("probe environments/wall.json --x -5mm:0:5mm").exit_code == 0);
 }
 
-TEST_CASE("command line: \"--duration 3 s\" reads as 3 s; a misspelt unit is named") {
+TEST_CASE("command line: \"--duration 3 s\" reads as 3 s, a misspelt unit is named") {
   const CliOutcome spaced = run_cli("run environments/wall.json --sim-time --quiet --duration 300 ms");
   CHECK(spaced.exit_code == 0);
   CHECK(contains(spaced.out, "  ticks            300 in 0.300 s of device time"));
