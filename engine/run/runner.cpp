@@ -94,6 +94,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   const OverrunLimits limits = overrun_limits_at(options, scene.rate_hz);
   summary.overrun_limits = limits;
   MissWindow miss_window(limits.window_deadlines);
+  TickWarmerOf<N> warmer(initial_scene);  // the dry tick in the spin before each deadline
 
   if (observer != nullptr) observer->on_start(state);
   const std::int64_t start_ns = monotonic_now_ns();
@@ -105,7 +106,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     }
     // Pace: wait for this tick's absolute deadline.
     if (real_time) {
-      wait_until(deadline_ns, [&] { warm_tick(hot_swap.scene(), state); });
+      wait_until(deadline_ns, [&] { warmer.warm(hot_swap.scene(), state); });
       const auto late_ns = static_cast<std::uint64_t>(monotonic_now_ns() - deadline_ns);
       summary.wake_late_ns.record(late_ns);
       if (options.monitor != nullptr) options.monitor->note_wake_late(late_ns);
@@ -121,6 +122,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     step(hot_swap.scene(), reading, &state, fade);
     device.write(state.command);
     const std::int64_t end_ns = monotonic_now_ns();
+    warmer.note_reading(reading);  // what the next warm replays
     summary.compute_ns.record(static_cast<std::uint64_t>(end_ns - begin_ns));
     if (options.monitor != nullptr) options.monitor->note_compute(static_cast<std::uint64_t>(end_ns - begin_ns));
     collect_script_garbage(&state);  // in the slack, after the command is out
