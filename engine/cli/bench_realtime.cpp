@@ -4,8 +4,8 @@
 // built-in JSON effects and as its Lua twin, three ways on the same recorded readings:
 //   hot   ticks back to back (caches and predictors warm: the tick-cost table's case)
 //   cold  the real loop without warming: sleep, wake, tick
-//   warm  the real loop as `run` does it: the spin before the deadline warms the working
-//         set (engine/run/warm_tick.hpp)
+//   warm  the real loop as `run` does it: the spin before the deadline replays the last
+//         tick dry, warming its code and data (engine/run/warm_tick.hpp)
 #include <sys/prctl.h>
 
 #include <algorithm>
@@ -54,10 +54,12 @@ Percentiles time_ticks(const Scene& scene, const std::vector<std::int32_t>& coun
   std::vector<double> compute_ns;
   compute_ns.reserve(counts.size());
   const auto period_ns = static_cast<std::int64_t>(scene.period_s * 1e9);
+  TickWarmer warmer(scene);
   std::int64_t deadline_ns = monotonic_now_ns() + period_ns;
   for (const std::int32_t raw : counts) {
     if (pacing == Pacing::cold) wait_until(deadline_ns, [] {});
-    if (pacing == Pacing::warm) wait_until(deadline_ns, [&] { warm_tick(scene, state); });
+    if (pacing == Pacing::warm) wait_until(deadline_ns, [&] { warmer.warm(scene, state); });
+    warmer.note_reading(raw);
     const std::int64_t begin_ns = monotonic_now_ns();
     step(scene, raw, &state);
     const std::int64_t end_ns = monotonic_now_ns();
@@ -105,7 +107,7 @@ int bench_realtime(Arguments& arguments) {
   print_out("build: %s\n", build_description().c_str());
   print_out("real-time tick: compute per tick in ns as `run` times it, %g s of recorded readings per row and "
             "pacing; hot = back to back, cold = sleep, wake, tick; warm = the same with the spin before the deadline "
-            "warming the tick's working set (what `run` does)\n", seconds);
+            "replaying the last tick dry to warm its code and data (what `run` does)\n", seconds);
   print_out("%s\n\n", realtime.note().c_str());
   print_out("%-10s %-16s %8s %8s %9s %9s %9s %9s\n", "environment", "implementation", "hot_p50", "hot_p99", "cold_p50",
             "cold_p99", "warm_p50", "warm_p99");

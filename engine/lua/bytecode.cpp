@@ -37,10 +37,12 @@ constexpr unsigned kOpLen = 52;
 constexpr unsigned kOpEq = 57;     // EQ, LT, LE: 57-59
 constexpr unsigned kOpLe = 59;
 constexpr unsigned kOpTestSet = 67;
+constexpr unsigned kOpReturn = 70;
 constexpr unsigned kOpClosure = 79;
 constexpr unsigned kOpVararg = 80;
 constexpr unsigned kOpExtraArg = 82;
 constexpr unsigned kOpcodeBits = 7;
+
 constexpr int kSignedJumpOffset = (1 << 24) - 1;  // OFFSET_sJ for a 25-bit sJ
 
 // The header lua_dump writes on this build (LUAC_VERSION 0x54, LUAC_FORMAT 0, LUAC_DATA,
@@ -53,6 +55,23 @@ constexpr unsigned kTagInteger = 3;
 constexpr unsigned kTagFloat = 3 | (1 << 4);
 constexpr unsigned kTagShortString = 4;
 constexpr unsigned kTagLongString = 4 | (1 << 4);
+
+// Whether an instruction only reads or computes (FunctionCode::reads_only): a list of what
+// is allowed, so an opcode added or forgotten counts as a write.
+bool reads_only(unsigned opcode) {
+  constexpr unsigned kOpLoadNil = 8;     // MOVE, LOADI, LOADF, LOADK, LOADKX, LOADFALSE,
+                                         // LFALSESKIP, LOADTRUE, LOADNIL: 0-8
+  constexpr unsigned kOpGetUpval = 9;
+  constexpr unsigned kOpGetTabUp = 11;   // GETTABUP, GETTABLE, GETI, GETFIELD: 11-14
+  constexpr unsigned kOpMmBinK = 48;     // arithmetic 21-45, MMBIN, MMBINI, MMBINK: 21-48
+  constexpr unsigned kOpGeI = 65;        // EQ .. GEI: 57-65
+  constexpr unsigned kOpTest = 66;       // TEST, TESTSET: 66-67
+  constexpr unsigned kOpReturn1 = 72;    // RETURN, RETURN0, RETURN1: 70-72
+  return opcode <= kOpLoadNil || opcode == kOpGetUpval || (opcode >= kOpGetTabUp && opcode <= kOpGetField) ||
+         (opcode >= kOpAddI && opcode <= kOpMmBinK) || (opcode >= kOpUnm && opcode <= kOpLen) ||
+         opcode == kOpJmp || (opcode >= kOpEq && opcode <= kOpGeI) || opcode == kOpTest ||
+         opcode == kOpTestSet || (opcode >= kOpReturn && opcode <= kOpReturn1) || opcode == kOpExtraArg;
+}
 
 int append_chunk(lua_State*, const void* bytes, std::size_t size, void* out) {
   static_cast<std::string*>(out)->append(static_cast<const char*>(bytes), size);
@@ -184,6 +203,7 @@ FunctionCode read_function_code(lua_State* L, int index) {
   if (!read_function_chunk(L, index, &chunk)) return code;
   bool loops = false;
   bool calls = false;
+  bool writes = false;
   bool first_escapes = chunk.vararg;  // `...` holds the arguments too
   for (const std::uint32_t instruction : chunk.code) {
     const unsigned opcode = instruction & ((1u << kOpcodeBits) - 1);
@@ -194,9 +214,11 @@ FunctionCode read_function_code(lua_State* L, int index) {
       if (jump < 0) loops = true;
     }
     if (!first_escapes && uses_first_register(opcode, instruction)) first_escapes = true;
+    if (!reads_only(opcode)) writes = true;
   }
   code.calls = calls;
   code.first_parameter_read_by_field_only = !first_escapes;
+  code.reads_only = !writes && !loops && !calls && !chunk.vararg;
   if (!loops) code.straight_line_length = static_cast<std::int64_t>(chunk.code.size());
   return code;
 }

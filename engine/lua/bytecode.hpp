@@ -46,6 +46,13 @@ struct FunctionCode {
   // written, copied, passed, returned, stored, captured or used as an operand, so the
   // value passed there cannot escape the call or be changed by it.
   bool first_parameter_read_by_field_only{};
+  // Every instruction only reads or computes: loads, reads of upvalues, globals and table
+  // fields, arithmetic, comparisons, tests, forward jumps and returns. None writes an
+  // upvalue, a global or a table field, makes a table, a string (concatenation) or a
+  // closure, calls, loops, closes a variable or touches varargs. Such a function, given
+  // the same arguments in the same state, does the same and leaves the state as it was
+  // (what a metamethod an operator reaches does is the caller's to rule out).
+  bool reads_only{};
 };
 // Reads the code of the Lua function at `index`; the defaults (can loop, calls, the
 // parameter may escape) when it is not a Lua 5.4 function.

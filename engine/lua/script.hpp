@@ -194,13 +194,26 @@ class ScriptInstance {
   // collector work each.
   void collect_garbage(int max_steps = 1) noexcept;
   // Brings the state's hot parts into the caches before a tick (the real-time loop calls
-  // it while it spins to the deadline): one protected call of a tiny function of the
-  // sandbox's own that reads s.x, through the same call path force() takes. Only when
-  // force() runs unhooked (no budget is charged: the function runs a fixed 3
-  // instructions); otherwise does nothing. Changes nothing the script can see; never
-  // allocates, throws or blocks. A translated force (force_translated) is run instead, its
-  // results dropped: it has no side effects.
+  // it while it spins to the deadline), without changing anything the script or the host
+  // can see; never allocates, throws or blocks. When force() only reads and computes (its
+  // code writes no upvalue, global or table and makes nothing: FunctionCode::reads_only)
+  // and runs unhooked, and s holds the input of the last call, which succeeded: a dry
+  // call, force(s) again with that s, whose results are dropped (it does exactly what that
+  // call did). Otherwise, when force() runs unhooked: one protected call of a tiny
+  // function of the sandbox's own that reads s.x (the call path). Else nothing.
+  // A translated force (force_translated) is run instead, its results dropped: it has no
+  // side effects.
   void warm() noexcept;
+  // The real-time loop's dry tick (engine/run/warm_tick.hpp) runs the tick's own code on
+  // a copy of the tick state, replaying the last tick. Between begin_dry_run() and
+  // end_dry_run(), force_N() and planar_force_N() repeat the last call through their own
+  // code when warm() would make a dry call and the input is bit for bit the one s holds
+  // (the replay's), and otherwise warm() and answer 0 N; either way nothing changes that
+  // the script or the host can see (no fault, no skipped call counted).
+  void begin_dry_run() noexcept;
+  void end_dry_run() noexcept;
+  // How many times warm() or a dry run called force again (tests, telemetry).
+  std::uint64_t dry_calls() const noexcept;
 
   bool disabled() const noexcept;
   // "scripts/bumps.lua:12: attempt to perform arithmetic on a nil value (global 'k')";

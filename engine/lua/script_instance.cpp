@@ -3,6 +3,7 @@
 // (force_N, reset) run under the instruction budget and allocation limits and turn any
 // failure into "disabled, 0 N, one message".
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -98,6 +99,43 @@ void set_state(lua_State* L, int key_slot, double value) {
   lua_rawset(L, detail::kSlotData);
 }
 
+// Bit for bit: -0.0 is not 0.0 here, and a NaN is itself.
+bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
+
+// Whether s.<key> holds exactly `value`.
+bool state_holds(lua_State* L, int key_slot, double value) {
+  lua_pushvalue(L, key_slot);
+  const bool number = lua_rawget(L, detail::kSlotData) == LUA_TNUMBER;
+  const double held = number ? lua_tonumber(L, -1) : 0.0;
+  lua_pop(L, 1);
+  return number && same_bits(held, value);
+}
+
+// Whether force(s) may be called again with s as it is, changing nothing (see
+// ScriptInstance::warm): it runs unhooked and only reads, and s holds the input of the
+// last call, which succeeded (any failed call disables; last_dt_s > 0 once a call wrote s).
+bool can_repeat_last_call(const ScriptVm* vm) {
+  return !vm->disabled && vm->unhooked && !vm->script_metamethods && vm->force_reads_only && vm->last_dt_s > 0.0;
+}
+
+// Whether a call with `input` would be the last call again: it may repeat, and every value
+// it would write into s is already there, bit for bit (t: the last call's, now_s).
+bool repeats_last_call(const ScriptVm* vm, const ScriptInput& input) {
+  lua_State* L = vm->L;
+  return can_repeat_last_call(vm) && same_bits(input.dt_s, vm->last_dt_s) && same_bits(input.t_s, vm->now_s) &&
+         state_holds(L, detail::kSlotKeyX, input.x_m) &&
+         (!vm->needs_velocity || state_holds(L, detail::kSlotKeyV, input.v_m_per_s)) &&
+         (!vm->needs_time || state_holds(L, detail::kSlotKeyT, input.t_s));
+}
+bool repeats_last_call(const ScriptVm* vm, const PlanarScriptInput& input) {
+  lua_State* L = vm->L;
+  return can_repeat_last_call(vm) && same_bits(input.dt_s, vm->last_dt_s) && same_bits(input.t_s, vm->now_s) &&
+         state_holds(L, detail::kSlotKeyX, input.x_m) && state_holds(L, detail::kSlotKeyY, input.y_m) &&
+         (!vm->needs_velocity || (state_holds(L, detail::kSlotKeyVx, input.vx_m_per_s) &&
+                                  state_holds(L, detail::kSlotKeyVy, input.vy_m_per_s))) &&
+         (!vm->needs_time || state_holds(L, detail::kSlotKeyT, input.t_s));
+}
+
 }  // namespace
 
 ScriptInstance::ScriptInstance(std::unique_ptr<detail::ScriptVm> vm) : vm_(std::move(vm)) {}
@@ -168,6 +206,7 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   const detail::FunctionCode force_code = detail::read_function_code(L, detail::kSlotForce);
   vm->force_straight_line = force_code.straight_line_length;
   vm->force_calls = force_code.straight_line_length == 0 || force_code.calls;
+  vm->force_reads_only = force_code.reads_only;
   // A force that only reads fields of `s` gets the data table itself (no proxy hop): it
   // cannot write it or let it escape, and an unknown field is still an error there.
   vm->state_slot = force_code.first_parameter_read_by_field_only ? detail::kSlotData : detail::kSlotState;
@@ -198,9 +237,17 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
 
 double ScriptInstance::force_N(const ScriptInput& input) noexcept {
   ScriptVm* vm = vm_.get();
-  if (vm->disabled) {
-    ++vm->skipped_calls;
-    return 0.0;
+  if (vm->disabled || vm->dry_run) [[unlikely]] {
+    if (!vm->dry_run) {
+      ++vm->skipped_calls;
+      return 0.0;
+    }
+    // The dry tick: the last call again, through this code, only when that changes nothing.
+    if (!repeats_last_call(vm, input)) {
+      warm();
+      return 0.0;
+    }
+    ++vm->dry_calls;
   }
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
@@ -271,9 +318,17 @@ void describe_number(double value, char* out, std::size_t size) {
 
 PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input) noexcept {
   ScriptVm* vm = vm_.get();
-  if (vm->disabled) {
-    ++vm->skipped_calls;
-    return {};
+  if (vm->disabled || vm->dry_run) [[unlikely]] {
+    if (!vm->dry_run) {
+      ++vm->skipped_calls;
+      return {};
+    }
+    // The dry tick: the last call again, through this code, only when that changes nothing.
+    if (!repeats_last_call(vm, input)) {
+      warm();
+      return {};
+    }
+    ++vm->dry_calls;
   }
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
@@ -419,13 +474,42 @@ void ScriptInstance::warm() noexcept {
     asm volatile("" : : "m"(results));
     return;
   }
-  if (vm->disabled || !vm->unhooked || vm->warm_ref == LUA_NOREF) return;
+  // Only between unhooked calls: a hook's count carries over from call to call, so code run
+  // under it would change when the next call's budget runs out.
+  if (vm->disabled || !vm->unhooked) return;
   lua_State* L = vm->L;
+  if (can_repeat_last_call(vm)) {
+    // A dry call: force(s) again, with s as the last call, which succeeded, left it. force
+    // runs unhooked and only reads (no write of an upvalue, a global or a table, nothing
+    // made, no call; no metamethod of the script's and no weak table in reach), so it
+    // does exactly what the last call did and leaves the state as that call left it. Its
+    // results are dropped. Before it, s.x is written with its own value: the next call's
+    // write path, with no change.
+    detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
+                       vm->force_straight_line, vm->force_calls);
+    lua_pushvalue(L, detail::kSlotKeyX);
+    lua_pushvalue(L, detail::kSlotKeyX);
+    lua_rawget(L, detail::kSlotData);
+    lua_rawset(L, detail::kSlotData);
+    lua_pushvalue(L, detail::kSlotForce);
+    lua_pushvalue(L, vm->state_slot);
+    lua_pcall(L, 1, LUA_MULTRET, 0);
+    detail::end_call(vm);
+    lua_settop(L, detail::kSlotCount);
+    ++vm->dry_calls;
+    return;
+  }
+  // Otherwise the call path alone: a function of the sandbox's own that reads s.x.
+  if (vm->warm_ref == LUA_NOREF) return;
   lua_rawgeti(L, LUA_REGISTRYINDEX, vm->warm_ref);
   lua_pushvalue(L, vm->state_slot);
   lua_pcall(L, 1, 1, 0);  // s.x exists: it cannot fail; its result is dropped either way
   lua_settop(L, detail::kSlotCount);
 }
+
+void ScriptInstance::begin_dry_run() noexcept { vm_->dry_run = true; }
+void ScriptInstance::end_dry_run() noexcept { vm_->dry_run = false; }
+std::uint64_t ScriptInstance::dry_calls() const noexcept { return vm_->dry_calls; }
 
 bool ScriptInstance::disabled() const noexcept { return vm_->disabled; }
 

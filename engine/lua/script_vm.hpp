@@ -67,6 +67,9 @@ struct ScriptVm {
   int force_line{};  // line where force is defined, for messages about its return value
   std::int64_t force_straight_line{};  // force's length when it cannot loop, else 0
   bool force_calls{true};  // force's own code has a call instruction (see bytecode.hpp)
+  bool force_reads_only{};  // force's own code only reads and computes (FunctionCode::reads_only)
+  bool dry_run{};           // between begin_dry_run() and end_dry_run() (ScriptInstance)
+  std::uint64_t dry_calls{};  // force calls made again by warm() or a dry run
   // What force(s) gets as `s`: the read-only proxy (kSlotState), or the data table itself
   // (kSlotData) when force's code only reads constant fields of s (see bytecode.hpp).
   int state_slot{kSlotState};
@@ -124,7 +127,10 @@ struct ScriptVm {
   std::uint64_t skipped_calls{};
   double fault_time_s{};
   double now_s{};  // s.t of the current call, for log() and fault_time_s
-  double last_dt_s{};  // s.dt as last written (it rarely changes, so it is written on change)
+  // s.dt as last written (it rarely changes, so it is written on change). 0 until the
+  // first force call writes s (s.dt starts at 0 and a tick's dt is positive): warm()
+  // reads "> 0 and not disabled" as "s holds the input of a force call that succeeded".
+  double last_dt_s{};
 
   // Garbage collection outside the calls.
   bool gc_cycle_in_progress{};

@@ -94,19 +94,23 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   const OverrunLimits limits = overrun_limits_at(options, scene.rate_hz);
   summary.overrun_limits = limits;
   MissWindow miss_window(limits.window_deadlines);
+  TickWarmerOf<N> warmer(initial_scene);  // the dry tick in the spin before each deadline
 
   if (observer != nullptr) observer->on_start(state);
   const std::int64_t start_ns = monotonic_now_ns();
   std::int64_t deadline_ns = start_ns;
   std::int64_t last_begin_ns = start_ns;  // start of the latest tick, for the loop rate
+  std::int64_t woke_ns = start_ns;        // real time: when the loop woke for the latest tick
+  std::uint32_t overrun_streak = 0;       // misses in a row the loop's own work made
   for (std::uint64_t tick = 0; tick < total_ticks; ++tick) {
     if (options.stop_requested != nullptr && options.stop_requested->load(std::memory_order_relaxed)) {
       break;
     }
     // Pace: wait for this tick's absolute deadline.
     if (real_time) {
-      wait_until(deadline_ns, [&] { warm_tick(hot_swap.scene(), state); });
-      const auto late_ns = static_cast<std::uint64_t>(monotonic_now_ns() - deadline_ns);
+      wait_until(deadline_ns, [&] { warmer.warm(hot_swap.scene(), state); });
+      woke_ns = monotonic_now_ns();
+      const auto late_ns = static_cast<std::uint64_t>(woke_ns - deadline_ns);
       summary.wake_late_ns.record(late_ns);
       if (options.monitor != nullptr) options.monitor->note_wake_late(late_ns);
     }
@@ -121,6 +125,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     step(hot_swap.scene(), reading, &state, fade);
     device.write(state.command);
     const std::int64_t end_ns = monotonic_now_ns();
+    warmer.note_reading(reading);  // what the next warm replays
     summary.compute_ns.record(static_cast<std::uint64_t>(end_ns - begin_ns));
     if (options.monitor != nullptr) options.monitor->note_compute(static_cast<std::uint64_t>(end_ns - begin_ns));
     collect_script_garbage(&state);  // in the slack, after the command is out
@@ -139,11 +144,23 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     if (real_time && monotonic_now_ns() > deadline_ns) {
       // Overran into the next tick: count every deadline passed without a command (a stall
       // of 50 periods is 50 misses, not one) and realign rather than burst to catch up.
-      const std::int64_t behind_ns = monotonic_now_ns() - deadline_ns;
+      const std::int64_t now_ns = monotonic_now_ns();
+      const std::int64_t behind_ns = now_ns - deadline_ns;
       const std::int64_t missed = behind_ns / period_ns + 1;
       summary.deadline_misses += static_cast<std::uint64_t>(missed);
       deadline_ns += missed * period_ns;
-      // Sustained overruns (deadlines missed in a row): warn, then fault to zero force and stop.
+      // Of these, the misses the loop's own work made (the tick, the device, the observers:
+      // those it would have made had it woken on time); the rest came from a late wake-up,
+      // a stall of the system (the OS or the VM did not run the loop), not of the loop.
+      const std::int64_t own_behind_ns = now_ns - woke_ns - period_ns;
+      const std::int64_t own_missed = own_behind_ns > 0 ? std::min(missed, own_behind_ns / period_ns + 1) : 0;
+      summary.stall_misses += static_cast<std::uint64_t>(missed - own_missed);
+      overrun_streak = own_missed > 0
+                           ? static_cast<std::uint32_t>(std::min<std::int64_t>(overrun_streak + own_missed, UINT32_MAX))
+                           : 0;
+      // Misses in a row of either kind warn; the loop's own fault to zero force and stop. An
+      // isolated stall of the system is counted and warned of, and faults only as frequent
+      // misses (the window below).
       const std::uint32_t streak_before = miss_streak;
       miss_streak = static_cast<std::uint32_t>(std::min<std::int64_t>(miss_streak + missed, UINT32_MAX));
       if (miss_streak > summary.longest_miss_streak) summary.longest_miss_streak = miss_streak;
@@ -155,7 +172,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
       miss_window.push(static_cast<std::uint64_t>(missed), /*missed=*/true);
       summary.most_misses_in_window = std::max(summary.most_misses_in_window, miss_window.misses());
       if (options.monitor != nullptr) options.monitor->note_misses(summary.deadline_misses, summary.overrun_warnings);
-      const bool streak_fault = miss_streak >= limits.fault_ticks;
+      const bool streak_fault = overrun_streak >= limits.fault_ticks;
       if (streak_fault || miss_window.misses() > limits.window_misses) {
         summary.overrun_fault = true;
         summary.overrun_fault_kind = streak_fault ? OverrunFault::streak : OverrunFault::window;
@@ -164,6 +181,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
       }
     } else {
       miss_streak = 0;
+      overrun_streak = 0;
       if (real_time) miss_window.push(1, /*missed=*/false);
     }
   }

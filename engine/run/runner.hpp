@@ -37,7 +37,10 @@ struct RunOptions {
   SceneExchangeOf<2>* reload_planar{nullptr};
   // Sustained overruns: this many deadline misses in a row (a single stall of k periods
   // counts k) is a warning, this many a fault: the device is commanded zero force and
-  // the run ends.
+  // the run ends. The fault counts only the misses the loop's own work made (the tick, the
+  // device, the observers took too long); misses after a late wake-up (the OS or the VM
+  // did not run the loop in time: an isolated stall of the system) are counted, warned of,
+  // and fault only as frequent misses (the window below).
   std::uint32_t overrun_warn_ticks{3};
   std::uint32_t overrun_fault_ticks{10};
   // Frequent overruns: more than overrun_window_misses deadline misses among the last
@@ -95,7 +98,7 @@ inline constexpr std::uint32_t kMaxOverrunWindow = 16384;
 // Why the loop stopped on overruns.
 enum class OverrunFault : std::uint8_t {
   none,
-  streak,  // overrun_fault_ticks deadline misses in a row
+  streak,  // overrun_fault_ticks deadline misses in a row, made by the loop's own work
   window,  // more than overrun_window_misses misses within overrun_window_deadlines
 };
 
@@ -121,6 +124,7 @@ struct RunSummaryOf {
   std::uint64_t script_errors{};          // scripts disabled by an error or a bad return value
   std::uint64_t script_budget_overruns{}; // scripts disabled by their instruction, time or memory limit
   std::uint64_t deadline_misses{};  // deadlines passed without a command (a tick overrunning k periods: k)
+  std::uint64_t stall_misses{};     // of these, the ones a late wake-up made (the system stalled the loop)
   LatencyHistogram compute_ns;      // read + step + write of each tick
   LatencyHistogram wake_late_ns;    // real time: how late each tick started
   std::vector<ScriptReport> scripts;  // one per script effect, in scene order

@@ -11,6 +11,7 @@
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/run/runner.hpp"
+#include "engine/run/warm_tick.hpp"
 #include "engine/scene/step.hpp"
 #include "tests/support.hpp"
 
@@ -96,4 +97,48 @@ TEST_CASE("step: a planar scene's 2-D script effects allocate nothing per tick")
   CHECK(state.script_calls == 2 * 11000);
   CHECK_FALSE(state.scripts[0]->disabled());
   CHECK_FALSE(state.scripts[1]->disabled());
+}
+
+TEST_CASE("warm tick: the real-time loop's dry tick allocates nothing, 1-D and 2-D") {
+  // Built-in effects and a script that is called again (it only reads).
+  const Scene scene = test::scene_from(R"({"effects": [
+    {"type": "wall", "position": 0.01, "stiffness": 500, "solid": "above"},
+    {"type": "script", "source": "function force(s) return -100 * s.x - 0.1 * s.v end"}]})");
+  TickState state = make_tick_state(scene);
+  TickWarmer warmer(scene);
+  const auto run_ticks = [&](int ticks) {
+    for (int i = 0; i < ticks; ++i) {
+      const auto raw = static_cast<std::int32_t>(500 + 400 * std::sin(0.003 * static_cast<double>(state.tick)));
+      warmer.warm(scene, state);
+      warmer.note_reading(raw);
+      step(scene, raw, &state);
+    }
+  };
+  run_ticks(1000);
+  long before = g_allocations.load();
+  run_ticks(10000);
+  CHECK(g_allocations.load() - before == 0);
+  CHECK(state.scripts[0]->dry_calls() > 10000);
+
+  const PlanarScene planar = load_planar_environment_text(R"({"device": "haplink", "effects": [
+    {"type": "box", "min": ["-40 mm", "110 mm"], "max": ["0 mm", "135 mm"], "stiffness": 200, "solid": "inside"},
+    {"type": "script", "source": "function force(s) return -10 * s.x, -10 * s.y end"}]})",
+                                                          "env.json", test::source_path(""));
+  TickStateOf<2> planar_state = make_tick_state(planar);
+  TickWarmerOf<2> planar_warmer(planar);
+  const auto run_planar_ticks = [&](int ticks) {
+    for (int i = 0; i < ticks; ++i) {
+      const double phase = 0.002 * static_cast<double>(planar_state.tick);
+      const PlanarReading reading =
+          planar_reading_for(planar.device_model.model, Vec2{{0.3 * std::sin(phase), 0.2 * std::cos(phase)}});
+      planar_warmer.warm(planar, planar_state);
+      planar_warmer.note_reading(reading);
+      step(planar, reading, &planar_state);
+    }
+  };
+  run_planar_ticks(1000);
+  before = g_allocations.load();
+  run_planar_ticks(10000);
+  CHECK(g_allocations.load() - before == 0);
+  CHECK(planar_state.scripts[0]->dry_calls() > 10000);
 }
