@@ -136,6 +136,27 @@ bool repeats_last_call(const ScriptVm* vm, const PlanarScriptInput& input) {
          (!vm->needs_time || state_holds(L, detail::kSlotKeyT, input.t_s));
 }
 
+// force(s) from its translation (force_program.hpp) on `input`: the count of values it
+// returned, the first two in `results`.
+int run_translated(ScriptVm* vm, const ScriptInput& input, double* results) {
+  detail::ForceProgram& program = *vm->force_program;
+  program.set_field(detail::kFieldX, input.x_m);
+  program.set_field(detail::kFieldV, input.v_m_per_s);
+  program.set_field(detail::kFieldT, input.t_s);
+  program.set_field(detail::kFieldDt, input.dt_s);
+  return program.run(results);
+}
+int run_translated(ScriptVm* vm, const PlanarScriptInput& input, double* results) {
+  detail::ForceProgram& program = *vm->force_program;
+  program.set_field(detail::kFieldX, input.x_m);
+  program.set_field(detail::kFieldY, input.y_m);
+  program.set_field(detail::kFieldVx, input.vx_m_per_s);
+  program.set_field(detail::kFieldVy, input.vy_m_per_s);
+  program.set_field(detail::kFieldT, input.t_s);
+  program.set_field(detail::kFieldDt, input.dt_s);
+  return program.run(results);
+}
+
 }  // namespace
 
 ScriptInstance::ScriptInstance(std::unique_ptr<detail::ScriptVm> vm) : vm_(std::move(vm)) {}
@@ -242,7 +263,14 @@ double ScriptInstance::force_N(const ScriptInput& input) noexcept {
       ++vm->skipped_calls;
       return 0.0;
     }
-    // The dry tick: the last call again, through this code, only when that changes nothing.
+    // The dry tick. A translated force has no side effects: it runs on any input (a
+    // result that is not plainly good is 0 N here; the VM is not asked).
+    if (vm->force_translated && !vm->disabled) {
+      ++vm->dry_calls;
+      double results[2];
+      return run_translated(vm, input, results) >= 1 && std::isfinite(results[0]) ? results[0] : 0.0;
+    }
+    // Else the last call again, through this code, only when that changes nothing.
     if (!repeats_last_call(vm, input)) {
       warm();
       return 0.0;
@@ -252,13 +280,8 @@ double ScriptInstance::force_N(const ScriptInput& input) noexcept {
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
   if (vm->force_translated) {
-    detail::ForceProgram& program = *vm->force_program;
-    program.set_field(detail::kFieldX, input.x_m);
-    program.set_field(detail::kFieldV, input.v_m_per_s);
-    program.set_field(detail::kFieldT, input.t_s);
-    program.set_field(detail::kFieldDt, input.dt_s);
     double results[2];
-    if (program.run(results) >= 1 && std::isfinite(results[0])) return results[0];
+    if (run_translated(vm, input, results) >= 1 && std::isfinite(results[0])) return results[0];
     vm->last_dt_s = std::numeric_limits<double>::quiet_NaN();  // the VM's s was not kept up to date
   }
   detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
@@ -323,7 +346,17 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
       ++vm->skipped_calls;
       return {};
     }
-    // The dry tick: the last call again, through this code, only when that changes nothing.
+    // The dry tick. A translated force has no side effects: it runs on any input (a
+    // result that is not plainly good is 0 N here; the VM is not asked).
+    if (vm->force_translated && !vm->disabled) {
+      ++vm->dry_calls;
+      double results[2];
+      if (run_translated(vm, input, results) == 2 && std::isfinite(results[0]) && std::isfinite(results[1])) {
+        return {results[0], results[1]};
+      }
+      return {};
+    }
+    // Else the last call again, through this code, only when that changes nothing.
     if (!repeats_last_call(vm, input)) {
       warm();
       return {};
@@ -333,15 +366,8 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
   if (vm->force_translated) {
-    detail::ForceProgram& program = *vm->force_program;
-    program.set_field(detail::kFieldX, input.x_m);
-    program.set_field(detail::kFieldY, input.y_m);
-    program.set_field(detail::kFieldVx, input.vx_m_per_s);
-    program.set_field(detail::kFieldVy, input.vy_m_per_s);
-    program.set_field(detail::kFieldT, input.t_s);
-    program.set_field(detail::kFieldDt, input.dt_s);
     double results[2];
-    if (program.run(results) == 2 && std::isfinite(results[0]) && std::isfinite(results[1])) {
+    if (run_translated(vm, input, results) == 2 && std::isfinite(results[0]) && std::isfinite(results[1])) {
       return {results[0], results[1]};
     }
     vm->last_dt_s = std::numeric_limits<double>::quiet_NaN();  // the VM's s was not kept up to date
@@ -472,6 +498,7 @@ void ScriptInstance::warm() noexcept {
     double results[2];
     vm->force_program->run(results);
     asm volatile("" : : "m"(results));
+    ++vm->dry_calls;
     return;
   }
   // Only between unhooked calls: a hook's count carries over from call to call, so code run

@@ -1,6 +1,9 @@
-// The dry run of the real-time loop's warming (ScriptInstance::begin_dry_run, warm): a
-// force that only reads is called again only with exactly the input of its last call,
-// which succeeded; anything else answers 0 N and changes nothing.
+// The dry run of the real-time loop's warming (ScriptInstance::begin_dry_run, warm): in
+// the VM, a force that only reads is called again only with exactly the input of its last
+// call, which succeeded; anything else answers 0 N and changes nothing. A translated force
+// (force_program.hpp) has no side effects at all and runs on any input. The VM cases turn
+// the translation off (`in_vm`), since the shipped spring and these small forces would
+// otherwise run translated.
 #include <cmath>
 
 #include "tests/lua/script_test_support.hpp"
@@ -16,8 +19,20 @@ constexpr const char* kSignOfZero =
     "needs = {velocity = false, time = false}\n"
     "function force(s) if 1 / s.x > 0 then return 1 end return -1 end";
 
+ScriptLimits in_vm() {
+  ScriptLimits limits;
+  limits.translate_force = false;
+  return limits;
+}
+
+ScriptProgram shipped_in_vm(const char* name) {
+  ScriptProgram program = test::compile_shipped(name);
+  program.limits.translate_force = false;
+  return program;
+}
+
 TEST_CASE("dry run: the last call again, only with the same input") {
-  auto script = ScriptInstance::create(test::compile_shipped("spring.lua"));
+  auto script = ScriptInstance::create(shipped_in_vm("spring.lua"));
   // Before any call s holds no call's input: nothing is called.
   script->begin_dry_run();
   CHECK(script->force_N(at(0.0)) == 0.0);
@@ -35,13 +50,13 @@ TEST_CASE("dry run: the last call again, only with the same input") {
   CHECK(script->force_N(at(0.01, 0.0, 0.5, 0.002)) == 0.0);  // another period
   script->end_dry_run();
   // The next real call is what it would have been.
-  auto plain = ScriptInstance::create(test::compile_shipped("spring.lua"));
+  auto plain = ScriptInstance::create(shipped_in_vm("spring.lua"));
   CHECK(script->force_N(at(0.02)) == plain->force_N(at(0.02)));
   CHECK_FALSE(script->disabled());
 }
 
 TEST_CASE("dry run: the same input means the same bits") {
-  auto script = run_inline(kSignOfZero);
+  auto script = run_inline(kSignOfZero, in_vm());
   CHECK(script->force_N(at(0.0)) == 1.0);
   script->begin_dry_run();
   CHECK(script->force_N(at(-0.0)) == 0.0);  // not repeated: -0.0 would change s.x
@@ -76,7 +91,7 @@ TEST_CASE("dry run: a disabled script counts no skipped call, a stateful one is 
 TEST_CASE("dry run: what counts as only reading") {
   // After one call at rest, warm() calls force again only when its code only reads.
   const auto called_again = [](const char* source) {
-    auto script = run_inline(source);
+    auto script = run_inline(source, in_vm());
     script->force_N(at(0.0));
     script->warm();
     return script->dry_calls() == 1;
@@ -94,6 +109,27 @@ TEST_CASE("dry run: what counts as only reading") {
   CHECK_FALSE(called_again("function force(s, ...) return 0 end"));                           // varargs
   CHECK_FALSE(called_again("function force(s) return math.abs(s.x) end"));                   // a call (hooked)
   CHECK_FALSE(called_again("function force(s) local f = 0 for i = 1, 2 do f = f + i end return f end"));  // a loop
+}
+
+TEST_CASE("dry run: a translated force runs on any input, changes nothing, and is counted") {
+  auto script = ScriptInstance::create(test::compile_shipped("spring.lua"));
+  REQUIRE(script->force_translated());
+  auto plain = ScriptInstance::create(test::compile_shipped("spring.lua"));
+  CHECK(script->force_N(at(0.01)) == plain->force_N(at(0.01)));
+  script->begin_dry_run();
+  CHECK(script->force_N(at(0.02, 0.0, 0.7)) == plain->force_N(at(0.02, 0.0, 0.7)));  // any input, the same bits
+  script->end_dry_run();
+  script->warm();
+  CHECK(script->dry_calls() == 2);
+  CHECK(script->force_N(at(-0.005)) == plain->force_N(at(-0.005)));
+  // A result that is not a finite number is 0 N in a dry run: the VM is not asked, no fault.
+  auto nan_beyond = run_inline("function force(s) if s.x > 0.02 then return 0 / 0 end return -s.x end");
+  REQUIRE(nan_beyond->force_translated());
+  nan_beyond->begin_dry_run();
+  CHECK(nan_beyond->force_N(at(0.03)) == 0.0);
+  nan_beyond->end_dry_run();
+  CHECK_FALSE(nan_beyond->disabled());
+  CHECK(nan_beyond->force_N(at(0.01)) == -0.01);
 }
 
 }  // namespace
