@@ -181,11 +181,18 @@ void count_pop_throughs(const std::vector<PlanarShapeGeometry>& shapes,
       const Vec2& x = records[k].x_true_m;
       const bool now = shape.depth_m(x) > 0.0;
       if (now && !inside) {
-        // Went in: the side of the solid the force pulls toward (its proxy's).
-        entry_out = outward_normal(shape, proxy_at(k));
+        // Went in: the side of the solid the force pulls toward (its proxy's; for a
+        // shape a script declares, which has no proxy, the side the handle came in by).
+        entry_out = outward_normal(shape, shape.declared ? x : proxy_at(k));
       } else if (!now && inside) {
-        // Came out: through the far side when the proxy is now across the solid.
-        if (dot(outward_normal(shape, proxy_at(k)), entry_out) < -0.5) {
+        // Came out: through the far side when the proxy is now across the solid (for a
+        // declared shape: when the scene's force on the last tick inside pushed toward
+        // the far side, so the rendering, not the hand alone, took the handle through).
+        const double across = shape.declared ? (norm(records[k - 1].requested_N) > 0.0
+                                                    ? dot(records[k - 1].requested_N / norm(records[k - 1].requested_N), entry_out)
+                                                    : 0.0)
+                                             : dot(outward_normal(shape, proxy_at(k)), entry_out);
+        if (across < -0.5) {
           if (m->pop_throughs == 0) {
             m->first_pop_x_m = x;
             m->first_pop_t_s = records[k].t_s;

@@ -119,7 +119,10 @@ PlanarScenarioMetrics measure_planar_run(const PlanarScene& scene, const std::ve
 // never crosses: a handle dragged through by the hand is pulled back toward the side it
 // came in by, and is not counted. `proxies_m` is records.size() x shapes; for a shape
 // rendered by its depth alone pass the handle's own positions (it then pops through
-// whenever it crosses). Fills pop_throughs and first_pop_*.
+// whenever it crosses). A shape a script declares (`declared`: no proxy) counts a
+// crossing when the scene's requested force on its last tick inside pointed across the
+// solid (more than 120 deg from the normal of the face it came in by): the script pushed
+// it through. Fills pop_throughs and first_pop_*.
 void count_pop_throughs(const std::vector<PlanarShapeGeometry>& shapes,
                         const std::vector<PlanarValidateRecord>& records, const std::vector<Vec2>& proxies_m,
                         PlanarScenarioMetrics* m);
