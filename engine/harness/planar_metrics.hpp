@@ -32,8 +32,9 @@ struct PlanarValidateRecord {
 };
 
 // Records every tick of a run into memory reserved up front, with each shape's proxy
-// (ticks x shapes, planar_shape_list's order), and stops the run when its ticks take
-// longer than the tick period (PaceWatch).
+// (ticks x shapes, planar_scenario_shapes' order; a declared shape has none and records
+// the measured handle), and stops the run when its ticks take longer than the tick period
+// (PaceWatch).
 class PlanarValidateRecorder final : public TickObserverOf<2> {
  public:
   PlanarValidateRecorder(const SimulatedPlanar* device, std::size_t capacity, std::size_t shapes, double period_s,
