@@ -217,6 +217,7 @@ bool read_shape(lua_State* L, int index, int number, ScriptVm* vm, ScriptShape* 
     return shape_error(vm, field, why);
   }
   lua_pop(L, 1);
+  type = box ? "box" : "circle";  // the messages below name the kind, not the popped string
   shape->kind = box ? ScriptShape::Kind::box : ScriptShape::Kind::circle;
   static constexpr const char* kBoxKeys[] = {"type", "min", "max", "solid"};
   static constexpr const char* kCircleKeys[] = {"type", "center", "radius", "solid"};
