@@ -177,15 +177,32 @@ void count_pop_throughs(const std::vector<PlanarShapeGeometry>& shapes,
     };
     bool inside = false;
     Vec2 entry_out{};
+    // A declared shape (a script's: no proxy) is judged by the direction of the scene's
+    // requested force instead: the first and the latest nonzero while the handle is in.
+    Vec2 first_pull{};
+    Vec2 last_pull{};
     for (std::size_t k = 0; k < records.size(); ++k) {
       const Vec2& x = records[k].x_true_m;
       const bool now = shape.depth_m(x) > 0.0;
       if (now && !inside) {
         // Went in: the side of the solid the force pulls toward (its proxy's).
-        entry_out = outward_normal(shape, proxy_at(k));
-      } else if (!now && inside) {
-        // Came out: through the far side when the proxy is now across the solid.
-        if (dot(outward_normal(shape, proxy_at(k)), entry_out) < -0.5) {
+        if (!shape.declared) entry_out = outward_normal(shape, proxy_at(k));
+        first_pull = Vec2{};
+        last_pull = Vec2{};
+      }
+      if (now && shape.declared) {
+        const double pull_N = norm(records[k].requested_N);
+        if (pull_N > 0.0) {
+          last_pull = records[k].requested_N / pull_N;
+          if (!(norm(first_pull) > 0.0)) first_pull = last_pull;
+        }
+      }
+      if (!now && inside) {
+        // Came out: through the far side when the proxy is now across the solid (a
+        // declared shape's: when the force last pulled across from where it first did).
+        const double across = shape.declared ? dot(last_pull, first_pull)
+                                             : dot(outward_normal(shape, proxy_at(k)), entry_out);
+        if (across < -0.5) {
           if (m->pop_throughs == 0) {
             m->first_pop_x_m = x;
             m->first_pop_t_s = records[k].t_s;

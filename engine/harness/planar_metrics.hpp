@@ -32,8 +32,9 @@ struct PlanarValidateRecord {
 };
 
 // Records every tick of a run into memory reserved up front, with each shape's proxy
-// (ticks x shapes, planar_shape_list's order), and stops the run when its ticks take
-// longer than the tick period (PaceWatch).
+// (ticks x shapes, planar_scenario_shapes' order; a declared shape has none and records
+// the measured handle), and stops the run when its ticks take longer than the tick period
+// (PaceWatch).
 class PlanarValidateRecorder final : public TickObserverOf<2> {
  public:
   PlanarValidateRecorder(const SimulatedPlanar* device, std::size_t capacity, std::size_t shapes, double period_s,
@@ -119,7 +120,11 @@ PlanarScenarioMetrics measure_planar_run(const PlanarScene& scene, const std::ve
 // never crosses: a handle dragged through by the hand is pulled back toward the side it
 // came in by, and is not counted. `proxies_m` is records.size() x shapes; for a shape
 // rendered by its depth alone pass the handle's own positions (it then pops through
-// whenever it crosses). Fills pop_throughs and first_pop_*.
+// whenever it crosses). A shape a script declares (`declared`: it has no proxy) is
+// judged by the direction of the scene's requested force while the handle is in it: a
+// crossing counts when the latest nonzero force points more than 120 deg from the first
+// (the script pushed the handle out through the far side; a handle it never pushed, or
+// always pushed the same way, is not counted). Fills pop_throughs and first_pop_*.
 void count_pop_throughs(const std::vector<PlanarShapeGeometry>& shapes,
                         const std::vector<PlanarValidateRecord>& records, const std::vector<Vec2>& proxies_m,
                         PlanarScenarioMetrics* m);

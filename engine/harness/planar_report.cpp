@@ -229,8 +229,11 @@ std::string planar_validation_figure_svg(const PlanarScene& scene, const PlanarV
   std::string what = "no scenario run";
   std::string proxy_label;
   if (shown != nullptr) {
+    // The proxy traced is a built-in shape's (a declared one has none); the run recorded
+    // one point per scenario shape (planar_scenario_shapes), the built-in ones first.
     const std::vector<PlanarShapeGeometry> shapes = planar_shape_list(scene);
     const int traced = nearest_shape_index(shapes, shown->scenario.start_m);
+    const std::size_t recorded_per_tick = shown->records.empty() ? 0 : shown->proxies_m.size() / shown->records.size();
     if (traced >= 0) proxy_label = std::string("proxy of the ") + planar_shape_kind_name(shapes[static_cast<std::size_t>(traced)].kind);
     // Per bucket of whole ticks, its first tick and the one with the largest force.
     const std::size_t n = shown->records.size();
@@ -241,7 +244,7 @@ std::string planar_validation_figure_svg(const PlanarScene& scene, const PlanarV
       t.t_s = r.t_s;
       t.x_true_m = r.x_true_m;
       t.x_m = r.x_m;
-      t.proxy_m = traced >= 0 ? shown->proxies_m[k * shapes.size() + static_cast<std::size_t>(traced)] : r.x_m;
+      t.proxy_m = traced >= 0 ? shown->proxies_m[k * recorded_per_tick + static_cast<std::size_t>(traced)] : r.x_m;
       t.requested_N = r.requested_N;
       t.output_N = r.output_N;
       t.hand_N = r.hand_N;

@@ -1,6 +1,9 @@
 #include "engine/harness/planar_shape_list.hpp"
 
 #include <cmath>
+#include <variant>
+
+#include "engine/effects/script_effect.hpp"
 
 namespace hapscene {
 
@@ -85,6 +88,34 @@ std::vector<PlanarShapeGeometry> planar_shape_list(const PlanarScene& scene) {
     for (int i = 0; i < polygon.outline.edge_count(); ++i) g.points_m.push_back(polygon.outline.vertex(i));
     g.outline = &polygon.outline;
     shapes.push_back(std::move(g));
+  }
+  return shapes;
+}
+
+std::vector<PlanarShapeGeometry> planar_scenario_shapes(const PlanarScene& scene) {
+  std::vector<PlanarShapeGeometry> shapes = planar_shape_list(scene);
+  for (const auto& effect : scene.effects) {
+    const auto* script = std::get_if<ScriptEffect>(&effect);
+    if (script == nullptr) continue;
+    for (const ScriptShape& declared : script->program->shapes) {
+      PlanarShapeGeometry g;
+      g.declared = true;
+      g.solid_inside = declared.solid_inside;
+      if (declared.kind == ScriptShape::Kind::box) {
+        g.kind = PlanarShapeKind::box;
+        const Vec2 low{{declared.min_m[0], declared.min_m[1]}};
+        const Vec2 high{{declared.max_m[0], declared.max_m[1]}};
+        // As the built-in box's outline: corners counter-clockwise from min.
+        g.points_m = {low, Vec2{{high[0], low[1]}}, high, Vec2{{low[0], high[1]}}};
+        g.owned_outline = std::make_shared<const PolygonOutline>(g.points_m, g.solid_inside);
+        g.outline = g.owned_outline.get();
+      } else {
+        g.kind = PlanarShapeKind::circle;
+        g.center_m = Vec2{{declared.center_m[0], declared.center_m[1]}};
+        g.radius_m = declared.radius_m;
+      }
+      shapes.push_back(std::move(g));
+    }
   }
   return shapes;
 }

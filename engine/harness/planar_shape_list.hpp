@@ -3,6 +3,7 @@
 // scenarios, in the order of the run's proxies (TickStateOf<2>::effect_runs: the bank's
 // groups wall, box, circle, polygon, each in the order of the file), so entry i is the
 // shape whose proxy is effect_runs[i].
+#include <memory>
 #include <vector>
 
 #include "engine/base/axes.hpp"
@@ -25,7 +26,11 @@ struct PlanarShapeGeometry {
   double radius_m{};                    // circle
   std::vector<Vec2> points_m;           // box: its corners counter-clockwise from min; polygon: its points
   const PolygonOutline* outline{};      // box, polygon: the scene's (valid while the scene lives)
-  double stiffness_N_per_m{};           // the effect's stiffness
+  double stiffness_N_per_m{};           // the effect's stiffness (0 for a declared shape)
+  // A shape a script declares (its `shapes`): it has no proxy of its own (the script
+  // renders itself), so the run records the handle in its place; its outline, if a box.
+  bool declared{};
+  std::shared_ptr<const PolygonOutline> owned_outline;
 
   // How deep p is in the shape's solid: the distance to the boundary, positive in the
   // solid (a wall's half-plane, a solid disc or box or polygon, or outside a cage),
@@ -38,6 +43,13 @@ struct PlanarShapeGeometry {
 };
 
 std::vector<PlanarShapeGeometry> planar_shape_list(const PlanarScene& scene);
+
+// What validate's scenarios press into, swipe across and release from: the built-in
+// shapes (planar_shape_list, so entry i < its size is still the proxy of effect_runs[i]),
+// then the boxes and circles the scene's scripts declare in their `shapes` (script by
+// script in the file's order, each in its own), marked `declared`. The same as
+// planar_shape_list for a scene whose scripts declare none.
+std::vector<PlanarShapeGeometry> planar_scenario_shapes(const PlanarScene& scene);
 
 // The index of the shape whose boundary is nearest to p (the first on a tie), or -1 when
 // the list is empty.

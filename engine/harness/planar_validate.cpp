@@ -27,7 +27,7 @@ PlanarScenarioResult run_planar_validate_scenario(const PlanarScene& scene, cons
   if (options.noise_counts >= 0.0) profile.plant.sensor_noise_counts = options.noise_counts;
   const auto device = std::make_unique<SimulatedPlanar>(profile, simulation);
 
-  const std::vector<PlanarShapeGeometry> shapes = planar_shape_list(scene);
+  const std::vector<PlanarShapeGeometry> shapes = planar_scenario_shapes(scene);
   const auto ticks = static_cast<std::size_t>(std::llround(scenario.duration_s * scene.rate_hz));
   std::atomic<bool> stop{false};
   PlanarValidateRecorder recorder(device.get(), ticks + 1, shapes.size(), scene.period_s, &stop);
@@ -61,7 +61,7 @@ PlanarValidationReport validate_planar_scene(const PlanarScene& scene, const std
   report.rate_hz = scene.rate_hz;
   report.options = options;
   report.bound = planar_stiffness_bound(scene);
-  report.shapes = planar_shape_list(scene).size();
+  report.shapes = planar_scenario_shapes(scene).size();
   report.load_warnings = scene.load_warnings;
   // Scripts too slow for the loop: nothing else is run (as in 1-D).
   if (const std::optional<CheckResult> pace = check_script_pace(scene)) {

@@ -30,7 +30,7 @@ struct PlanarValidationReport {
   std::string source_path;
   double rate_hz{};
   PlanarStiffnessBound bound;               // per pose over the workspace
-  std::size_t shapes{};                     // the scene's walls, boxes, circles, polygons
+  std::size_t shapes{};                     // the scene's walls, boxes, circles, polygons and scripts' shapes
   HarnessOptions options;
   std::vector<PlanarScenarioResult> scenarios;
   std::vector<CheckResult> scene_checks;    // "effects" (an effect that never acts), when failing

@@ -235,7 +235,7 @@ PlanarValidateScenario build_planar_validate_scenario(PlanarValidateKind kind, c
   hand.hold_m = s.start_m;
   const Vec2 low = scene.safety.workspace_min_m;
   const Vec2 high = scene.safety.workspace_max_m;
-  const std::vector<PlanarShapeGeometry> shapes = planar_shape_list(scene);
+  const std::vector<PlanarShapeGeometry> shapes = planar_scenario_shapes(scene);
   const ValidateThresholds& t = options.thresholds;
   const double press_depth_m = t.press_force_N / options.hand_stiffness_N_per_m;
   PathBuilder path(s.start_m);

@@ -128,6 +128,23 @@ struct ScriptParam {
   bool overridden{};  // set from the JSON params
 };
 
+// A shape a 2-D script declares in its optional global `shapes` (scripts/README.md,
+// "Scripts in 2-D"), in SI: where validate's scenarios press, corner, swipe and release,
+// as they do for the built-in shapes. It describes the script; the script still renders
+// itself, and nothing checks that it renders this shape.
+struct ScriptShape {
+  enum class Kind { box, circle };
+  Kind kind{Kind::box};
+  bool solid_inside{true};  // "inside": the shape is solid; "outside": a cage
+  double min_m[2]{};        // box: the lower left corner
+  double max_m[2]{};        // box: the upper right corner
+  double center_m[2]{};     // circle
+  double radius_m{};        // circle
+};
+
+// At most this many entries in a script's `shapes`.
+inline constexpr std::size_t kMaxScriptShapes = 256;
+
 // Immutable, compiled at load time. Copyable; instances do not refer back to it. The
 // fields from needs_velocity on are what compile_script found.
 struct ScriptProgram {
@@ -145,6 +162,8 @@ struct ScriptProgram {
   bool needs_velocity{true};  // false: the engine may skip the velocity estimator
   bool needs_time{true};
   std::vector<ScriptParam> params;  // sorted by name
+  // The script's `shapes`, in its order (2-D scenes only: a 1-D one refuses them).
+  std::vector<ScriptShape> shapes;
 };
 
 // Load time: compiles and validates a script by creating one throwaway instance: syntax

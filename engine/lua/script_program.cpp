@@ -120,6 +120,7 @@ ScriptProgram compile_script(std::string display_name, std::string source,
   program.params = vm.params;
   program.needs_velocity = vm.needs_velocity;
   program.needs_time = vm.needs_time;
+  program.shapes = vm.shapes;
 
   // Run it once, as a run would start, so that errors inside reset() and force() on the
   // common path (typos, wrong needs, a missing return) fail the load, not the run.
@@ -149,6 +150,14 @@ ScriptProgram compile_script(std::string display_name, std::string source,
                                        "(scripts/README.md, \"Scripts in 2-D\")"
                                      : "") +
                        " (while checking force(s) at x = 0 m, v = 0 m/s, t = 0 s)");
+    }
+    // Declared shapes describe a 2-D script for validate; a script that passed the 1-D
+    // checks is a 1-D script, and a 1-D scene has no use for them.
+    if (!program.shapes.empty()) {
+      throw InputError(program.display_name +
+                       ": shapes: this is a 1-D scene, and shapes are for 2-D scripts (validate presses into "
+                       "them in a 2-DOF scene; a 1-D scene's walls are found by a scan of the field): remove "
+                       "shapes, or use the script in a planar environment");
     }
   } else {
     PlanarScriptInput probe;

@@ -63,6 +63,7 @@ struct ScriptVm {
   Phase phase{Phase::loading};
   bool needs_velocity{true};
   bool needs_time{true};
+  std::vector<ScriptShape> shapes;  // the `shapes` global, checked (globals.cpp)
   int axes{1};       // of the scene: 1 (s.x, s.v; one result) or 2 (s.x, s.y, s.vx, s.vy; two)
   int force_line{};  // line where force is defined, for messages about its return value
   std::int64_t force_straight_line{};  // force's length when it cannot loop, else 0
