@@ -49,13 +49,6 @@ class ForceProgram {
   // the function returned (0, 1, 2 or more).
   int run(double* results) noexcept;
 
-  std::size_t op_count() const noexcept { return ops_.size(); }
-  // The program's working memory, for warming the caches before a tick.
-  const void* ops_data() const noexcept { return ops_.data(); }
-  std::size_t ops_bytes() const noexcept { return ops_.size() * sizeof(Op); }
-  const void* values_data() const noexcept { return values_.data(); }
-  std::size_t values_bytes() const noexcept { return values_.size() * sizeof(double); }
-
  private:
   enum class Kind : std::uint8_t {
     copy, negate, add, sub, mul, div, mod, pow, floor_div,   // values[a] = values[b] op values[c]

@@ -136,17 +136,21 @@ bool repeats_last_call(const ScriptVm* vm, const PlanarScriptInput& input) {
          (!vm->needs_time || state_holds(L, detail::kSlotKeyT, input.t_s));
 }
 
-// force(s) from its translation (force_program.hpp) on `input`: the count of values it
-// returned, the first two in `results`.
-int run_translated(ScriptVm* vm, const ScriptInput& input, double* results) {
+// force(s) from its translation (force_program.hpp) on `input`: true, with the force, when
+// it returned what the scene needs (one finite number; two in 2-D); false otherwise (the
+// VM is then the one to ask).
+bool translated_force(ScriptVm* vm, const ScriptInput& input, double* force_N) {
   detail::ForceProgram& program = *vm->force_program;
   program.set_field(detail::kFieldX, input.x_m);
   program.set_field(detail::kFieldV, input.v_m_per_s);
   program.set_field(detail::kFieldT, input.t_s);
   program.set_field(detail::kFieldDt, input.dt_s);
-  return program.run(results);
+  double results[2];
+  if (program.run(results) < 1 || !std::isfinite(results[0])) return false;
+  *force_N = results[0];
+  return true;
 }
-int run_translated(ScriptVm* vm, const PlanarScriptInput& input, double* results) {
+bool translated_force(ScriptVm* vm, const PlanarScriptInput& input, PlanarScriptForce* force) {
   detail::ForceProgram& program = *vm->force_program;
   program.set_field(detail::kFieldX, input.x_m);
   program.set_field(detail::kFieldY, input.y_m);
@@ -154,7 +158,10 @@ int run_translated(ScriptVm* vm, const PlanarScriptInput& input, double* results
   program.set_field(detail::kFieldVy, input.vy_m_per_s);
   program.set_field(detail::kFieldT, input.t_s);
   program.set_field(detail::kFieldDt, input.dt_s);
-  return program.run(results);
+  double results[2];
+  if (program.run(results) != 2 || !std::isfinite(results[0]) || !std::isfinite(results[1])) return false;
+  *force = {results[0], results[1]};
+  return true;
 }
 
 }  // namespace
@@ -267,8 +274,8 @@ double ScriptInstance::force_N(const ScriptInput& input) noexcept {
     // result that is not plainly good is 0 N here; the VM is not asked).
     if (vm->force_translated && !vm->disabled) {
       ++vm->dry_calls;
-      double results[2];
-      return run_translated(vm, input, results) >= 1 && std::isfinite(results[0]) ? results[0] : 0.0;
+      double force = 0.0;
+      return translated_force(vm, input, &force) ? force : 0.0;
     }
     // Else the last call again, through this code, only when that changes nothing.
     if (!repeats_last_call(vm, input)) {
@@ -280,8 +287,8 @@ double ScriptInstance::force_N(const ScriptInput& input) noexcept {
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
   if (vm->force_translated) {
-    double results[2];
-    if (run_translated(vm, input, results) >= 1 && std::isfinite(results[0])) return results[0];
+    double force = 0.0;
+    if (translated_force(vm, input, &force)) return force;
     vm->last_dt_s = std::numeric_limits<double>::quiet_NaN();  // the VM's s was not kept up to date
   }
   detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
@@ -350,11 +357,8 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
     // result that is not plainly good is 0 N here; the VM is not asked).
     if (vm->force_translated && !vm->disabled) {
       ++vm->dry_calls;
-      double results[2];
-      if (run_translated(vm, input, results) == 2 && std::isfinite(results[0]) && std::isfinite(results[1])) {
-        return {results[0], results[1]};
-      }
-      return {};
+      PlanarScriptForce force;
+      return translated_force(vm, input, &force) ? force : PlanarScriptForce{};
     }
     // Else the last call again, through this code, only when that changes nothing.
     if (!repeats_last_call(vm, input)) {
@@ -366,10 +370,8 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
   if (vm->force_translated) {
-    double results[2];
-    if (run_translated(vm, input, results) == 2 && std::isfinite(results[0]) && std::isfinite(results[1])) {
-      return {results[0], results[1]};
-    }
+    PlanarScriptForce force;
+    if (translated_force(vm, input, &force)) return force;
     vm->last_dt_s = std::numeric_limits<double>::quiet_NaN();  // the VM's s was not kept up to date
   }
   detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
