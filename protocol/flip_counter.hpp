@@ -42,6 +42,16 @@ struct FlipCounter {
   bool within_window(int32_t raw_counts) const {
     static_assert(kWindow == 3, "within_window compares with exactly three samples");
     if (recent_count != kWindow) return false;
+#if INTPTR_MAX >= INT64_MAX
+    // A 64-bit host: the differences of 32-bit counts are exact in 64 bits, nothing to
+    // check for overflow. |jump| <= threshold as one unsigned comparison each.
+    const int64_t threshold = threshold_counts;
+    const uint64_t width = 2u * static_cast<uint64_t>(threshold);
+    const auto near = [&](int32_t earlier) {
+      return static_cast<uint64_t>(int64_t{raw_counts} - earlier + threshold) <= width;
+    };
+    return near(recent_raw[0]) & near(recent_raw[1]) & near(recent_raw[2]);
+#else
     int32_t jump0, jump1, jump2;
     const bool overflowed = __builtin_sub_overflow(raw_counts, recent_raw[0], &jump0) |
                             __builtin_sub_overflow(raw_counts, recent_raw[1], &jump1) |
@@ -52,11 +62,41 @@ struct FlipCounter {
     return !overflowed & (static_cast<uint32_t>(jump0) + threshold <= width) &
            (static_cast<uint32_t>(jump1) + threshold <= width) &
            (static_cast<uint32_t>(jump2) + threshold <= width);
+#endif
   }
 
-  // Feeds one raw sample; returns the unwrapped count.
+  // Feeds one raw sample; returns the unwrapped count. The common case (within the
+  // threshold of a full window: no flip) is inline, so a caller's tick makes no call for
+  // it; the rest is out of line.
   int32_t update(int32_t raw_counts) {
-    if (started && !within_window(raw_counts)) {
+    if (__builtin_expect(within_window(raw_counts), 1)) {
+      remember(raw_counts);
+      return unwrapped(raw_counts);
+    }
+    return update_with_flips(raw_counts);
+  }
+
+ private:
+  // The window moves on by one sample.
+  void remember(int32_t raw_counts) {
+    recent_raw[2] = recent_raw[1];
+    recent_raw[1] = recent_raw[0];
+    recent_raw[0] = raw_counts;
+  }
+
+  // raw + shift, saturated (and counted) where it does not fit.
+  int32_t unwrapped(int32_t raw_counts) {
+    int32_t result;
+    if (__builtin_add_overflow(raw_counts, shift_counts, &result)) {
+      ++overflows;
+      return shift_counts < 0 ? INT32_MIN : INT32_MAX;
+    }
+    return result;
+  }
+
+  // A sample that may be a flip, or one of the first samples.
+  __attribute__((noinline)) int32_t update_with_flips(int32_t raw_counts) {
+    if (started) {
       int8_t direction = 0;
       for (uint8_t i = 0; i < recent_count && direction == 0; ++i) {
         int32_t jump;
@@ -84,17 +124,9 @@ struct FlipCounter {
       }
     }
     started = true;
-    recent_raw[2] = recent_raw[1];
-    recent_raw[1] = recent_raw[0];
-    recent_raw[0] = raw_counts;
+    remember(raw_counts);
     if (recent_count < kWindow) ++recent_count;
-
-    int32_t unwrapped;
-    if (__builtin_add_overflow(raw_counts, shift_counts, &unwrapped)) {
-      ++overflows;
-      return shift_counts < 0 ? INT32_MIN : INT32_MAX;
-    }
-    return unwrapped;
+    return unwrapped(raw_counts);
   }
 };
 

@@ -173,7 +173,7 @@ std::vector<EstimatorQuality> measure_estimators(double rate_hz, double noise_co
       double sum_m2_per_s2 = 0.0;
       for (int k = 0; k < warm + ticks; ++k) {
         const double x_m = count_m * std::round(noise_counts * noise.next());
-        const double v_m_per_s = estimate_velocity(config, period_s, x_m, &state);
+        const double v_m_per_s = estimate_velocity(config, rate_hz, x_m, &state);
         if (k >= warm) sum_m2_per_s2 += v_m_per_s * v_m_per_s;
       }
       q.noise_rms_m_per_s = std::sqrt(sum_m2_per_s2 / ticks);
@@ -192,7 +192,7 @@ std::vector<EstimatorQuality> measure_estimators(double rate_hz, double noise_co
       double quadrature = 0.0;
       for (int k = 0; k < ticks; ++k) {
         const double t_s = k * period_s;
-        const double v_m_per_s = estimate_velocity(config, period_s, kAmplitude_m * std::sin(w * t_s), &state);
+        const double v_m_per_s = estimate_velocity(config, rate_hz, kAmplitude_m * std::sin(w * t_s), &state);
         if (k >= from) {
           in_phase += v_m_per_s * std::cos(w * t_s);
           quadrature += v_m_per_s * std::sin(w * t_s);

@@ -43,7 +43,7 @@ Texture Texture::parse(ObjectReader& reader) {
   texture.spacing_m =
       reader.quantity_or("spacing", Quantity::length_m, texture.width_m, ranges::kLength_m);
   texture.offset_m = reader.quantity_or("offset", Quantity::length_m, 0.0, ranges::kPosition_m);
-  texture.period_m = texture.width_m + texture.spacing_m;
+  texture.derive_period();
   if (const nlohmann::json* mirror = reader.get("mirror")) {
     if (!mirror->is_boolean()) reader.fail("mirror", "expected a boolean, got " + json_type_name(*mirror));
     texture.mirror = mirror->get<bool>();

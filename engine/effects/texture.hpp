@@ -23,21 +23,38 @@ struct Texture {
   double spacing_m{};
   double offset_m{};
   double damping_N_s_per_m{};
-  double period_m{};  // width_m + spacing_m, computed at load
+  double period_m{};  // width_m + spacing_m (derive_period)
   bool mirror{};      // fields mirrored about offset_m
+  // Derived (derive_period; for a Texture built field by field, these initialisers):
+  // 1 / period_m, so the tick multiplies instead of dividing (a division's latency was
+  // most of the effect's time). It can move floor() by one where the phase lies within an
+  // ulp or two of an edge; within_m is then about 0 or about period_m, both of which the
+  // snap (in_field) reads as that edge, as before.
+  double periods_per_m = 1.0 / period_m;
+  // Edges written in decimal (x = 0.015 for w = 5 mm) are not exact in binary; positions
+  // within a billionth of a period of an edge count as on it, so a field is [x0, x0 + w)
+  // as written. (A nanometre is far below any sensor's resolution.) These are the field's
+  // end and the period's end, each moved back by that billionth.
+  double field_end_m = width_m - 1e-9 * period_m;
+  double period_end_m = period_m - 1e-9 * period_m;
+
+  // Sets the period and what derives from it, from width_m and spacing_m (at load).
+  void derive_period() noexcept {
+    period_m = width_m + spacing_m;
+    periods_per_m = 1.0 / period_m;
+    field_end_m = width_m - 1e-9 * period_m;
+    period_end_m = period_m - 1e-9 * period_m;
+  }
 
   static Texture parse(ObjectReader& reader);
 
   bool in_field(double x_m) const noexcept {
     const double phase_m = mirror ? std::abs(x_m - offset_m) : x_m - offset_m;
-    double within_m = phase_m - period_m * std::floor(phase_m / period_m);
-    // Edges written in decimal (x = 0.015 for w = 5 mm) are not exact in binary; positions
-    // within a billionth of a period of an edge count as on it, so a field is [x0, x0 + w)
-    // as written. (A nanometre is far below any sensor's resolution.)
-    // (A multiply, not a branch: see force_N.)
-    const double snap_m = 1e-9 * period_m;
-    within_m *= static_cast<double>(!(within_m > period_m - snap_m));
-    return within_m < width_m - snap_m;
+    const double within_m = phase_m - period_m * std::floor(phase_m * periods_per_m);
+    // In the field, or within the snap of the period's end: that is the next field's
+    // start edge (0), in the field when the field is wider than the snap. (Comparisons
+    // combined without a branch: see force_N. A NaN is in no field.)
+    return (within_m < field_end_m) | ((within_m > period_end_m) & (field_end_m > 0.0));
   }
 
   // Branch-free: whether the handle is in a field changes from tick to tick without a

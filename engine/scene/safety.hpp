@@ -91,8 +91,11 @@ bool inside_polygon(const std::vector<Vec2>& polygon_m, const Vec2& p_m) noexcep
 inline bool within_workspace(const SafetyConfigOf<1>& config, double x_m) noexcept {
   return x_m >= config.workspace_min_m && x_m <= config.workspace_max_m;
 }
+// (Inline whatever the compiler's estimate: it runs every tick, and as a call it cost the
+// planar tick a call's set-up and spills; the polygon test stays out of line.)
 template <int N>
-inline bool within_workspace(const SafetyConfigOf<N>& config, const AxisVector<N>& x_m) noexcept {
+[[gnu::always_inline]] inline bool within_workspace(const SafetyConfigOf<N>& config,
+                                                   const AxisVector<N>& x_m) noexcept {
   for (int i = 0; i < N; ++i) {
     if (!(x_m[i] >= config.workspace_min_m[i] && x_m[i] <= config.workspace_max_m[i])) return false;
   }
@@ -176,14 +179,21 @@ template <int N>
 [[gnu::noinline]] Axes<N> apply_ramp(const SafetyConfigOf<N>& config, Axes<N> output_N,
                                      SafetyStateOf<N>* state) noexcept;
 
-// All five rules, for one tick of a run. (Inline: it runs every tick.)
+// Whether rule 3 or a held position acts on this tick (apply_ramp is needed).
 template <int N>
+inline bool ramp_acts(const SafetyStateOf<N>& state) noexcept {
+  return state.position_hold != PositionHold::none || state.ramp_gain < 1.0;
+}
+
+// All five rules, for one tick of a run. (Inline: it runs every tick.) kRampPossible
+// false: the caller knows ramp_acts() is false on this tick.
+template <int N, bool kRampPossible = true>
 [[gnu::always_inline]] inline Axes<N> apply_safety(const SafetyConfigOf<N>& config, const Axes<N>& x_m,
                             const Axes<N>& force_N, SafetyStateOf<N>* state) noexcept {
   Axes<N> output_N = apply_static_safety(config, x_m, force_N, &state->counters);
 
   // 3. (and an untrusted position) out of line: the common case is one comparison each.
-  if (state->position_hold != PositionHold::none || state->ramp_gain < 1.0) [[unlikely]] {
+  if (kRampPossible && ramp_acts(*state)) [[unlikely]] {
     output_N = apply_ramp(config, output_N, state);
   }
 

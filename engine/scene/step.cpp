@@ -119,15 +119,18 @@ template <PlanarFamily kFamily, typename Model, typename Sensor, typename Force,
 }
 
 // One tick of a scene with N axes, written once for every N. Each case is its own
-// instantiation: a tick of built-in effects alone (the common one) makes no call at all,
-// so it saves no registers and keeps its values in them; scripts and cross-fades take the
-// others. The device model's two functions (sense_position_m, motor_command) are
-// overloaded per device model and inlined; a planar tick of built-in effects alone is also
-// compiled for each PlanarFamily, its sensor, linkage and drive branches decided.
-template <int N, bool kFading, bool kScripts, PlanarFamily kFamily = PlanarFamily::general>
-[[gnu::noinline]] void step_tick(const SceneOf<N>& scene,
-                                 const typename SceneParts<N>::Reading& reading,
-                                 TickStateOf<N>* state, const CrossfadeOf<N>* fade) noexcept {
+// instantiation (step_tick, out of line, reached from step() by a tail call): scripts,
+// cross-fades, built-in effects alone; a planar tick of built-in effects alone is also
+// compiled for each PlanarFamily, its sensor, linkage and drive branches decided. The
+// device model's two functions (sense_position_m, motor_command) are overloaded per
+// device model and inlined. The common 1-DOF tick, built-in effects in the steady state
+// (kSteady, see steady_tick), is inlined into step() itself: it makes no call at all (the
+// flip counter's and the soft start's rare paths are known not to run), so it saves no
+// registers and keeps its values in them.
+template <int N, bool kFading, bool kScripts, PlanarFamily kFamily = PlanarFamily::general, bool kSteady = false>
+[[gnu::always_inline]] inline void tick_body(const SceneOf<N>& scene,
+                                             const typename SceneParts<N>::Reading& reading,
+                                             TickStateOf<N>* state, const CrossfadeOf<N>* fade) noexcept {
   // Sensor: the device model turns the reading into the handle position. (The tick count
   // converts as signed: one instruction, and runs never reach 2^63 ticks.)
   state->t_s = static_cast<double>(static_cast<std::int64_t>(state->tick)) * scene.period_s;
@@ -142,7 +145,7 @@ template <int N, bool kFading, bool kScripts, PlanarFamily kFamily = PlanarFamil
   if constexpr (kFading) needs |= fade->from->needs;
   if (needs.velocity) {
     state->v_m_per_s =
-        estimate_velocity(scene.velocity, scene.period_s, state->x_m, &state->velocity_state);
+        estimate_velocity(scene.velocity, scene.rate_hz, state->x_m, &state->velocity_state);
   }
 
   // Effects: the sum of every effect's force.
@@ -161,10 +164,23 @@ template <int N, bool kFading, bool kScripts, PlanarFamily kFamily = PlanarFamil
   state->effects_force_N = effects_N;
 
   // Safety, then the motor command the board needs.
-  state->output_N = apply_safety(scene.safety, state->x_m, effects_N, &state->safety);
+  state->output_N = apply_safety<N, !kSteady>(scene.safety, state->x_m, effects_N, &state->safety);
   command_stage<kFamily>(scene.device_model, state->sensor, state->output_N, &state->command);
   if (command_saturated(state->command)) ++state->safety.counters.motor_saturated_ticks;
   ++state->tick;
+}
+
+template <int N, bool kFading, bool kScripts, PlanarFamily kFamily = PlanarFamily::general>
+[[gnu::noinline]] void step_tick(const SceneOf<N>& scene, const typename SceneParts<N>::Reading& reading,
+                                 TickStateOf<N>* state, const CrossfadeOf<N>* fade) noexcept {
+  tick_body<N, kFading, kScripts, kFamily>(scene, reading, state, fade);
+}
+
+// A 1-DOF tick in its steady state: the reading cannot be a flip of the sensor (within
+// the threshold of the flip counter's full window), and neither the soft start nor a held
+// position acts. Such a tick calls nothing (those are the rare paths that do).
+bool steady_tick(const SensorState& sensor, std::int32_t raw_counts, const SafetyState& safety) noexcept {
+  return sensor.flip_counter.within_window(raw_counts) && !ramp_acts(safety);
 }
 
 }  // namespace
@@ -194,6 +210,14 @@ void step(const SceneOf<N>& scene, const typename SceneParts<N>::Reading& readin
           return;
         case PlanarFamily::general:
           break;
+      }
+    }
+    if constexpr (N == 1) {
+      // The steady tick in line here: the common tick of built-in effects makes no call
+      // at all, so it saves no registers (the others are tail calls).
+      if (steady_tick(state->sensor, reading, state->safety)) [[likely]] {
+        tick_body<N, false, false, PlanarFamily::general, true>(scene, reading, state, nullptr);
+        return;
       }
     }
     step_tick<N, false, false>(scene, reading, state, nullptr);

@@ -81,9 +81,9 @@ TEST_CASE("velocity: estimators on a constant-velocity ramp") {
     VelocityEstimatorConfig config{.kind = kind, .cutoff_Hz = 50.0,
                                    .lowpass_alpha = lowpass_alpha_for(50.0, period_s)};
     VelocityState state;
-    CHECK(estimate_velocity(config, period_s, 0.0, &state) == 0.0);  // first sample
+    CHECK(estimate_velocity(config, 1.0 / period_s, 0.0, &state) == 0.0);  // first sample
     double v = 0.0;
-    for (int i = 1; i <= 500; ++i) v = estimate_velocity(config, period_s, v_true * period_s * i, &state);
+    for (int i = 1; i <= 500; ++i) v = estimate_velocity(config, 1.0 / period_s, v_true * period_s * i, &state);
     CHECK(v == doctest::Approx(v_true).epsilon(1e-6));
   }
 }
@@ -92,12 +92,12 @@ TEST_CASE("velocity: hapkit2019 is the reference sketch's 0.9 new + 0.1 previous
   VelocityEstimatorConfig config;  // default
   REQUIRE(config.kind == VelocityEstimatorKind::hapkit2019);
   VelocityState state;
-  estimate_velocity(config, 0.001, 0.0, &state);
-  CHECK(estimate_velocity(config, 0.001, 0.001, &state) == doctest::Approx(0.9 * 1.0));
+  estimate_velocity(config, 1000.0, 0.0, &state);
+  CHECK(estimate_velocity(config, 1000.0, 0.001, &state) == doctest::Approx(0.9 * 1.0));
   // The handle stops: 0.1 of the previous raw difference (1 m/s), not of the previous
   // estimate (0.9 m/s).
-  CHECK(estimate_velocity(config, 0.001, 0.001, &state) == doctest::Approx(0.1 * 1.0));
-  CHECK(estimate_velocity(config, 0.001, 0.001, &state) == 0.0);  // a finite response: two ticks
+  CHECK(estimate_velocity(config, 1000.0, 0.001, &state) == doctest::Approx(0.1 * 1.0));
+  CHECK(estimate_velocity(config, 1000.0, 0.001, &state) == 0.0);  // a finite response: two ticks
 }
 
 TEST_CASE("environment: the velocity block selects the estimator") {

@@ -42,7 +42,7 @@ PlanarTexture PlanarTexture::parse(ObjectReader& reader) {
   bands.damping_N_s_per_m = reader.quantity("damping", Quantity::damping_N_s_per_m, ranges::kDamping_N_s_per_m);
   bands.spacing_m = reader.quantity_or("spacing", Quantity::length_m, bands.width_m, ranges::kLength_m);
   bands.offset_m = reader.quantity_or("offset", Quantity::length_m, 0.0, ranges::kPosition_m);
-  bands.period_m = bands.width_m + bands.spacing_m;
+  bands.derive_period();
   texture.direction = read_direction(reader, "direction");
   return texture;
 }
