@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/base/units.hpp"
 #include "engine/harness/open_loop.hpp"
