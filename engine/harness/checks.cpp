@@ -3,20 +3,38 @@
 #include <cmath>
 
 #include "engine/base/format.hpp"
+#include "engine/harness/check_parts.hpp"
 
 namespace hapscene {
-namespace {
 
-CheckResult at_most(std::string name, double value, double threshold, std::string unit,
-                    std::string detail) {
-  return CheckResult{std::move(name), value, threshold, std::move(unit), value <= threshold,
-                     std::move(detail)};
+CheckResult check_at_most(std::string name, double value, double threshold, std::string unit, std::string detail) {
+  return CheckResult{std::move(name), value, threshold, std::move(unit), value <= threshold, std::move(detail)};
 }
 
-// Where and when, for a failing check.
 std::string where_when(double x_m, double t_s) { return printf_string("at %.2f mm, t %.3f s", x_m * 1e3, t_s); }
 
-}  // namespace
+std::string where_when(const Vec2& x_m, double t_s) {
+  return printf_string("at (%.2f, %.2f) mm, t %.3f s", x_m[0] * 1e3, x_m[1] * 1e3, t_s);
+}
+
+CheckResult passivity_check(const PassivityMetrics& p, const ValidateThresholds& t) {
+  CheckResult passivity = check_at_most(
+      "passivity", p.ratio, t.max_passivity_ratio, "",
+      printf_string("created %.3g mJ, dissipated %.3g mJ, net %.3g mJ%s", p.created_J * 1e3, p.dissipated_J * 1e3,
+                    p.net_J * 1e3, p.grows ? ", growing" : ""));
+  // Too little energy created to weigh (a negative ratio: the rendering absorbed energy):
+  // not judged, which does not fail, and says so.
+  passivity.judged = p.created_J > kMinJudgedEnergy_J;
+  passivity.pass = !passivity.judged || (p.ratio <= t.max_passivity_ratio && !p.grows);
+  if (!passivity.judged) passivity.detail += printf_string("; not judged: created at most %g mJ", kMinJudgedEnergy_J * 1e3);
+  return passivity;
+}
+
+void add_oscillation_checks(const OscillationMetrics& o, const ValidateThresholds& t, const std::string& motion,
+                            std::vector<CheckResult>* checks) {
+  checks->push_back(check_at_most("limit_cycle", o.residual_amplitude_m, t.max_residual_amplitude_m, "m", motion));
+  checks->push_back(check_at_most("growth", o.growth, t.max_amplitude_growth, "", motion));
+}
 
 const char* verdict_text(const CheckResult& check) {
   if (!check.judged) return "not judged";
@@ -28,20 +46,8 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const ValidateThresh
   std::vector<CheckResult> checks;
 
   // Force: how large, how long at the limit, how fast it changes, how rough.
-  const double max_force_N = t.max_force_N > 0.0 ? t.max_force_N : scene.safety.max_force_N;
-  checks.push_back(at_most("max_force", m.max_output_N, max_force_N, "N",
-                           printf_string("at %.2f mm, t %.3f s (asked up to %.3f N)", m.max_output_x_m * 1e3,
-                                  m.max_output_t_s, m.max_requested_N)));
-  checks.push_back(at_most("time_at_limit", m.time_at_limit_fraction, t.max_time_at_limit_fraction, "",
-                           printf_string("%.3f s of %.3f s at %g N", m.time_at_limit_s, m.duration_s,
-                                  scene.safety.max_force_N)));
-  const double max_slew = t.max_slew_N_per_s > 0.0 ? t.max_slew_N_per_s : scene.safety.slew_limit_N_per_s;
-  CheckResult slew = at_most("slew", m.max_slew_N_per_s, max_slew, "N/s",
-                             printf_string("slew limiter acted on %llu ticks",
-                                    static_cast<unsigned long long>(m.safety.slew_limited_ticks)));
-  slew.pass = m.max_slew_N_per_s < max_slew * (1.0 - 1e-9);  // reaching the limiter fails
-  checks.push_back(slew);
-  CheckResult slip = at_most(
+  add_force_checks(scene, t, m, &checks);
+  CheckResult slip = check_at_most(
       "slip", static_cast<double>(m.slip_force_ticks + m.slip_step_ticks),
       static_cast<double>(t.max_slip_ticks), "ticks",
       printf_string("%llu ticks above %g N, %llu with a 1-ms step above %g N (largest %.3f N)",
@@ -52,18 +58,7 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const ValidateThresh
   checks.push_back(slip);
 
   // Energy: created by the rendering against what the device dissipates on its own.
-  const PassivityMetrics& p = m.passivity;
-  CheckResult passivity = at_most(
-      "passivity", p.ratio, t.max_passivity_ratio, "",
-      printf_string("created %.3g mJ, dissipated %.3g mJ, net %.3g mJ%s", p.created_J * 1e3,
-             p.dissipated_J * 1e3, p.net_J * 1e3, p.grows ? ", growing" : ""));
-  // Too little energy created to weigh (a negative ratio: the rendering absorbed energy):
-  // not judged, which does not fail, and says so.
-  passivity.judged = p.created_J > kMinJudgedEnergy_J;
-  passivity.pass = !passivity.judged || (p.ratio <= t.max_passivity_ratio && !p.grows);
-  if (!passivity.judged) {
-    passivity.detail += printf_string("; not judged: created at most %g mJ", kMinJudgedEnergy_J * 1e3);
-  }
+  CheckResult passivity = passivity_check(m.passivity, t);
   if (!field.behaviour.static_field()) {
     passivity.detail += "; stored energy from the field at rest (" + field.behaviour.note + ")";
   }
@@ -75,36 +70,19 @@ std::vector<CheckResult> judge_scenario(const Scene& scene, const ValidateThresh
     const std::string motion =
         printf_string("from %.2f s: %d half-cycles at %.2f Hz around %.2f mm, initial %.3f mm", o.from_s,
                o.half_cycles, o.frequency_Hz, o.rest_m * 1e3, o.initial_amplitude_m * 1e3);
-    checks.push_back(at_most("limit_cycle", o.residual_amplitude_m, t.max_residual_amplitude_m, "m", motion));
-    checks.push_back(at_most("growth", o.growth, t.max_amplitude_growth, "", motion));
+    add_oscillation_checks(o, t, motion, &checks);
   }
 
   // Walls: how deep the handle went past an edge the harness found.
   bool has_edges = false;
   for (const StiffRegion& region : field.regions) has_edges = has_edges || region.low_is_edge || region.high_is_edge;
   if (has_edges) {
-    checks.push_back(at_most("penetration", m.max_penetration_m, t.max_penetration_m, "m",
-                             printf_string("deepest at %.2f mm", m.max_penetration_x_m * 1e3)));
+    checks.push_back(check_at_most("penetration", m.max_penetration_m, t.max_penetration_m, "m",
+                                   printf_string("deepest at %.2f mm", m.max_penetration_x_m * 1e3)));
   }
 
   // Grit, scripts and timing.
-  CheckResult jitter = at_most("jitter", m.force_jitter_N, t.max_force_jitter_N, "N",
-                               "rms second difference of the commanded force");
-  if (!jitter.pass) {
-    jitter.detail += printf_string("; largest %.3f N ", m.jitter_peak_N) + where_when(m.jitter_peak_x_m, m.jitter_peak_t_s);
-  }
-  checks.push_back(jitter);
-  CheckResult script = at_most("script", static_cast<double>(m.script_errors + m.script_budget_overruns),
-                               static_cast<double>(t.max_script_faults), "faults",
-                               printf_string("%llu errors, %llu budget overruns",
-                                             static_cast<unsigned long long>(m.script_errors),
-                                             static_cast<unsigned long long>(m.script_budget_overruns)));
-  for (std::size_t i = 0; i < m.script_faults.size(); ++i) script.detail += (i == 0 ? ": " : "; ") + m.script_faults[i].text();
-  checks.push_back(script);
-  const double max_compute_s = t.max_tick_compute_s > 0.0 ? t.max_tick_compute_s : 0.5 * scene.period_s;
-  checks.push_back(at_most("tick_compute", m.compute_p99_s, max_compute_s, "s",
-                           printf_string("p50 %.2f us, p99 %.2f us, max %.2f us", m.compute_p50_s * 1e6,
-                                  m.compute_p99_s * 1e6, m.compute_max_s * 1e6)));
+  add_jitter_script_and_timing_checks(scene, t, m, "rms second difference of the commanded force", &checks);
   return checks;
 }
 

@@ -5,6 +5,7 @@
 
 #include "engine/base/format.hpp"
 #include "engine/devices/kinematics.hpp"
+#include "engine/harness/metrics_parts.hpp"
 
 namespace hapscene {
 namespace {
@@ -94,30 +95,16 @@ ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
   ScenarioMetrics m;
   m.ticks = records.size();
   m.duration_s = static_cast<double>(records.size()) * scene.period_s;
-  const double limit_N = scene.safety.max_force_N;
   const auto ticks_per_ms = static_cast<std::size_t>(std::max(1.0, std::round(1e-3 / scene.period_s)));
 
-  // Force, slew, jitter, slip and penetration, tick by tick.
-  std::uint64_t at_limit_ticks = 0;
-  double jitter_sum_N2 = 0.0;
+  // Force, slew and jitter; then slip and penetration, tick by tick.
+  measure_force_trace(records, scene.safety.max_force_N, scene.period_s, &m);
   for (std::size_t k = 0; k < records.size(); ++k) {
     const TickRecord& r = records[k];
-    const double abs_output_N = std::abs(r.output_N);
-    m.max_requested_N = std::max(m.max_requested_N, std::abs(r.requested_N));
-    if (abs_output_N > m.max_output_N) {
-      m.max_output_N = abs_output_N;
-      m.max_output_x_m = r.x_true_m;
-      m.max_output_t_s = r.t_s;
-    }
-    if (abs_output_N >= limit_N * (1.0 - 1e-12)) ++at_limit_ticks;
     bool slip = false;
-    if (abs_output_N > scene.device.limits.slip_force_N) {
+    if (std::abs(r.output_N) > scene.device.limits.slip_force_N) {
       ++m.slip_force_ticks;
       slip = true;
-    }
-    if (k > 0) {
-      m.max_slew_N_per_s = std::max(m.max_slew_N_per_s,
-                                    std::abs(r.output_N - records[k - 1].output_N) / scene.period_s);
     }
     if (k >= ticks_per_ms) {
       const double step_N = std::abs(r.output_N - records[k - ticks_per_ms].output_N);
@@ -131,25 +118,12 @@ ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
       m.slip_first_t_s = r.t_s;
       m.slip_first_x_m = r.x_true_m;
     }
-    if (k > 0 && k + 1 < records.size()) {
-      const double second_N = r.output_N - 0.5 * (records[k - 1].output_N + records[k + 1].output_N);
-      jitter_sum_N2 += second_N * second_N;
-      if (std::abs(second_N) > m.jitter_peak_N) {
-        m.jitter_peak_N = std::abs(second_N);
-        m.jitter_peak_x_m = r.x_true_m;
-        m.jitter_peak_t_s = r.t_s;
-      }
-    }
     const double depth_m = field.penetration_m(r.x_true_m);
     if (depth_m > m.max_penetration_m) {
       m.max_penetration_m = depth_m;
       m.max_penetration_x_m = r.x_true_m;
     }
   }
-  m.time_at_limit_s = static_cast<double>(at_limit_ticks) * scene.period_s;
-  m.time_at_limit_fraction =
-      records.empty() ? 0.0 : static_cast<double>(at_limit_ticks) / static_cast<double>(records.size());
-  if (records.size() > 2) m.force_jitter_N = std::sqrt(jitter_sum_N2 / static_cast<double>(records.size() - 2));
 
   // Energy and oscillation.
   m.passivity = measure_passivity(scene, field, records, final_x_m);
@@ -160,23 +134,7 @@ ScenarioMetrics measure_run(const Scene& scene, const ForceField& field,
   }
 
   // Scripts and timing from the run summary.
-  m.script_errors = summary.script_errors;
-  m.script_budget_overruns = summary.script_budget_overruns;
-  for (const ScriptReport& script : summary.scripts) {
-    if (!script.disabled) continue;
-    // When and where: the faulting call was the last one before the skipped ones (one
-    // call per tick), so the trace gives the true position as well as the time.
-    if (script.skipped_calls < records.size()) {
-      const TickRecord& at = records[records.size() - 1 - script.skipped_calls];
-      m.script_faults.push_back({script.fault, printf_string("t %.3f s, x %.2f mm", at.t_s, at.x_true_m * 1e3)});
-    } else {
-      m.script_faults.push_back({script.fault, ""});
-    }
-  }
-  m.compute_p50_s = static_cast<double>(summary.compute_ns.percentile_ns(0.50)) * 1e-9;
-  m.compute_p99_s = static_cast<double>(summary.compute_ns.percentile_ns(0.99)) * 1e-9;
-  m.compute_max_s = static_cast<double>(summary.compute_ns.max_ns()) * 1e-9;
-  m.safety = summary.safety;
+  measure_scripts_and_timing(summary, records, &m);
   return m;
 }
 

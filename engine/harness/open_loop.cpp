@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
@@ -11,14 +12,51 @@
 namespace hapscene {
 namespace {
 
-// Two forces are the same when bit-equal or both NaN (a script is deterministic).
+// Two forces are the same when bit-equal or both NaN on each axis (a script is
+// deterministic).
 bool same_force(double a_N, double b_N) { return a_N == b_N || (std::isnan(a_N) && std::isnan(b_N)); }
+bool same_force(const Vec2& a_N, const Vec2& b_N) { return same_force(a_N[0], b_N[0]) && same_force(a_N[1], b_N[1]); }
 
+// One instance per script in `scripts` called at each point of `x_m` (in order, or in
+// reverse when not `forward`; reset() before each call when `reset_each`) at velocity v
+// and run time t. `live[i]` is false where a script had faulted before or at that call.
+template <int N>
+std::vector<Axes<N>> call_at_points_N(const SceneOf<N>& scene, ScriptList& scripts, const std::vector<Axes<N>>& x_m,
+                                      const Axes<N>& v_m_per_s, double t_s, bool forward, bool reset_each,
+                                      std::vector<bool>* live) {
+  const std::size_t n = x_m.size();
+  std::vector<Axes<N>> force_N(n);
+  live->assign(n, true);
+  bool faulted = false;
+  EffectInputOf<N> input;
+  input.v_m_per_s = v_m_per_s;
+  input.t_s = t_s;
+  input.dt_s = scene.period_s;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = forward ? k : n - 1 - k;
+    if (reset_each) {
+      for (const auto& script : scripts) {
+        script->reset();
+        script->collect_garbage();
+      }
+    }
+    input.x_m = x_m[i];
+    force_N[i] = sum_effects_N(scene, input, scripts);
+    faulted = faulted || std::any_of(scripts.begin(), scripts.end(), [](const auto& s) { return s->disabled(); });
+    (*live)[i] = !faulted;
+  }
+  return force_N;
+}
 
 }  // namespace
 
 std::string describe_point(double x_m, double v_m_per_s, double t_s) {
   return printf_string("x %.2f mm, v %g m/s, t %g s", x_m * 1e3, v_m_per_s, t_s);
+}
+
+std::string describe_point(const Vec2& x_m, const Vec2& v_m_per_s, double t_s) {
+  return printf_string("x %.2f mm, y %.2f mm, v (%g, %g) m/s, t %g s", x_m[0] * 1e3, x_m[1] * 1e3, v_m_per_s[0],
+                       v_m_per_s[1], t_s);
 }
 
 void ScriptFaultLog::add(const std::string& message, const std::string& where, double order_key) {
@@ -87,10 +125,13 @@ void ScriptFaultLog::merge(const ScriptFaultLog& other) {
   omitted_ = omitted_ || other.omitted_;
 }
 
-OpenLoop::OpenLoop(const Scene& scene, double t_s) : scene_(scene), t_s_(t_s), budget_(scene) {}
+template <int N>
+OpenLoopOf<N>::OpenLoopOf(const SceneOf<N>& scene, double t_s) : scene_(scene), t_s_(t_s), budget_(scene) {}
 
-double OpenLoop::fresh_force_N(double x_m, double v_m_per_s, double t_s, bool record) {
-  EffectInput input;
+template <int N>
+Axes<N> OpenLoopOf<N>::fresh_force_N(const Axes<N>& x_m, const Axes<N>& v_m_per_s, double t_s, bool record,
+                                     double order_key) {
+  EffectInputOf<N> input;
   input.x_m = x_m;
   input.v_m_per_s = v_m_per_s;
   input.t_s = t_s;
@@ -98,12 +139,13 @@ double OpenLoop::fresh_force_N(double x_m, double v_m_per_s, double t_s, bool re
   if (!has_scripts()) return sum_effects_N(scene_, input, none_);
   // New instances, each reset, as at the start of a run: nothing carries over.
   ScriptList scripts = create_instances();
-  const double force_N = sum_effects_N(scene_, input, scripts);
-  if (record) faults_.collect(scripts, describe_point(x_m, v_m_per_s, t_s), x_m);
+  const Axes<N> force_N = sum_effects_N(scene_, input, scripts);
+  if (record) faults_.collect(scripts, describe_point(x_m, v_m_per_s, t_s), order_key);
   return force_N;
 }
 
-ScriptList OpenLoop::create_instances() {
+template <int N>
+ScriptList OpenLoopOf<N>::create_instances() {
   budget_.require(1);
   const double start_s = thread_cpu_time_s();
   ScriptList scripts = make_script_instances(scene_);
@@ -111,12 +153,14 @@ ScriptList OpenLoop::create_instances() {
   return scripts;
 }
 
-double OpenLoop::force_N(double x_m, double v_m_per_s) {
+template <int N>
+Axes<N> OpenLoopOf<N>::force_N(const Axes<N>& x_m, const Axes<N>& v_m_per_s) {
   budget_.set_points(1);
-  return fresh_force_N(x_m, v_m_per_s, t_s_, true);
+  return fresh_force_N(x_m, v_m_per_s, t_s_, true, point_order_key(x_m, 0));
 }
 
-double OpenLoop::output_N(double x_m, double force_N) const {
+template <int N>
+Axes<N> OpenLoopOf<N>::output_N(const Axes<N>& x_m, const Axes<N>& force_N) const {
   SafetyCounters counters;
   return apply_static_safety(scene_.safety, x_m, force_N, &counters);
 }
@@ -124,72 +168,60 @@ double OpenLoop::output_N(double x_m, double force_N) const {
 template <int N>
 std::vector<Axes<N>> reset_each_point_N(const SceneOf<N>& scene, ScriptList& scripts, const std::vector<Axes<N>>& x_m,
                                         const Axes<N>& v_m_per_s, double t_s, std::vector<bool>* live) {
-  const std::size_t n = x_m.size();
-  std::vector<Axes<N>> force_N(n);
-  live->assign(n, true);
-  bool faulted = false;
-  EffectInputOf<N> input;
-  input.v_m_per_s = v_m_per_s;
-  input.t_s = t_s;
-  input.dt_s = scene.period_s;
-  for (std::size_t i = 0; i < n; ++i) {
-    for (const auto& script : scripts) {
-      script->reset();
-      script->collect_garbage();
-    }
-    input.x_m = x_m[i];
-    force_N[i] = sum_effects_N(scene, input, scripts);
-    faulted = faulted || std::any_of(scripts.begin(), scripts.end(), [](const auto& s) { return s->disabled(); });
-    (*live)[i] = !faulted;
-  }
-  return force_N;
+  return call_at_points_N(scene, scripts, x_m, v_m_per_s, t_s, true, true, live);
 }
 template std::vector<Axes<1>> reset_each_point_N<1>(const SceneOf<1>&, ScriptList&, const std::vector<Axes<1>>&,
                                                     const Axes<1>&, double, std::vector<bool>*);
 template std::vector<Axes<2>> reset_each_point_N<2>(const SceneOf<2>&, ScriptList&, const std::vector<Axes<2>>&,
                                                     const Axes<2>&, double, std::vector<bool>*);
 
-std::vector<double> OpenLoop::sequential_N(const std::vector<double>& x_m, double v_m_per_s, bool upward,
-                                           std::vector<bool>* live) {
-  const std::size_t n = x_m.size();
-  std::vector<double> force_N(n);
-  live->assign(n, true);
+template <int N>
+std::vector<Axes<N>> OpenLoopOf<N>::sequential_N(const std::vector<Axes<N>>& x_m, const Axes<N>& v_m_per_s,
+                                                 bool forward, std::vector<bool>* live) {
   ScriptList scripts = create_instances();
-  bool faulted = false;
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t i = upward ? k : n - 1 - k;
-    EffectInput input;
-    input.x_m = x_m[i];
-    input.v_m_per_s = v_m_per_s;
-    input.t_s = t_s_;
-    input.dt_s = scene_.period_s;
-    force_N[i] = sum_effects_N(scene_, input, scripts);
-    faulted = faulted || std::any_of(scripts.begin(), scripts.end(), [](const auto& s) { return s->disabled(); });
-    (*live)[i] = !faulted;
-  }
-  return force_N;
+  return call_at_points_N(scene_, scripts, x_m, v_m_per_s, t_s_, forward, false, live);
 }
 
-void OpenLoop::scan_faults(const std::vector<double>& x_m, double v_m_per_s) {
+template <int N>
+void OpenLoopOf<N>::scan_faults(const std::vector<Axes<N>>& x_m, const Axes<N>& v_m_per_s) {
   if (!has_scripts() || x_m.empty()) return;
   budget_.set_points(x_m.size());
   std::vector<bool> live;
   sequential_N(x_m, v_m_per_s, true, &live);
   if (live.back()) return;
   budget_.require(x_m.size());
-  for (const double x : x_m) fresh_force_N(x, v_m_per_s, t_s_, true);
+  for (std::size_t i = 0; i < x_m.size(); ++i) fresh_force_N(x_m[i], v_m_per_s, t_s_, true, point_order_key(x_m[i], i));
 }
 
-ScriptFaultLog scan_faults_in_motion(const Scene& scene, const std::vector<double>& x_m) {
+template <>
+std::vector<double> motion_scan_velocities<1>() {
+  return {std::begin(kMotionScanVelocities_m_per_s), std::end(kMotionScanVelocities_m_per_s)};
+}
+
+template <>
+std::vector<Vec2> motion_scan_velocities<2>() {
+  std::vector<Vec2> velocities{Vec2{}};
+  for (const double speed : kMotionScanVelocities_m_per_s) {
+    if (speed <= 0.0) continue;  // each speed once, in all four directions
+    velocities.push_back(Vec2{{speed, 0.0}});
+    velocities.push_back(Vec2{{-speed, 0.0}});
+    velocities.push_back(Vec2{{0.0, speed}});
+    velocities.push_back(Vec2{{0.0, -speed}});
+  }
+  return velocities;
+}
+
+template <int N>
+ScriptFaultLog scan_faults_in_motion(const SceneOf<N>& scene, const std::vector<Axes<N>>& x_m) {
   ScriptFaultLog faults;
   if (scene.script_count == 0) return faults;
-  // One OpenLoop for every time and velocity: one creation budget for the whole search.
-  OpenLoop open_loop(scene);
+  // One open loop for every time and velocity: one creation budget for the whole search.
+  OpenLoopOf<N> open_loop(scene);
   for (const double t_s : kMotionScanTimes_s) {
     if (t_s != 0.0 && !scene.needs.time) continue;
     open_loop.set_time_s(t_s);
-    for (const double v_m_per_s : kMotionScanVelocities_m_per_s) {
-      if (v_m_per_s != 0.0 && !scene.needs.velocity) continue;
+    for (const Axes<N>& v_m_per_s : motion_scan_velocities<N>()) {
+      if (norm(v_m_per_s) != 0.0 && !scene.needs.velocity) continue;
       open_loop.scan_faults(x_m, v_m_per_s);
       // The first velocity and time that meet a fault are reported: each further one
       // that faults would cost a fresh instance per point for what is mostly the same
@@ -203,44 +235,46 @@ ScriptFaultLog scan_faults_in_motion(const Scene& scene, const std::vector<doubl
   return faults;
 }
 
-OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bool values_if_not_static) {
-  OpenLoopScan result;
+template <int N>
+OpenLoopScanOf<N> OpenLoopOf<N>::scan(const std::vector<Axes<N>>& x_m, const Axes<N>& v_m_per_s,
+                                       bool values_if_not_static) {
+  OpenLoopScanOf<N> result;
   const std::size_t n = x_m.size();
   if (!has_scripts() || n == 0) {
-    EffectInput input;
+    EffectInputOf<N> input;
     input.v_m_per_s = v_m_per_s;
     input.t_s = t_s_;
     input.dt_s = scene_.period_s;
-    for (const double x : x_m) {
+    for (const Axes<N>& x : x_m) {
       input.x_m = x;
       result.force_N.push_back(sum_effects_N(scene_, input, none_));
     }
     return result;
   }
 
-  // State: one instance upwards, one downwards, fresh ones at up to 9 spread points.
+  // State: one instance forwards, one backwards, fresh ones at up to 9 spread points.
   // Points after a script faulted are not compared (a disabled script answers 0).
   budget_.set_points(n);
-  std::vector<bool> live_up;
-  std::vector<bool> live_down;
-  std::vector<double> up_N = sequential_N(x_m, v_m_per_s, true, &live_up);
+  std::vector<bool> live_forward;
+  std::vector<bool> live_backward;
+  std::vector<Axes<N>> forward_N = sequential_N(x_m, v_m_per_s, true, &live_forward);
   const std::size_t stride = std::max<std::size_t>(1, (n - 1) / 8);
   std::vector<std::size_t> spread;
   for (std::size_t i = 0; i < n; i += stride) spread.push_back(i);
   if (spread.back() != n - 1) spread.push_back(n - 1);
-  // The creations the comparisons below need at most (the downward pass, and per spread
+  // The creations the comparisons below need at most (the backward pass, and per spread
   // point one fresh instance, plus five at other times), now that one has been timed.
   budget_.require(1 + spread.size() * (scene_.needs.time ? 6 : 1));
-  const std::vector<double> down_N = sequential_N(x_m, v_m_per_s, false, &live_down);
+  const std::vector<Axes<N>> backward_N = sequential_N(x_m, v_m_per_s, false, &live_backward);
   bool faulted = false;
   for (std::size_t i = 0; i < n; ++i) {
-    faulted = faulted || !live_up[i] || !live_down[i];
-    if (live_up[i] && live_down[i] && !same_force(up_N[i], down_N[i])) result.behaviour.stateful = true;
+    faulted = faulted || !live_forward[i] || !live_backward[i];
+    if (live_forward[i] && live_backward[i] && !same_force(forward_N[i], backward_N[i])) result.behaviour.stateful = true;
   }
   for (const std::size_t i : spread) {
     if (result.behaviour.stateful) break;
-    const double fresh_N = fresh_force_N(x_m[i], v_m_per_s, t_s_, false);
-    if (live_up[i] && !same_force(fresh_N, up_N[i])) result.behaviour.stateful = true;
+    const Axes<N> fresh_N = fresh_force_N(x_m[i], v_m_per_s, t_s_, false, 0.0);
+    if (live_forward[i] && !same_force(fresh_N, forward_N[i])) result.behaviour.stateful = true;
   }
 
   // Time: fresh instances at other run times, at the spread points.
@@ -248,9 +282,9 @@ OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bo
     constexpr double kOtherTimes_s[] = {0.0137, 0.25, 0.7071, 1.9};
     for (const std::size_t i : spread) {
       if (result.behaviour.time_varying) break;
-      const double at_t_N = fresh_force_N(x_m[i], v_m_per_s, t_s_, false);
+      const Axes<N> at_t_N = fresh_force_N(x_m[i], v_m_per_s, t_s_, false, 0.0);
       for (const double dt_s : kOtherTimes_s) {
-        if (!same_force(fresh_force_N(x_m[i], v_m_per_s, t_s_ + dt_s, false), at_t_N)) {
+        if (!same_force(fresh_force_N(x_m[i], v_m_per_s, t_s_ + dt_s, false, 0.0), at_t_N)) {
           result.behaviour.time_varying = true;
           break;
         }
@@ -266,23 +300,23 @@ OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bo
                             ": not a fixed force field";
   }
 
-  // The values: the upward pass when it is what fresh instances give.
+  // The values: the forward pass when it is what fresh instances give.
   if (!faulted && !result.behaviour.stateful) {
-    result.force_N = std::move(up_N);
+    result.force_N = std::move(forward_N);
     return result;
   }
   // State: one instance reset before each point, when nothing faulted and it gives what
-  // fresh instances give at the spread points (the 2-D scan does the same); only when
-  // that needs fewer creations than fresh instances at every point.
+  // fresh instances give at the spread points (the maze's proxy); only when that needs
+  // fewer creations than fresh instances at every point.
   if (!faulted && values_if_not_static && n > spread.size() + 1) {
     budget_.require(1 + spread.size());
     ScriptList scripts = create_instances();
     std::vector<bool> live_reset;
-    std::vector<double> reset_N = reset_each_point_N(scene_, scripts, x_m, v_m_per_s, t_s_, &live_reset);
+    std::vector<Axes<N>> reset_N = reset_each_point_N(scene_, scripts, x_m, v_m_per_s, t_s_, &live_reset);
     bool agrees = live_reset.back();
     for (const std::size_t i : spread) {
       if (!agrees) break;
-      agrees = same_force(fresh_force_N(x_m[i], v_m_per_s, t_s_, false), reset_N[i]);
+      agrees = same_force(fresh_force_N(x_m[i], v_m_per_s, t_s_, false, 0.0), reset_N[i]);
     }
     if (agrees) {
       result.force_N = std::move(reset_N);
@@ -293,9 +327,16 @@ OpenLoopScan OpenLoop::scan(const std::vector<double>& x_m, double v_m_per_s, bo
   if (faulted || values_if_not_static) {
     budget_.require(n);
     result.force_N.resize(n);
-    for (std::size_t i = 0; i < n; ++i) result.force_N[i] = fresh_force_N(x_m[i], v_m_per_s, t_s_, true);
+    for (std::size_t i = 0; i < n; ++i) {
+      result.force_N[i] = fresh_force_N(x_m[i], v_m_per_s, t_s_, true, point_order_key(x_m[i], i));
+    }
   }
   return result;
 }
+
+template class OpenLoopOf<1>;
+template class OpenLoopOf<2>;
+template ScriptFaultLog scan_faults_in_motion<1>(const SceneOf<1>&, const std::vector<Axes<1>>&);
+template ScriptFaultLog scan_faults_in_motion<2>(const SceneOf<2>&, const std::vector<Axes<2>>&);
 
 }  // namespace hapscene

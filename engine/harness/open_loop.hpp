@@ -64,36 +64,51 @@ struct ScriptBehaviour {
 };
 
 // Forces at many points, as fresh instances give them.
-struct OpenLoopScan {
-  std::vector<double> force_N;  // per point, what the effects ask for (may be non-finite)
+template <int N>
+struct OpenLoopScanOf {
+  std::vector<Axes<N>> force_N;  // per point, what the effects ask for (may be non-finite)
   ScriptBehaviour behaviour;
 };
+using OpenLoopScan = OpenLoopScanOf<1>;
 
-class OpenLoop {
+// The order key of point `index` of a list of points, for the fault log: in 1-D the
+// position (the lowest point that met a fault is kept), in 2-D the index (the first point
+// in the order given).
+inline double point_order_key(double x_m, std::size_t) { return x_m; }
+inline double point_order_key(const Vec2&, std::size_t index) { return static_cast<double>(index); }
+
+// The open loop of a scene with N axes (OpenLoop in 1-D, PlanarOpenLoop in 2-D: a point is
+// a position in m, or [x, y]).
+template <int N>
+class OpenLoopOf {
  public:
   // `t_s`: the run time every point is evaluated at (s.t of scripts that read time).
-  explicit OpenLoop(const Scene& scene, double t_s = 0.0);
+  explicit OpenLoopOf(const SceneOf<N>& scene, double t_s = 0.0);
 
-  // What the effects ask for at (x, v): built-in effects, plus every script from a fresh,
-  // reset instance (faults recorded in faults()).
-  double force_N(double x_m, double v_m_per_s);
+  // What the effects ask for at (x, v): built-in effects (open loop), plus every script
+  // from a fresh, reset instance (faults recorded in faults()).
+  Axes<N> force_N(const Axes<N>& x_m, const Axes<N>& v_m_per_s);
   // force_N after the static safety rules (non-finite -> 0, workspace, clamp).
-  double output_N(double x_m, double force_N) const;
+  Axes<N> output_N(const Axes<N>& x_m, const Axes<N>& force_N) const;
 
-  // force_N at every x (at v), and whether the scripts behave like a fixed field. Fresh
-  // instances per point cost about 0.3 ms each, so the scan first calls one instance at
-  // every point upwards and another downwards, and fresh ones at a few points: when all
-  // agree and nothing faulted, those values are what fresh instances give. Otherwise
-  // (state, or a fault) every point is computed from fresh instances, unless
-  // `values_if_not_static` is false and the scripts keep state (then force_N is empty).
-  // Time: fresh instances at several other run times, at a few points.
-  OpenLoopScan scan(const std::vector<double>& x_m, double v_m_per_s, bool values_if_not_static = true);
+  // force_N at every point (at v), and whether the scripts behave like a fixed field.
+  // Fresh instances per point cost about 0.3 ms each, so the scan first calls one
+  // instance over the points in order and another in reverse order, and fresh ones at up
+  // to 9 spread points: when all agree and nothing faulted, those values are what fresh
+  // instances give. Otherwise, for scripts that keep state and restore it in reset(), one
+  // instance reset before each point, when nothing faulted and it gives what fresh
+  // instances give at the spread points; else (state, or a fault) every point is computed
+  // from fresh instances, unless `values_if_not_static` is false and the scripts keep
+  // state (then force_N is empty). Time: fresh instances at several other run times, at
+  // the spread points. Faults are keyed by point_order_key.
+  OpenLoopScanOf<N> scan(const std::vector<Axes<N>>& x_m, const Axes<N>& v_m_per_s, bool values_if_not_static = true);
 
-  // Records (in faults()) the script faults fresh instances meet at every x at velocity
-  // v: one instance is swept upwards, and only when a script faults there is every point
-  // computed from a fresh instance, so that a fault is reported only where a fresh run's
-  // first tick meets it. Cheap for a script that does not fault (one call per point).
-  void scan_faults(const std::vector<double>& x_m, double v_m_per_s);
+  // Records (in faults()) the script faults fresh instances meet at every point at
+  // velocity v: one instance is called over the points in order, and only when a script
+  // faults there is every point computed from a fresh instance, so that a fault is
+  // reported only where a fresh run's first tick meets it. Cheap for a script that does
+  // not fault (one call per point).
+  void scan_faults(const std::vector<Axes<N>>& x_m, const Axes<N>& v_m_per_s);
 
   bool has_scripts() const { return scene_.script_count > 0; }
   // The run time later points are evaluated at (the creation budget stays charged).
@@ -101,21 +116,22 @@ class OpenLoop {
   const ScriptFaultLog& faults() const { return faults_; }
 
  private:
-  double fresh_force_N(double x_m, double v_m_per_s, double t_s, bool record);
+  Axes<N> fresh_force_N(const Axes<N>& x_m, const Axes<N>& v_m_per_s, double t_s, bool record, double order_key);
   // New, reset instances of the scene's scripts, charged to the creation budget (throws
   // InputError before a creation that would exceed it).
   ScriptList create_instances();
-  // One instance per script called at the points in the given order; `live[i]` is false
-  // where a script had faulted before or at that call.
-  std::vector<double> sequential_N(const std::vector<double>& x_m, double v_m_per_s, bool upward,
-                                   std::vector<bool>* live);
+  // One instance per script called at the points in order (or in reverse); `live[i]` is
+  // false where a script had faulted before or at that call.
+  std::vector<Axes<N>> sequential_N(const std::vector<Axes<N>>& x_m, const Axes<N>& v_m_per_s, bool forward,
+                                    std::vector<bool>* live);
 
-  const Scene& scene_;
+  const SceneOf<N>& scene_;
   double t_s_{};
   ScriptList none_;
   ScriptFaultLog faults_;
   ScriptCreationBudget budget_;
 };
+using OpenLoop = OpenLoopOf<1>;
 
 // One instance per script in `scripts`, reset() before the call at each point of `x_m` in
 // order (at velocity v, run time t): what fresh instances give when the scripts' reset()
@@ -129,12 +145,25 @@ std::vector<Axes<N>> reset_each_point_N(const SceneOf<N>& scene, ScriptList& scr
 // misses: scan_faults over `x_m` at each of kMotionScanVelocities_m_per_s (both signs,
 // up to the fastest the handle can move) and kMotionScanTimes_s, skipping velocities or
 // times the scene's scripts do not read, in that order, up to the first velocity and time
-// that meet a fault. Deterministic; empty for a scene without scripts.
+// that meet a fault. Deterministic; empty for a scene without scripts. In 2-D the
+// velocities are motion_scan_velocities<2>().
 inline constexpr double kMotionScanVelocities_m_per_s[] = {0.0, 0.01, -0.01, 0.1, -0.1, 0.5, -0.5, 2.0, -2.0};
 inline constexpr double kMotionScanTimes_s[] = {0.0, 0.5, 3.0};
-ScriptFaultLog scan_faults_in_motion(const Scene& scene, const std::vector<double>& x_m);
+template <int N>
+ScriptFaultLog scan_faults_in_motion(const SceneOf<N>& scene, const std::vector<Axes<N>>& x_m);
 
-// "x 12.00 mm, v 0 m/s, t 0 s": a point, for messages.
+// The velocities of the scan for faults in motion: kMotionScanVelocities_m_per_s in 1-D;
+// in 2-D at rest, then each speed of it along +x, -x, +y, -y.
+template <int N>
+std::vector<Axes<N>> motion_scan_velocities();
+template <>
+std::vector<double> motion_scan_velocities<1>();
+template <>
+std::vector<Vec2> motion_scan_velocities<2>();
+
+// "x 12.00 mm, v 0 m/s, t 0 s", "x 12.00 mm, y 130.00 mm, v (0, 0) m/s, t 0 s": a
+// point, for messages.
 std::string describe_point(double x_m, double v_m_per_s, double t_s);
+std::string describe_point(const Vec2& x_m, const Vec2& v_m_per_s, double t_s);
 
 }  // namespace hapscene

@@ -5,6 +5,7 @@
 
 #include "engine/base/format.hpp"
 #include "engine/devices/planar/planar_model.hpp"
+#include "engine/harness/metrics_parts.hpp"
 
 namespace hapscene {
 namespace {
@@ -224,29 +225,10 @@ PlanarScenarioMetrics measure_planar_run(const PlanarScene& scene, const std::ve
   PlanarScenarioMetrics m;
   m.ticks = records.size();
   m.duration_s = static_cast<double>(records.size()) * scene.period_s;
-  const double limit_N = scene.safety.max_force_N;
-  std::uint64_t at_limit_ticks = 0;
-  double jitter_sum_N2 = 0.0;
+  measure_force_trace(records, scene.safety.max_force_N, scene.period_s, &m);
+  // Shapes and singularity, tick by tick.
   for (std::size_t k = 0; k < records.size(); ++k) {
     const PlanarValidateRecord& r = records[k];
-    const double output_N = norm(r.output_N);
-    m.max_requested_N = std::max(m.max_requested_N, norm(r.requested_N));
-    if (output_N > m.max_output_N) {
-      m.max_output_N = output_N;
-      m.max_output_x_m = r.x_true_m;
-      m.max_output_t_s = r.t_s;
-    }
-    if (output_N >= limit_N * (1.0 - 1e-12)) ++at_limit_ticks;
-    if (k > 0) m.max_slew_N_per_s = std::max(m.max_slew_N_per_s, norm(r.output_N - records[k - 1].output_N) / scene.period_s);
-    if (k > 0 && k + 1 < records.size()) {
-      const double second_N = norm(r.output_N - 0.5 * (records[k - 1].output_N + records[k + 1].output_N));
-      jitter_sum_N2 += second_N * second_N;
-      if (second_N > m.jitter_peak_N) {
-        m.jitter_peak_N = second_N;
-        m.jitter_peak_x_m = r.x_true_m;
-        m.jitter_peak_t_s = r.t_s;
-      }
-    }
     for (std::size_t i = 0; i < shapes.size(); ++i) {
       const double depth_m = shapes[i].depth_m(r.x_true_m);
       if (depth_m > m.max_penetration_m) {
@@ -266,31 +248,12 @@ PlanarScenarioMetrics measure_planar_run(const PlanarScene& scene, const std::ve
       m.max_condition_t_s = r.t_s;
     }
   }
-  m.time_at_limit_s = static_cast<double>(at_limit_ticks) * scene.period_s;
-  m.time_at_limit_fraction =
-      records.empty() ? 0.0 : static_cast<double>(at_limit_ticks) / static_cast<double>(records.size());
-  if (records.size() > 2) m.force_jitter_N = std::sqrt(jitter_sum_N2 / static_cast<double>(records.size() - 2));
   count_pop_throughs(shapes, records, proxies_m, &m);
   m.passivity = measure_passivity(scene, shapes, records, proxies_m, final_q_rad);
   (void)final_x_m;
   if (watch_from_s) measure_planar_oscillation(scene, records, *watch_from_s, &m);
 
-  m.script_errors = summary.script_errors;
-  m.script_budget_overruns = summary.script_budget_overruns;
-  for (const ScriptReport& script : summary.scripts) {
-    if (!script.disabled) continue;
-    if (script.skipped_calls < records.size()) {
-      const PlanarValidateRecord& at = records[records.size() - 1 - script.skipped_calls];
-      m.script_faults.push_back({script.fault, printf_string("t %.3f s, at (%.2f, %.2f) mm", at.t_s,
-                                                             at.x_true_m[0] * 1e3, at.x_true_m[1] * 1e3)});
-    } else {
-      m.script_faults.push_back({script.fault, ""});
-    }
-  }
-  m.compute_p50_s = static_cast<double>(summary.compute_ns.percentile_ns(0.50)) * 1e-9;
-  m.compute_p99_s = static_cast<double>(summary.compute_ns.percentile_ns(0.99)) * 1e-9;
-  m.compute_max_s = static_cast<double>(summary.compute_ns.max_ns()) * 1e-9;
-  m.safety = summary.safety;
+  measure_scripts_and_timing(summary, records, &m);
   return m;
 }
 

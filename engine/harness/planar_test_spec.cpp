@@ -94,33 +94,7 @@ PlanarScenarioExpectation parse_scenario(ObjectReader& r) {
     r.fail("scenario", "unknown 2-D scenario \"" + e.scenario + "\"" +
                            (suggestion.empty() ? "" : " (did you mean \"" + suggestion + "\"?)"));
   }
-  // Absent keys are still asked for, so a misspelt one gets a "did you mean".
-  if (r.has("min_half_cycles")) e.min_half_cycles = static_cast<int>(r.integer("min_half_cycles", 0, 100000));
-  else r.get("min_half_cycles");
-  if (r.has("max_half_cycles")) e.max_half_cycles = static_cast<int>(r.integer("max_half_cycles", 0, 100000));
-  else r.get("max_half_cycles");
-  if (r.has("frequency")) e.frequency_Hz = r.range("frequency", Quantity::frequency_Hz);
-  else r.get("frequency");
-  if (r.has("max_force")) e.max_force_N = r.quantity("max_force", Quantity::force_N, Bound::positive);
-  else r.get("max_force");
-  e.pass = optional_bool(r, "pass");
-  if (const nlohmann::json* fail = r.get("fail")) {
-    if (!fail->is_array()) r.fail("fail", "expected an array of check names, got " + json_type_name(*fail));
-    for (std::size_t i = 0; i < fail->size(); ++i) {
-      if (!(*fail)[i].is_string()) {
-        throw InputError(located_message(r.file(), json_pointer_append(r.pointer_to("fail"), i), "expected a check name"));
-      }
-      const std::string check = (*fail)[i].get<std::string>();
-      if (std::find_if(std::begin(kPlanarCheckNames), std::end(kPlanarCheckNames),
-                       [&](const char* n) { return check == n; }) == std::end(kPlanarCheckNames)) {
-        const std::string suggestion = nearest_name(check, kPlanarCheckNames);
-        throw InputError(located_message(r.file(), json_pointer_append(r.pointer_to("fail"), i),
-                                         "unknown 2-D check \"" + check + "\"" +
-                                             (suggestion.empty() ? "" : " (did you mean \"" + suggestion + "\"?)")));
-      }
-      e.fail.push_back(check);
-    }
-  }
+  parse_scenario_expectation_keys(r, kPlanarCheckNames, "2-D check", &e);
   r.finish();
   return e;
 }
@@ -146,25 +120,14 @@ PlanarSpec parse_planar_spec(const std::string& path) {
     }
     o.finish();
   }
-  if (const nlohmann::json* forces = r.get("forces")) {
-    if (!forces->is_array()) r.fail("forces", "expected an array, got " + json_type_name(*forces));
-    for (std::size_t i = 0; i < forces->size(); ++i) {
-      ObjectReader f((*forces)[i], json_pointer_append(r.pointer_to("forces"), i), path);
-      spec.forces.push_back(parse_force(f));
-    }
-  }
+  for_each_object_in(r, "forces", [&](ObjectReader& f) { spec.forces.push_back(parse_force(f)); });
   if (r.has("zero_outside")) spec.zero_outside_m = parse_region(r, "zero_outside");
   else r.get("zero_outside");
   if (r.has("never_exceeds")) spec.never_exceeds_N = r.quantity("never_exceeds", Quantity::force_N, Bound::positive);
   else r.get("never_exceeds");
   spec.closed_loop.passes_validate = optional_bool(r, "passes_validate");
-  if (const nlohmann::json* scenarios = r.get("scenarios")) {
-    if (!scenarios->is_array()) r.fail("scenarios", "expected an array, got " + json_type_name(*scenarios));
-    for (std::size_t i = 0; i < scenarios->size(); ++i) {
-      ObjectReader s((*scenarios)[i], json_pointer_append(r.pointer_to("scenarios"), i), path);
-      spec.closed_loop.scenarios.push_back(parse_scenario(s));
-    }
-  }
+  for_each_object_in(r, "scenarios",
+                     [&](ObjectReader& e) { spec.closed_loop.scenarios.push_back(parse_scenario(e)); });
   r.finish();
   return spec;
 }
@@ -201,10 +164,8 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
     throw InputError(referrer + error.what());
   }
   const PlanarScene& scene = loaded->scene;
-  const auto add = [&](std::string what, bool pass, std::string message) {
-    result.outcomes.push_back({std::move(what), pass, std::move(message)});
-    result.pass = result.pass && pass;
-  };
+  SpecOutcomes spec_outcomes(&result, expects_script_failure(spec.closed_loop.scenarios));
+  const auto add = spec_outcomes.adder();
   // Budget errors (a script whose top level is slow) name the spec's environment.
   const auto located = [&](auto&& work) {
     try {
@@ -220,21 +181,8 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
     return result;
   }
 
-  // A script fault fails the spec unless a scenario expects the "script" check to fail.
-  bool faults_expected = false;
-  for (const PlanarScenarioExpectation& e : spec.closed_loop.scenarios) {
-    faults_expected = faults_expected || std::find(e.fail.begin(), e.fail.end(), "script") != e.fail.end();
-  }
-  ScriptFaultLog seen;
-  const auto add_fault = [&](const std::string& message, const std::string& line) {
-    const std::size_t before = seen.lines().size();
-    seen.add(message, "");
-    if (seen.lines().size() > before && !faults_expected) add("/environment", false, "script fault: " + line);
-  };
-  const auto add_faults = [&](const ScriptFaultLog& log) {
-    for (std::size_t i = 0; i < log.lines().size(); ++i) add_fault(log.messages()[i], log.lines()[i]);
-  };
-
+  // A script fault fails the spec unless a scenario expects the "script" check to fail
+  // (SpecOutcomes).
   // Forces at given points and velocities, each from fresh instances. One open loop (one
   // creation budget) for them and the region checks.
   PlanarOpenLoop open_loop(scene);
@@ -284,13 +232,13 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
     }
   }
 
-  add_faults(open_loop.faults());
+  spec_outcomes.add_faults(open_loop.faults());
 
   // Faults anywhere in the workspace, at rest, in motion and later in time.
   if (scene.script_count > 0) {
     ScriptFaultLog motion;
     located([&] { motion = scan_planar_faults_in_motion(scene, grid); });
-    add_faults(motion);
+    spec_outcomes.add_faults(motion);
   }
 
   // Closed-loop expectations (2-D validate).
@@ -298,7 +246,7 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
     std::vector<std::pair<std::string, std::string>> run_faults;
     std::vector<SpecOutcome> outcomes;
     located([&] { outcomes = closed_loop_outcomes_2d(scene, loaded->validate, spec.closed_loop, &run_faults); });
-    for (const auto& [message, line] : run_faults) add_fault(message, line);
+    for (const auto& [message, line] : run_faults) spec_outcomes.add_fault(message, line);
     for (SpecOutcome& o : outcomes) add(std::move(o.what), o.pass, std::move(o.message));
   }
   return result;

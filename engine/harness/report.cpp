@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "engine/base/format.hpp"
+#include "engine/harness/report_parts.hpp"
 
 namespace hapscene {
 namespace {
@@ -28,11 +29,10 @@ struct Tally {
   }
 };
 
-Tally tally(const ValidationReport& report) {
+Tally tally(const std::vector<ReportSection>& sections) {
   Tally t;
-  for (const CheckResult& c : report.scene_checks) t.add("scene", c);
-  for (const ScenarioResult& s : report.scenarios) {
-    for (const CheckResult& c : s.checks) t.add(s.scenario.name, c);
+  for (const ReportSection& section : sections) {
+    for (const CheckResult& c : section.checks) t.add(section.name, c);
   }
   return t;
 }
@@ -51,6 +51,13 @@ std::string failed_text(const Tally& t) {
   return text;
 }
 
+// "result: pass (60 checks)" or "result: FAIL (...)", after a blank line.
+std::string result_line(const Tally& t) {
+  return t.failed == 0 ? "\nresult: pass (" + counted(t) + ")\n" : "\nresult: FAIL (" + failed_text(t) + ")\n";
+}
+
+constexpr const char* kSceneDescription = "the environment as loaded and probed open loop";
+
 }  // namespace
 
 std::string format_check_row(const CheckResult& c) {
@@ -61,12 +68,16 @@ std::string format_check_row(const CheckResult& c) {
          (verdict.size() >= 9 ? " " : "") + c.detail + "\n";
 }
 
+std::string format_report_line(const std::string& scene_name, const std::string& source_path,
+                               const std::vector<ReportSection>& sections) {
+  const Tally t = tally(sections);
+  std::string line =
+      printf_string("%s %s (%s): ", t.failed == 0 ? "PASS" : "FAIL", scene_name.c_str(), source_path.c_str());
+  return line + (t.failed == 0 ? counted(t) : failed_text(t)) + "\n";
+}
+
 std::string format_report_line(const ValidationReport& report) {
-  const Tally t = tally(report);
-  std::string line = printf_string("%s %s (%s): ", t.failed == 0 ? "PASS" : "FAIL", report.scene_name.c_str(),
-                                   report.source_path.c_str());
-  if (t.failed == 0) return line + counted(t) + "\n";
-  return line + failed_text(t) + "\n";
+  return format_report_line(report.scene_name, report.source_path, report_sections(report, kSceneDescription));
 }
 
 std::string format_value(double value, const std::string& unit) {
@@ -79,40 +90,36 @@ std::string format_value(double value, const std::string& unit) {
   return printf_string("%.3f", value);
 }
 
+std::string format_hand_line(const HarnessOptions& o) {
+  return printf_string("hand %g N/m, %g N*s/m, %g g; sensor noise %s, seed %llu\n\n", o.hand_stiffness_N_per_m,
+                       o.hand_damping_N_s_per_m, o.hand_mass_kg * 1e3,
+                       o.noise_counts < 0 ? "from the profile" : printf_string("%g counts", o.noise_counts).c_str(),
+                       static_cast<unsigned long long>(o.seed));
+}
+
+std::string format_report_rows(const std::vector<ReportSection>& sections) {
+  std::string out = "scenario  check          value           threshold        verdict  detail\n";
+  for (const ReportSection& section : sections) {
+    out += padded(section.name, 10) + section.description + "\n";
+    if (!section.applicable) {
+      out += padded("", 10) + "(not applicable)\n";
+      continue;
+    }
+    for (const CheckResult& c : section.checks) out += format_check_row(c);
+  }
+  return out + result_line(tally(sections));
+}
+
 std::string format_report_table(const ValidationReport& report) {
   std::string out = printf_string(
       "validate %s (%s): %g Hz, passivity bound %s = %.0f N/m, stiffest region %.0f N/m\n",
       report.scene_name.c_str(), report.source_path.c_str(), report.rate_hz, report.passivity_bound_name,
       report.passivity_bound_N_per_m, report.stiffest_region_N_per_m);
-  const HarnessOptions& o = report.options;
-  out += printf_string("hand %g N/m, %g N*s/m, %g g; sensor noise %s, seed %llu\n\n",
-                       o.hand_stiffness_N_per_m, o.hand_damping_N_s_per_m, o.hand_mass_kg * 1e3,
-                       o.noise_counts < 0 ? "from the profile" : printf_string("%g counts", o.noise_counts).c_str(),
-                       static_cast<unsigned long long>(o.seed));
+  out += format_hand_line(report.options);
   if (!report.field.behaviour.static_field()) {
     out += "force field: " + report.field.behaviour.note + "; no walls inferred from it\n\n";
   }
-  out += "scenario  check          value           threshold        verdict  detail\n";
-
-  if (!report.scene_checks.empty()) {
-    out += padded("scene", 10) + "the environment as loaded and probed open loop\n";
-    for (const CheckResult& c : report.scene_checks) out += format_check_row(c);
-  }
-  for (const ScenarioResult& s : report.scenarios) {
-    out += padded(s.scenario.name, 10) + s.scenario.description + "\n";
-    if (!s.scenario.applicable) {
-      out += padded("", 10) + "(not applicable)\n";
-      continue;
-    }
-    for (const CheckResult& c : s.checks) out += format_check_row(c);
-  }
-  const Tally t = tally(report);
-  if (t.failed == 0) {
-    out += "\nresult: pass (" + counted(t) + ")\n";
-  } else {
-    out += "\nresult: FAIL (" + failed_text(t) + ")\n";
-  }
-  return out;
+  return out + format_report_rows(report_sections(report, kSceneDescription));
 }
 
 std::string report_table_header(const std::string& table) {
@@ -122,17 +129,12 @@ std::string report_table_header(const std::string& table) {
 
 std::string format_report_summary(const std::string& header, const std::vector<ReportSection>& sections) {
   std::string out = header;
-  Tally all;
   for (const ReportSection& section : sections) {
     if (!section.applicable) {
       out += padded(section.name, 10) + padded("-", 6) + padded("not applicable", 26) + section.description + "\n";
       continue;
     }
-    Tally t;
-    for (const CheckResult& c : section.checks) {
-      t.add(section.name, c);
-      all.add(section.name, c);
-    }
+    const Tally t = tally({section});
     const std::string counts = t.failed > 0 ? printf_string("%d of %d checks failed", t.failed, t.total)
                                             : counted(t);
     out += padded(section.name, 10) + padded(t.failed > 0 ? "FAIL" : "pass", 6) + padded(counts, 26) +
@@ -141,25 +143,33 @@ std::string format_report_summary(const std::string& header, const std::vector<R
       if (!c.pass) out += format_check_row(c);
     }
   }
-  out += all.failed == 0 ? "\nresult: pass (" + counted(all) + ")\n" : "\nresult: FAIL (" + failed_text(all) + ")\n";
-  return out;
+  return out + result_line(tally(sections));
 }
 
 std::string format_report_summary(const ValidationReport& report) {
-  std::vector<ReportSection> sections;
-  if (!report.scene_checks.empty()) {
-    sections.push_back({"scene", "the environment as loaded and probed open loop", true, report.scene_checks});
-  }
-  for (const ScenarioResult& s : report.scenarios) {
-    sections.push_back({s.scenario.name, s.scenario.description, s.scenario.applicable, s.checks});
-  }
-  return format_report_summary(report_table_header(format_report_table(report)), sections);
+  return format_report_summary(report_table_header(format_report_table(report)),
+                               report_sections(report, kSceneDescription));
 }
 
 nlohmann::json check_to_json(const CheckResult& c) {
   return {{"name", c.name}, {"value", c.value}, {"threshold", c.threshold}, {"unit", c.unit},
           {"pass", c.pass}, {"verdict", c.judged ? (c.pass ? "pass" : "fail") : "not judged"},
           {"detail", c.detail}};
+}
+
+nlohmann::json options_json(const HarnessOptions& o) {
+  using nlohmann::json;
+  return {{"hand_stiffness_N_per_m", o.hand_stiffness_N_per_m},
+          {"hand_damping_N_s_per_m", o.hand_damping_N_s_per_m},
+          {"hand_mass_kg", o.hand_mass_kg},
+          {"noise_counts", o.noise_counts < 0 ? json(nullptr) : json(o.noise_counts)},
+          {"seed", o.seed}};
+}
+
+nlohmann::json oscillation_json(const OscillationMetrics& w) {
+  return {{"from_s", w.from_s}, {"half_cycles", w.half_cycles}, {"frequency_Hz", w.frequency_Hz},
+          {"initial_amplitude_m", w.initial_amplitude_m}, {"residual_amplitude_m", w.residual_amplitude_m},
+          {"growth", w.growth}, {"rest_m", w.rest_m}};
 }
 
 nlohmann::json report_to_json(const ValidationReport& report) {
@@ -169,88 +179,29 @@ nlohmann::json report_to_json(const ValidationReport& report) {
     regions.push_back({{"low_m", r.low_m}, {"high_m", r.high_m}, {"low_is_edge", r.low_is_edge},
                        {"high_is_edge", r.high_is_edge}, {"stiffness_N_per_m", r.stiffness_N_per_m}});
   }
-  const HarnessOptions& o = report.options;
-  json out = {
-      {"schema", kReportSchema},
-      {"scene", {{"name", report.scene_name}, {"source", report.source_path}, {"rate_hz", report.rate_hz},
-                 {"passivity_bound_N_per_m", report.passivity_bound_N_per_m},
-                 {"passivity_bound", report.passivity_bound_name},
-                 {"stiffest_region_N_per_m", report.stiffest_region_N_per_m},
-                 {"stiff_regions", regions},
-                 {"static_field", report.field.behaviour.static_field()},
-                 {"field_note", report.field.behaviour.note},
-                 {"field_script_faults", report.field.faults.lines()},
-                 {"load_warnings", nlohmann::json::array()}}},
-      {"options", {{"hand_stiffness_N_per_m", o.hand_stiffness_N_per_m},
-                   {"hand_damping_N_s_per_m", o.hand_damping_N_s_per_m},
-                   {"hand_mass_kg", o.hand_mass_kg},
-                   {"noise_counts", o.noise_counts < 0 ? json(nullptr) : json(o.noise_counts)},
-                   {"seed", o.seed},
-                   {"free_start_m", o.free_start_m}}},
-      {"pass", report.pass},
-      {"scene_checks", json::array()},
-      {"scenarios", json::array()}};
-  for (const std::string& w : report.load_warnings) out["scene"]["load_warnings"].push_back(w);
-  for (const CheckResult& c : report.scene_checks) out["scene_checks"].push_back(check_to_json(c));
-
+  json options = options_json(report.options);
+  options["free_start_m"] = report.options.free_start_m;
+  json out = report_json_frame(
+      report,
+      {{"name", report.scene_name}, {"source", report.source_path}, {"rate_hz", report.rate_hz},
+       {"passivity_bound_N_per_m", report.passivity_bound_N_per_m},
+       {"passivity_bound", report.passivity_bound_name},
+       {"stiffest_region_N_per_m", report.stiffest_region_N_per_m},
+       {"stiff_regions", regions},
+       {"static_field", report.field.behaviour.static_field()},
+       {"field_note", report.field.behaviour.note},
+       {"field_script_faults", report.field.faults.lines()}},
+      options);
   for (const ScenarioResult& s : report.scenarios) {
     const ScenarioMetrics& m = s.metrics;
-    json scenario = {{"name", s.scenario.name}, {"description", s.scenario.description},
-                     {"applicable", s.scenario.applicable}, {"duration_s", s.scenario.duration_s},
-                     {"pass", s.pass}};
-    if (s.scenario.applicable) {
-      json script_faults = json::array();
-      for (const auto& f : m.script_faults) script_faults.push_back({{"message", f.message}, {"where", f.where}});
-      json metrics = {
-          {"ticks", m.ticks},
-          {"max_requested_N", m.max_requested_N},
-          {"max_output_N", m.max_output_N},
-          {"max_output_x_m", m.max_output_x_m},
-          {"max_output_t_s", m.max_output_t_s},
-          {"time_at_limit_s", m.time_at_limit_s},
-          {"time_at_limit_fraction", m.time_at_limit_fraction},
-          {"max_slew_N_per_s", m.max_slew_N_per_s},
-          {"force_jitter_N", m.force_jitter_N},
-          {"slip_force_ticks", m.slip_force_ticks},
-          {"slip_step_ticks", m.slip_step_ticks},
-          {"max_step_1ms_N", m.max_step_1ms_N},
-          {"slip_first_x_m", m.slip_first_t_s < 0.0 ? json(nullptr) : json(m.slip_first_x_m)},
-          {"slip_first_t_s", m.slip_first_t_s < 0.0 ? json(nullptr) : json(m.slip_first_t_s)},
-          {"jitter_peak_N", m.jitter_peak_N},
-          {"jitter_peak_x_m", m.jitter_peak_x_m},
-          {"jitter_peak_t_s", m.jitter_peak_t_s},
-          {"passivity", {{"motor_work_J", m.passivity.motor_work_J}, {"stored_J", m.passivity.stored_J},
-                         {"created_J", m.passivity.created_J}, {"dissipated_J", m.passivity.dissipated_J},
-                         {"net_J", m.passivity.net_J}, {"ratio", m.passivity.ratio},
-                         {"grows", m.passivity.grows}}},
-          {"oscillation", nullptr},
-          {"max_penetration_m", m.max_penetration_m},
-          {"max_penetration_x_m", m.max_penetration_x_m},
-          {"script_errors", m.script_errors},
-          {"script_budget_overruns", m.script_budget_overruns},
-          {"script_faults", script_faults},
-          {"tick_compute_s", {{"p50", m.compute_p50_s}, {"p99", m.compute_p99_s}, {"max", m.compute_max_s}}},
-          {"safety", {{"nonfinite_faults", m.safety.nonfinite_faults},
-                      {"outside_workspace_ticks", m.safety.outside_workspace_ticks},
-                      {"soft_start_ticks", m.safety.soft_start_ticks},
-                      {"clamped_ticks", m.safety.clamped_ticks},
-                      {"slew_limited_ticks", m.safety.slew_limited_ticks}}}};
-      if (m.oscillation) {
-        const OscillationMetrics& w = *m.oscillation;
-        metrics["oscillation"] = {{"from_s", w.from_s}, {"half_cycles", w.half_cycles},
-                                  {"frequency_Hz", w.frequency_Hz},
-                                  {"initial_amplitude_m", w.initial_amplitude_m},
-                                  {"residual_amplitude_m", w.residual_amplitude_m},
-                                  {"growth", w.growth}, {"rest_m", w.rest_m}};
-      }
-      scenario["metrics"] = metrics;
-      json checks = json::array();
-      for (const CheckResult& c : s.checks) {
-        checks.push_back(check_to_json(c));
-      }
-      scenario["checks"] = checks;
-    }
-    out["scenarios"].push_back(scenario);
+    json metrics = shared_metrics_json(m);
+    metrics["slip_force_ticks"] = m.slip_force_ticks;
+    metrics["slip_step_ticks"] = m.slip_step_ticks;
+    metrics["max_step_1ms_N"] = m.max_step_1ms_N;
+    metrics["slip_first_x_m"] = m.slip_first_t_s < 0.0 ? json(nullptr) : json(m.slip_first_x_m);
+    metrics["slip_first_t_s"] = m.slip_first_t_s < 0.0 ? json(nullptr) : json(m.slip_first_t_s);
+    if (m.oscillation) metrics["oscillation"] = oscillation_json(*m.oscillation);
+    out["scenarios"].push_back(scenario_json(s, metrics));
   }
   return out;
 }

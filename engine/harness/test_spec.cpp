@@ -78,31 +78,7 @@ ScenarioExpectation parse_scenario(ObjectReader& r) {
   e.pointer = r.pointer();
   const std::string name = r.choice("scenario", {"sweep", "press", "release", "hold", "shake", "free"});
   e.kind = *scenario_kind_named(name);
-  if (r.has("min_half_cycles")) e.min_half_cycles = static_cast<int>(r.integer("min_half_cycles", 0, 100000));
-  else r.get("min_half_cycles");
-  if (r.has("max_half_cycles")) e.max_half_cycles = static_cast<int>(r.integer("max_half_cycles", 0, 100000));
-  else r.get("max_half_cycles");
-  if (r.has("frequency")) e.frequency_Hz = r.range("frequency", Quantity::frequency_Hz);
-  else r.get("frequency");
-  if (r.has("max_force")) e.max_force_N = r.quantity("max_force", Quantity::force_N, Bound::positive);
-  else r.get("max_force");
-  e.pass = optional_bool(r, "pass");
-  if (const nlohmann::json* fail = r.get("fail")) {
-    if (!fail->is_array()) r.fail("fail", "expected an array of check names, got " + json_type_name(*fail));
-    for (std::size_t i = 0; i < fail->size(); ++i) {
-      const nlohmann::json& item = (*fail)[i];
-      const std::string pointer = json_pointer_append(r.pointer_to("fail"), i);
-      if (!item.is_string()) throw InputError(located_message(r.file(), pointer, "expected a check name"));
-      const std::string check = item.get<std::string>();
-      if (std::find_if(std::begin(kCheckNames), std::end(kCheckNames),
-                       [&](const char* n) { return check == n; }) == std::end(kCheckNames)) {
-        const std::string suggestion = nearest_name(check, kCheckNames);
-        throw InputError(located_message(r.file(), pointer, "unknown check \"" + check + "\"" +
-                                         (suggestion.empty() ? "" : " (did you mean \"" + suggestion + "\"?)")));
-      }
-      e.fail.push_back(check);
-    }
-  }
+  parse_scenario_expectation_keys(r, kCheckNames, "check", &e);
   r.finish();
   return e;
 }
@@ -119,40 +95,30 @@ Spec parse_spec(const std::string& path) {
     spec.options = parse_options(o);
     if (o.has("start")) spec.start_pointer = o.pointer_to("start");
   }
-  if (const nlohmann::json* forces = r.get("forces")) {
-    if (!forces->is_array()) r.fail("forces", "expected an array, got " + json_type_name(*forces));
-    for (std::size_t i = 0; i < forces->size(); ++i) {
-      ObjectReader f((*forces)[i], json_pointer_append(r.pointer_to("forces"), i), path);
-      ForceExpectation e;
-      e.pointer = f.pointer();
-      if (f.has("at")) {
-        f.fail("at", "a 2-D spec's form: this spec's environment is 1-DOF, so a point is \"x\": X (a number in m "
-                     "or a string with a unit)");
-      }
-      refuse_planar_form(f, "x", "a number in m (or a string with a unit)");
-      refuse_planar_form(f, "v", "a number in m/s (or a string with a unit)");
-      refuse_planar_form(f, "force", "a number in N (or a string with a unit)");
-      e.x_m = quantity_in(f, "x", value_range::probe_position, std::nullopt);
-      e.v_m_per_s = quantity_in(f, "v", value_range::probe_velocity, 0.0);
-      e.force_N = f.quantity("force", Quantity::force_N);
-      e.tolerance_N = f.quantity_or("tolerance", Quantity::force_N, 1e-6, Bound::non_negative);
-      f.finish();
-      spec.forces.push_back(e);
+  for_each_object_in(r, "forces", [&](ObjectReader& f) {
+    ForceExpectation e;
+    e.pointer = f.pointer();
+    if (f.has("at")) {
+      f.fail("at", "a 2-D spec's form: this spec's environment is 1-DOF, so a point is \"x\": X (a number in m "
+                   "or a string with a unit)");
     }
-  }
+    refuse_planar_form(f, "x", "a number in m (or a string with a unit)");
+    refuse_planar_form(f, "v", "a number in m/s (or a string with a unit)");
+    refuse_planar_form(f, "force", "a number in N (or a string with a unit)");
+    e.x_m = quantity_in(f, "x", value_range::probe_position, std::nullopt);
+    e.v_m_per_s = quantity_in(f, "v", value_range::probe_velocity, 0.0);
+    e.force_N = f.quantity("force", Quantity::force_N);
+    e.tolerance_N = f.quantity_or("tolerance", Quantity::force_N, 1e-6, Bound::non_negative);
+    f.finish();
+    spec.forces.push_back(e);
+  });
   refuse_planar_form(r, "zero_outside", "[a, b], an interval of lengths");
   if (r.has("zero_outside")) spec.zero_outside_m = r.range("zero_outside", Quantity::length_m);
   else r.get("zero_outside");
   if (r.has("never_exceeds")) spec.never_exceeds_N = r.quantity("never_exceeds", Quantity::force_N, Bound::positive);
   else r.get("never_exceeds");
   spec.passes_validate = optional_bool(r, "passes_validate");
-  if (const nlohmann::json* scenarios = r.get("scenarios")) {
-    if (!scenarios->is_array()) r.fail("scenarios", "expected an array, got " + json_type_name(*scenarios));
-    for (std::size_t i = 0; i < scenarios->size(); ++i) {
-      ObjectReader s((*scenarios)[i], json_pointer_append(r.pointer_to("scenarios"), i), path);
-      spec.scenarios.push_back(parse_scenario(s));
-    }
-  }
+  for_each_object_in(r, "scenarios", [&](ObjectReader& e) { spec.scenarios.push_back(parse_scenario(e)); });
   r.finish();
   return spec;
 }
@@ -211,6 +177,21 @@ void parse_hand_options(ObjectReader& r, HarnessOptions* o) {
   else r.get("seed");
 }
 
+void SpecOutcomes::add(std::string what, bool pass, std::string message) {
+  result_->outcomes.push_back({std::move(what), pass, std::move(message)});
+  result_->pass = result_->pass && pass;
+}
+
+void SpecOutcomes::add_fault(const std::string& message, const std::string& line) {
+  const std::size_t before = seen_.lines().size();
+  seen_.add(message, "");
+  if (seen_.lines().size() > before && !faults_expected_) add("/environment", false, "script fault: " + line);
+}
+
+void SpecOutcomes::add_faults(const ScriptFaultLog& log) {
+  for (std::size_t i = 0; i < log.lines().size(); ++i) add_fault(log.messages()[i], log.lines()[i]);
+}
+
 SpecResult run_test_spec(const std::string& spec_path) {
   // A spec for a 2-DOF environment: its own format (planar_test_spec.cpp).
   if (names_planar_environment(spec_path)) return run_planar_test_spec(spec_path);
@@ -242,10 +223,8 @@ SpecResult run_test_spec(const std::string& spec_path) {
     if (!problem.empty()) throw InputError(referrer + scene.source_path + ": the free scenario's default start: " + problem);
   }
   OpenLoop open_loop(scene);
-  const auto add = [&](std::string what, bool pass, std::string message) {
-    result.outcomes.push_back({std::move(what), pass, std::move(message)});
-    result.pass = result.pass && pass;
-  };
+  SpecOutcomes spec_outcomes(&result, expects_script_failure(spec.scenarios));
+  const auto add = spec_outcomes.adder();
 
   // Scripts too slow for the loop: nothing else is evaluated (it would take hours).
   if (const std::optional<CheckResult> pace = check_script_pace(scene)) {
@@ -282,23 +261,10 @@ SpecResult run_test_spec(const std::string& spec_path) {
   }
 
   // A script fault fails the spec, with its message, unless a scenario expects the
-  // "script" check to fail. Faults seen open loop first, then those of the runs.
-  bool faults_expected = false;
-  for (const ScenarioExpectation& e : spec.scenarios) {
-    faults_expected = faults_expected || std::find(e.fail.begin(), e.fail.end(), "script") != e.fail.end();
-  }
-  // Each fault once: those of the points asked, then of the whole workspace open loop
-  // (a fault no expectation reaches still fails the spec), then of the runs.
-  ScriptFaultLog seen;
-  const auto add_fault = [&](const std::string& message, const std::string& line) {
-    const std::size_t before = seen.lines().size();
-    seen.add(message, "");
-    if (seen.lines().size() > before && !faults_expected) add("/environment", false, "script fault: " + line);
-  };
-  const auto add_faults = [&](const ScriptFaultLog& log) {
-    for (std::size_t i = 0; i < log.lines().size(); ++i) add_fault(log.messages()[i], log.lines()[i]);
-  };
-  add_faults(open_loop.faults());
+  // "script" check to fail (SpecOutcomes). Each fault once: those of the points asked,
+  // then of the whole workspace open loop (a fault no expectation reaches still fails the
+  // spec), then of the runs.
+  spec_outcomes.add_faults(open_loop.faults());
 
   // Everything that needs closed-loop runs: one validation of all scenarios.
   // Last, the faults met in motion or after some time, which the scan at rest misses
@@ -311,10 +277,10 @@ SpecResult run_test_spec(const std::string& spec_path) {
     for (std::size_t i = 0; i <= steps; ++i) {
       grid_m.push_back(scene.safety.workspace_min_m + static_cast<double>(i) * kMotionScanStep_m);
     }
-    add_faults(scan_faults_in_motion(scene, grid_m));
+    spec_outcomes.add_faults(scan_faults_in_motion(scene, grid_m));
   };
   if (!needs_runs) {
-    if (scene.script_count > 0) add_faults(probe_force_field(scene, options.thresholds.stiff_threshold_N_per_m).faults);
+    if (scene.script_count > 0) spec_outcomes.add_faults(probe_force_field(scene, options.thresholds.stiff_threshold_N_per_m).faults);
     add_motion_faults();
     return result;
   }
@@ -325,9 +291,9 @@ SpecResult run_test_spec(const std::string& spec_path) {
     throw InputError(referrer + error.what());
   }
   const ValidationReport& report = *validated;
-  add_faults(report.field.faults);
+  spec_outcomes.add_faults(report.field.faults);
   for (const ScenarioResult& s : report.scenarios) {
-    for (const auto& f : s.metrics.script_faults) add_fault(f.message, f.text() + " in the " + s.scenario.name + " run");
+    for (const auto& f : s.metrics.script_faults) spec_outcomes.add_fault(f.message, f.text() + " in the " + s.scenario.name + " run");
   }
   add_motion_faults();
 
