@@ -181,7 +181,6 @@ class ReachableFree {
         queue.push_back(other);
       }
     }
-    start_cell_ = first;
   }
 
   // Whether p's cell is free and reachable.
@@ -243,7 +242,6 @@ class ReachableFree {
   Vec2 low_{};
   int columns_{};
   int rows_{};
-  int start_cell_{-1};
   std::vector<int> from_;  // per cell: the cell it was reached from, -1 the start, -2 not reached
 };
 
