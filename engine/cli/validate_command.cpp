@@ -108,6 +108,7 @@ int validate_command(std::vector<std::string> args) {
         shown.source_path = printable(report.source_path);
         shown.rate_hz = report.rate_hz;
         shown.bound = report.bound;
+        shown.scripts = report.scripts;
         shown.options = report.options;
         shown.scene_checks = report.scene_checks;
         for (const PlanarScenarioResult& s : report.scenarios) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/harness/planar_open_loop.hpp"
 #include "engine/harness/planar_shape_list.hpp"
 #include "engine/harness/svg_plot.hpp"
 #include "engine/scene/safety.hpp"
@@ -281,7 +282,8 @@ std::string field_panel_svg(const PlanarScene& scene, const PlanarFieldView& vie
   out += "<clipPath id=\"fieldclip\"><rect x=\"" + num(x0) + "\" y=\"" + num(y0) + "\" width=\"" +
          num(view.width_px) + "\" height=\"" + num(view.height_px) + "\"/></clipPath>\n";
   out += "<g clip-path=\"url(#fieldclip)\">\n";
-  const std::vector<PlanarShapeGeometry> shapes = planar_shape_list(scene);
+  // The built-in shapes and those the scene's scripts declare (their `shapes`), alike.
+  const std::vector<PlanarShapeGeometry> shapes = planar_scenario_shapes(scene);
   for (const PlanarShapeGeometry& shape : shapes) out += solid_svg(view, shape);
   out += quiver_svg(view, grid);
   out += "<g id=\"shapes\">\n";
@@ -423,13 +425,24 @@ PlanarFieldGrid planar_field_grid(const PlanarScene& scene, int grid) {
   const int other = std::max(2, static_cast<int>(std::lround(grid * (wide ? span[1] / span[0] : span[0] / span[1]))));
   out.columns = wide ? grid : other;
   out.rows = wide ? other : grid;
-  ScriptList no_scripts;  // planar scenes hold no scripts
+  // A scene with scripts: every point as fresh script instances give it at rest, t = 0
+  // (the open loop of `probe` and the test specs); built-in effects alone: summed here.
+  std::vector<Vec2> points_m;
   for (int r = 0; r < out.rows; ++r) {
     for (int c = 0; c < out.columns; ++c) {
+      points_m.push_back(Vec2{{low[0] + (c + 0.5) * span[0] / out.columns, low[1] + (r + 0.5) * span[1] / out.rows}});
+    }
+  }
+  std::vector<Vec2> scripted_N;
+  if (scene.script_count > 0) scripted_N = PlanarOpenLoop(scene).scan(points_m, Vec2{}).force_N;
+  ScriptList no_scripts;
+  for (int r = 0; r < out.rows; ++r) {
+    for (int c = 0; c < out.columns; ++c) {
+      const std::size_t index = static_cast<std::size_t>(r * out.columns + c);
       EffectInputOf<2> input;
-      input.x_m = Vec2{{low[0] + (c + 0.5) * span[0] / out.columns, low[1] + (r + 0.5) * span[1] / out.rows}};
+      input.x_m = points_m[index];
       input.dt_s = scene.period_s;
-      const Vec2 force_N = sum_effects_N(scene, input, no_scripts);
+      const Vec2 force_N = scripted_N.empty() ? sum_effects_N(scene, input, no_scripts) : scripted_N[index];
       SafetyCounters counters;
       const Vec2 output_N = apply_static_safety(scene.safety, input.x_m, force_N, &counters);
       out.points_m.push_back(input.x_m);

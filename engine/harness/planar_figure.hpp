@@ -46,7 +46,8 @@ PlanarFieldView planar_field_view(const PlanarScene& scene, int figure_width_px,
 
 // The open-loop field on the grid: `columns` x `rows` points at the centres of equal
 // cells covering the workspace box (`grid` along its longer side, at least 2 on the
-// other), row by row from the bottom left.
+// other), row by row from the bottom left. Scripts count as the open loop gives them
+// (fresh instances at rest, t = 0: PlanarOpenLoop::scan).
 struct PlanarFieldGrid {
   int columns{};
   int rows{};

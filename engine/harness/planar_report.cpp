@@ -36,9 +36,14 @@ std::string format_planar_report_line(const PlanarValidationReport& report) {
 
 std::string format_planar_report_table(const PlanarValidationReport& report) {
   const PlanarStiffnessBound& b = report.bound;
-  std::string out = printf_string("validate %s (%s): 2 axes, %g Hz, stiffest shape or spring %.0f N/m\n",
+  std::string out = printf_string("validate %s (%s): 2 axes, %g Hz, stiffest shape or spring %.0f N/m%s\n",
                                   report.scene_name.c_str(), report.source_path.c_str(), report.rate_hz,
-                                  b.stiffest_N_per_m);
+                                  b.stiffest_N_per_m,
+                                  report.scripts == 0 ? ""
+                                  : report.scripts == 1
+                                      ? " (not counting the script: its stiffness is not known)"
+                                      : printf_string(" (not counting the %zu scripts: their stiffness is not known)",
+                                                      report.scripts).c_str());
   if (b.poses.empty()) {
     out += "stiffness bound per pose: no pose of the grid is reachable\n";
   } else {

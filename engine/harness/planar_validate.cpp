@@ -62,6 +62,7 @@ PlanarValidationReport validate_planar_scene(const PlanarScene& scene, const std
   report.options = options;
   report.bound = planar_stiffness_bound(scene);
   report.shapes = planar_scenario_shapes(scene).size();
+  report.scripts = scene.script_count;
   report.load_warnings = scene.load_warnings;
   // Scripts too slow for the loop: nothing else is run (as in 1-D).
   if (const std::optional<CheckResult> pace = check_script_pace(scene)) {

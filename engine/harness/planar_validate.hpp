@@ -31,6 +31,7 @@ struct PlanarValidationReport {
   double rate_hz{};
   PlanarStiffnessBound bound;               // per pose over the workspace
   std::size_t shapes{};                     // the scene's walls, boxes, circles, polygons and scripts' shapes
+  std::size_t scripts{};                    // the scene's script effects (their stiffness is not known)
   HarnessOptions options;
   std::vector<PlanarScenarioResult> scenarios;
   std::vector<CheckResult> scene_checks;    // "effects" (an effect that never acts), when failing

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "engine/base/format.hpp"
 #include "engine/harness/planar_scenario.hpp"
@@ -33,6 +34,8 @@ constexpr double kSettle_s = 0.3;                    // after a path, before the
 constexpr double kRouteClearance_m = 0.003;          // the hand passes shapes this far off
 constexpr double kThicknessStep_m = 5e-5;
 constexpr double kThicknessReach_m = 0.020;
+constexpr double kReachCell_m = 0.001;               // the reachable free part's cells
+constexpr double kReachClearance_m = 0.001;          // a free cell's centre is this far off every solid
 
 std::string mm_point(const Vec2& p_m) { return printf_string("(%.1f, %.1f) mm", p_m[0] * 1e3, p_m[1] * 1e3); }
 
@@ -126,9 +129,138 @@ void route(const std::vector<PlanarShapeGeometry>& shapes, const Vec2& a, const 
   route(shapes, via, b, level + 1, out);
 }
 
-void travel(const std::vector<PlanarShapeGeometry>& shapes, PathBuilder* path, const Vec2& to_m, double speed) {
+// Whether a routed leg keeps off every solid, by route's own measure.
+bool leg_clear(const std::vector<PlanarShapeGeometry>& shapes, const Vec2& a, const Vec2& b) {
+  int which = -1;
+  const double allowed = std::max(-0.5 * kRouteClearance_m,
+                                  std::max(deepest_along(shapes, a, a, &which), deepest_along(shapes, b, b, &which)) + 1e-4);
+  return deepest_along(shapes, a, b, &which) <= allowed;
+}
+
+// The free part of the workspace the hand can reach from the start without crossing a
+// solid: the workspace box (less the hand's margin) in cells kReachCell_m wide, a cell
+// free when every solid is at least kReachClearance_m from its centre, flooded through
+// free neighbours (4 of them) from the free cell nearest the start. A frame of walls round
+// the start keeps the hand inside it; a room no free path enters is out of reach.
+class ReachableFree {
+ public:
+  ReachableFree(const std::vector<PlanarShapeGeometry>& shapes, const Vec2& low, const Vec2& high, const Vec2& start_m)
+      : shapes_(shapes) {
+    low_ = low + Vec2{{kWorkspaceMargin_m, kWorkspaceMargin_m}};
+    const Vec2 size = high - low_ - Vec2{{kWorkspaceMargin_m, kWorkspaceMargin_m}};
+    columns_ = std::max(1, static_cast<int>(std::floor(size[0] / kReachCell_m)) + 1);
+    rows_ = std::max(1, static_cast<int>(std::floor(size[1] / kReachCell_m)) + 1);
+    std::vector<char> free(static_cast<std::size_t>(columns_ * rows_), 0);
+    int first = -1;
+    double first_m = INFINITY;
+    for (int cell = 0; cell < columns_ * rows_; ++cell) {
+      const Vec2 c = centre(cell);
+      double deepest = -INFINITY;
+      for (const PlanarShapeGeometry& shape : shapes) deepest = std::max(deepest, shape.depth_m(c));
+      free[static_cast<std::size_t>(cell)] = deepest <= -kReachClearance_m;
+      if (free[static_cast<std::size_t>(cell)] && norm(c - start_m) < first_m) {
+        first_m = norm(c - start_m);
+        first = cell;
+      }
+    }
+    // Breadth first from the start's cell; `from_` keeps each cell's way back.
+    from_.assign(free.size(), -2);
+    if (first < 0) return;
+    std::vector<int> queue{first};
+    from_[static_cast<std::size_t>(first)] = -1;
+    for (std::size_t next = 0; next < queue.size(); ++next) {
+      const int cell = queue[next];
+      const int column = cell % columns_;
+      const int row = cell / columns_;
+      const int neighbours[4][2] = {{column - 1, row}, {column + 1, row}, {column, row - 1}, {column, row + 1}};
+      for (const auto& n : neighbours) {
+        if (n[0] < 0 || n[0] >= columns_ || n[1] < 0 || n[1] >= rows_) continue;
+        const int other = n[1] * columns_ + n[0];
+        if (!free[static_cast<std::size_t>(other)] || from_[static_cast<std::size_t>(other)] != -2) continue;
+        from_[static_cast<std::size_t>(other)] = cell;
+        queue.push_back(other);
+      }
+    }
+  }
+
+  // Whether p's cell is free and reachable.
+  bool reachable(const Vec2& p_m) const { return from_.empty() ? false : from_[cell_at(p_m)] != -2 && cell_inside(p_m); }
+
+  // A way from a to b (both reachable) through reachable cells, its corners cut where a
+  // straight leg stays half the route clearance off every solid.
+  std::vector<Vec2> way(const Vec2& a, const Vec2& b) const {
+    // Cells from b back to the start, and from a back to the start: joined where they meet.
+    auto to_start = [&](int cell) {
+      std::vector<int> cells;
+      for (; cell >= 0; cell = from_[static_cast<std::size_t>(cell)]) cells.push_back(cell);
+      return cells;
+    };
+    const std::vector<int> from_a = to_start(static_cast<int>(cell_at(a)));
+    const std::vector<int> from_b = to_start(static_cast<int>(cell_at(b)));
+    std::size_t shared = 0;  // cells the two ways share at their start ends
+    while (shared < from_a.size() && shared < from_b.size() &&
+           from_a[from_a.size() - 1 - shared] == from_b[from_b.size() - 1 - shared]) {
+      ++shared;
+    }
+    std::vector<Vec2> points{a};
+    for (std::size_t i = 0; i + shared < from_a.size(); ++i) points.push_back(centre(from_a[i]));
+    points.push_back(centre(from_a[from_a.size() - shared]));
+    for (std::size_t i = from_b.size() - shared; i-- > 0;) points.push_back(centre(from_b[i]));
+    points.push_back(b);
+    // Greedy line of sight: from each kept point, the farthest next point still in view.
+    std::vector<Vec2> kept;
+    std::size_t at = 0;
+    while (at + 1 < points.size()) {
+      std::size_t reach = at + 1;
+      while (reach + 1 < points.size() && in_view(points[at], points[reach + 1])) ++reach;
+      kept.push_back(points[reach]);
+      at = reach;
+    }
+    return kept;
+  }
+
+ private:
+  Vec2 centre(int cell) const {
+    return low_ + Vec2{{(cell % columns_) * kReachCell_m, (cell / columns_) * kReachCell_m}};
+  }
+  bool cell_inside(const Vec2& p_m) const {
+    const Vec2 offset = (p_m - low_) / kReachCell_m;
+    return offset[0] > -0.5 && offset[1] > -0.5 && offset[0] < columns_ - 0.5 && offset[1] < rows_ - 0.5;
+  }
+  std::size_t cell_at(const Vec2& p_m) const {
+    const Vec2 offset = (p_m - low_) / kReachCell_m;
+    const int column = std::clamp(static_cast<int>(std::lround(offset[0])), 0, columns_ - 1);
+    const int row = std::clamp(static_cast<int>(std::lround(offset[1])), 0, rows_ - 1);
+    return static_cast<std::size_t>(row * columns_ + column);
+  }
+  bool in_view(const Vec2& a, const Vec2& b) const {
+    int which = -1;
+    return deepest_along(shapes_, a, b, &which) <= -0.5 * kRouteClearance_m;
+  }
+
+  const std::vector<PlanarShapeGeometry>& shapes_;
+  Vec2 low_{};
+  int columns_{};
+  int rows_{};
+  std::vector<int> from_;  // per cell: the cell it was reached from, -1 the start, -2 not reached
+};
+
+// Travels to `to_m` round the solids: route's way when each of its legs keeps off them,
+// else (route pushed a leg into a solid: walls round the way, a wall against another) the
+// way through the reachable free cells, when both ends are in them.
+void travel(const std::vector<PlanarShapeGeometry>& shapes, const ReachableFree* free, PathBuilder* path,
+            const Vec2& to_m, double speed) {
   std::vector<Vec2> points;
   route(shapes, path->at(), to_m, 0, &points);
+  bool clear = true;
+  Vec2 from = path->at();
+  for (const Vec2& p : points) {
+    clear = clear && leg_clear(shapes, from, p);
+    from = p;
+  }
+  if (!clear && free != nullptr && free->reachable(path->at()) && free->reachable(to_m)) {
+    points = free->way(path->at(), to_m);
+  }
   for (const Vec2& p : points) path->move_to(p, speed);
 }
 
@@ -145,6 +277,14 @@ Vec2 free_point(const std::vector<PlanarShapeGeometry>& shapes, Vec2 p) {
     }
   }
   return p;
+}
+
+// Whether p is at least clearance off every solid.
+bool shapes_clear(const std::vector<PlanarShapeGeometry>& shapes, const Vec2& p_m, double clearance_m) {
+  for (const PlanarShapeGeometry& shape : shapes) {
+    if (shape.depth_m(p_m) > -clearance_m + 1e-9) return false;
+  }
+  return true;
 }
 
 // The shape nearest home, the point of its boundary nearest home and the normal out of
@@ -239,6 +379,13 @@ PlanarValidateScenario build_planar_validate_scenario(PlanarValidateKind kind, c
   const ValidateThresholds& t = options.thresholds;
   const double press_depth_m = t.press_force_N / options.hand_stiffness_N_per_m;
   PathBuilder path(s.start_m);
+  // Where the hand may go: only needed by the scenarios that travel among the shapes.
+  std::optional<ReachableFree> reachable;
+  if (!shapes.empty() && (kind == PlanarValidateKind::sweep || kind == PlanarValidateKind::press ||
+                          kind == PlanarValidateKind::swipe)) {
+    reachable.emplace(shapes, low, high, s.start_m);
+  }
+  const ReachableFree* free = reachable ? &*reachable : nullptr;
 
   switch (kind) {
     case PlanarValidateKind::sweep: {
@@ -247,19 +394,51 @@ PlanarValidateScenario build_planar_validate_scenario(PlanarValidateKind kind, c
       // without dragging the handle through a shape.
       const PlanarScenario raster = build_planar_scenario(PlanarScenarioKind::sweep, scene, options);
       const PlanarHandConfig& r = raster.hand;
+      // A row end out of the hand's reach (in a wall, or beyond walls round the start)
+      // moves along the row to the nearest reachable point; a row with none is left out.
       const int rows = static_cast<int>(std::lround((r.sweep_max_m[1] - r.sweep_min_m[1]) / r.sweep_pitch_m)) + 1;
+      int rows_left_out = 0;
+      int ends_moved = 0;
       for (int row = 0; row < rows; ++row) {
         const double y = std::min(r.sweep_min_m[1] + row * r.sweep_pitch_m, r.sweep_max_m[1]);
         const bool rightward = row % 2 == 0;
-        for (const double x : {rightward ? r.sweep_min_m[0] : r.sweep_max_m[0], rightward ? r.sweep_max_m[0] : r.sweep_min_m[0]}) {
-          travel(shapes, &path, free_point(shapes, Vec2{{x, y}}), r.speed_m_per_s);
+        const double x_first = rightward ? r.sweep_min_m[0] : r.sweep_max_m[0];
+        const double x_last = rightward ? r.sweep_max_m[0] : r.sweep_min_m[0];
+        std::vector<Vec2> ends;
+        for (const double x : {x_first, x_last}) {
+          Vec2 end = free_point(shapes, Vec2{{x, y}});
+          if (free != nullptr && !free->reachable(end)) {
+            // Scan along the row from this end toward the other.
+            const int steps = static_cast<int>(std::ceil(std::fabs(x_last - x_first) / kReachCell_m));
+            const double sign = (x == x_first) == (x_last > x_first) ? 1.0 : -1.0;
+            bool found = false;
+            for (int k = 0; k <= steps && !found; ++k) {
+              const Vec2 p{{x + sign * k * kReachCell_m, y}};
+              if (free->reachable(p) && shapes_clear(shapes, p, kRouteClearance_m)) {
+                end = p;
+                found = true;
+              }
+            }
+            if (!found) break;
+            ++ends_moved;
+          }
+          ends.push_back(end);
         }
+        if (ends.size() < 2) {
+          ++rows_left_out;
+          continue;
+        }
+        for (const Vec2& end : ends) travel(shapes, free, &path, end, r.speed_m_per_s);
       }
       hand.motion = PlanarHandMotion::path;
       hand.path = path.take();
       s.duration_s = hand.path.back().t_s + kSettle_s;
       s.description = printf_string("a raster of %d rows over the middle 80 %% of the workspace at %g mm/s, round the solids",
                                     rows, r.speed_m_per_s * 1e3);
+      if (rows_left_out + ends_moved > 0) {
+        s.description += printf_string(" (within the part the hand reaches from the start: %d rows left out, %d row ends moved)",
+                                       rows_left_out, ends_moved);
+      }
       return s;
     }
     case PlanarValidateKind::press:
@@ -276,6 +455,18 @@ PlanarValidateScenario build_planar_validate_scenario(PlanarValidateKind kind, c
       if (!press) {
         std::erase_if(places, [](const PlanarPressPlace& p) { return !(p.thickness_m <= kThinWidth_m); });
       }
+      // A place another shape's solid covers (walls meeting at a junction), or whose point
+      // in front the hand cannot reach from the start (in a neighbouring wall, or beyond
+      // walls round the start), is no place to press: left out before the spread.
+      const std::size_t found = places.size();
+      std::erase_if(places, [&](const PlanarPressPlace& p) {
+        for (std::size_t k = 0; k < shapes.size(); ++k) {
+          if (static_cast<int>(k) != p.shape && shapes[k].depth_m(p.surface_m) > -1e-9) return true;
+        }
+        const Vec2 approach = p.surface_m + (press ? kApproachGap_m : kSwipeGap_m) * p.outward;
+        return free != nullptr && !free->reachable(approach);
+      });
+      const std::size_t left_out = found - places.size();
       if (places.size() > kMaxPressPlaces) {
         std::vector<PlanarPressPlace> spread;
         for (std::size_t i = 0; i < kMaxPressPlaces; ++i) spread.push_back(places[i * places.size() / kMaxPressPlaces]);
@@ -293,7 +484,7 @@ PlanarValidateScenario build_planar_validate_scenario(PlanarValidateKind kind, c
         }
         if (depth_m < kMinPressDepth_m) continue;
         const Vec2 deep = place.surface_m - depth_m * place.outward;
-        travel(shapes, &path, approach, kMoveSpeed_m_per_s);
+        travel(shapes, free, &path, approach, kMoveSpeed_m_per_s);
         if (press) {
           for (const double speed : kPressSpeeds_m_per_s) {
             path.move_to(deep, speed);
@@ -329,6 +520,9 @@ PlanarValidateScenario build_planar_validate_scenario(PlanarValidateKind kind, c
             "hand swipes across %d thin places from 10 mm in front to 10 mm beyond at 500 mm/s, holds 300 ms, "
             "back at 100 mm/s",
             edges);
+      }
+      if (left_out > 0) {
+        s.description += printf_string(" (%zu places covered by another shape or out of the hand's reach left out)", left_out);
       }
       return s;
     }

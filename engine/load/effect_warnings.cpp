@@ -1,9 +1,11 @@
 #include "engine/load/effect_warnings.hpp"
 
 #include <limits>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "engine/base/object_reader.hpp"
 #include "engine/base/units.hpp"
@@ -62,14 +64,42 @@ std::string interval(double low_m, double high_m) {
 }
 
 // Whether a length was written without a unit (a number, or a string such as "20"): then
-// it is metres, and 20 meant as 20 mm is 20 m.
+// it is metres, and 20 meant as 20 mm is 20 m. A vector ([x, y]) or a list of them (a
+// polygon's points) counts when every number in it was.
+bool without_unit(const nlohmann::json& value) {
+  if (value.is_number()) return true;
+  if (value.is_string()) {
+    const QuantityParse parsed = parse_quantity(value.get<std::string>());
+    return parsed.ok && parsed.quantity == Quantity::dimensionless;
+  }
+  if (!value.is_array() || value.empty()) return false;
+  for (const nlohmann::json& item : value) {
+    if (!without_unit(item)) return false;
+  }
+  return true;
+}
 bool written_without_unit(const nlohmann::json& written, const char* key) {
+  if (!written.is_object()) return false;
   const auto value = written.find(key);
-  if (value == written.end()) return false;
-  if (value->is_number()) return true;
-  if (!value->is_string()) return false;
-  const QuantityParse parsed = parse_quantity(value->get<std::string>());
-  return parsed.ok && parsed.quantity == Quantity::dimensionless;
+  return value != written.end() && without_unit(*value);
+}
+
+// The hint for a unit slip, for effects of either dimension: "; did you mean ...?" when
+// the effect's lengths written without a unit, read in mm (or else cm), put it inside the
+// device's own workspace, though as written (metres) they do not; noting when even then
+// it would not act within the environment's narrower /safety/workspace. `in_device(scale)`
+// and `acts(scale)` judge the effect with those lengths times `scale`; `written_as(unit)`
+// says how they would be written in that unit.
+template <typename InDevice, typename Acts, typename WrittenAs>
+std::string unit_slip_hint(InDevice in_device, Acts acts, WrittenAs written_as) {
+  if (in_device(1.0)) return "";
+  for (const auto& [unit, scale] : {std::pair{"mm", 1e-3}, std::pair{"cm", 1e-2}}) {
+    if (!in_device(scale)) continue;
+    std::string hint = "; did you mean " + written_as(unit) + "?";
+    if (!acts(scale)) hint += " (even there it would not act within /safety/workspace)";
+    return hint;
+  }
+  return "";
 }
 
 std::string wall_warning(const Wall& wall, const nlohmann::json& written, const Scene& scene) {
@@ -93,18 +123,19 @@ std::string wall_warning(const Wall& wall, const nlohmann::json& written, const 
   message += std::string("puts the solid side (") + side + ") wholly outside " + workspace + ", so the wall never acts";
   // A unit slip is likely only for a plain number beyond the device's own travel; the hint
   // is given when the value read in mm (or cm) lies inside the device's workspace.
-  const auto inside_device = [&](double x_m) { return x_m > device.workspace_min_m && x_m < device.workspace_max_m; };
-  if (inside_device(wall.position_m) || !written_without_unit(written, "position")) return message;
-  for (const auto& [unit, scale] : {std::pair{"mm", 1e-3}, std::pair{"cm", 1e-2}}) {
-    const double x_m = wall.position_m * scale;
-    if (!inside_device(x_m)) continue;
-    message += "; did you mean \"" + format_number(wall.position_m) + " " + unit + "\"?";
-    Wall moved = wall;
-    moved.position_m = x_m;
-    if (!moved.can_act_within(low_m, high_m)) message += " (even there it would not act within /safety/workspace)";
-    break;
-  }
-  return message;
+  if (!written_without_unit(written, "position")) return message;
+  const auto moved = [&](double scale) {
+    Wall w = wall;
+    w.position_m *= scale;
+    return w;
+  };
+  return message + unit_slip_hint(
+                       [&](double scale) {
+                         const double x_m = moved(scale).position_m;
+                         return x_m > device.workspace_min_m && x_m < device.workspace_max_m;
+                       },
+                       [&](double scale) { return moved(scale).can_act_within(low_m, high_m); },
+                       [&](const char* unit) { return "\"" + format_number(wall.position_m) + " " + unit + "\""; });
 }
 
 // "[-0.07, 0.04] x [0.09, 0.165] m": a box of the plane.
@@ -150,23 +181,126 @@ std::string solid_text(const PlanarPolygon& polygon) {
              : "";
 }
 
-// A 2-D effect with a gain that still cannot act: its solid beyond the workspace box, or
-// (a cage) the workspace wholly inside its free part. Fields act everywhere.
+// A 2-D shape's lengths, by key: those written without a unit are what a unit slip
+// scales. `scaled(e, keys, scale)` is the shape with those lengths times scale.
+std::string length_text(double value_m, const char* unit) { return "\"" + format_number(value_m) + " " + unit + "\""; }
+std::string length_text(const Vec2& p_m, const char* unit) {
+  return "[" + length_text(p_m[0], unit) + ", " + length_text(p_m[1], unit) + "]";
+}
+bool has_key(const std::vector<const char*>& keys, const char* key) {
+  for (const char* k : keys) {
+    if (std::string_view(k) == key) return true;
+  }
+  return false;
+}
+PlanarWall scaled(const PlanarWall& wall, const std::vector<const char*>&, double scale) {
+  PlanarWall w = wall;
+  w.point_m = wall.point_m * scale;
+  return w;
+}
+PlanarBox scaled(const PlanarBox& box, const std::vector<const char*>& keys, double scale) {
+  return PlanarBox::make(has_key(keys, "min") ? box.min_m * scale : box.min_m,
+                         has_key(keys, "max") ? box.max_m * scale : box.max_m, box.stiffness_N_per_m, box.solid_inside);
+}
+PlanarCircle scaled(const PlanarCircle& circle, const std::vector<const char*>& keys, double scale) {
+  PlanarCircle c = circle;
+  if (has_key(keys, "center")) c.center_m = circle.center_m * scale;
+  if (has_key(keys, "radius")) c.radius_m = circle.radius_m * scale;
+  return c;
+}
+PlanarPolygon scaled(const PlanarPolygon& polygon, const std::vector<const char*>&, double scale) {
+  std::vector<Vec2> points;
+  for (int i = 0; i < polygon.outline.edge_count(); ++i) points.push_back(polygon.outline.vertex(i) * scale);
+  PlanarPolygon p;
+  p.outline = PolygonOutline(points, polygon.outline.solid_inside());
+  p.stiffness_N_per_m = polygon.stiffness_N_per_m;
+  return p;
+}
+// Whether the shape's outline meets the box: its solid reaches into it and so does its
+// free part (a cage wholly round the box, or far from it, does not).
+bool meets_box(const PlanarWall& wall, const Vec2& low, const Vec2& high) { return wall.can_act_within(low, high); }
+bool meets_box(const PlanarBox& box, const Vec2& low, const Vec2& high) {
+  return box.can_act_within(low, high) && PlanarBox::make(box.min_m, box.max_m, 1.0, !box.solid_inside).can_act_within(low, high);
+}
+bool meets_box(const PlanarCircle& circle, const Vec2& low, const Vec2& high) {
+  PlanarCircle other = circle;
+  other.solid_inside = !circle.solid_inside;
+  return circle.can_act_within(low, high) && other.can_act_within(low, high);
+}
+bool meets_box(const PlanarPolygon& polygon, const Vec2& low, const Vec2& high) {
+  std::vector<Vec2> points;
+  for (int i = 0; i < polygon.outline.edge_count(); ++i) points.push_back(polygon.outline.vertex(i));
+  PlanarPolygon other;
+  other.outline = PolygonOutline(points, !polygon.outline.solid_inside());
+  other.stiffness_N_per_m = 1.0;
+  return polygon.can_act_within(low, high) && other.can_act_within(low, high);
+}
+std::vector<const char*> length_keys(const PlanarWall&) { return {"point"}; }
+std::vector<const char*> length_keys(const PlanarBox&) { return {"min", "max"}; }
+std::vector<const char*> length_keys(const PlanarCircle&) { return {"center", "radius"}; }
+std::vector<const char*> length_keys(const PlanarPolygon&) { return {"points"}; }
+std::string written_in(const PlanarWall& wall, const char* key, const char* unit) {
+  return std::string("\"") + key + "\": " + length_text(wall.point_m, unit);
+}
+std::string written_in(const PlanarBox& box, const char* key, const char* unit) {
+  return std::string("\"") + key + "\": " + length_text(std::string_view(key) == "min" ? box.min_m : box.max_m, unit);
+}
+std::string written_in(const PlanarCircle& circle, const char* key, const char* unit) {
+  return std::string("\"") + key + "\": " +
+         (std::string_view(key) == "center" ? length_text(circle.center_m, unit) : length_text(circle.radius_m, unit));
+}
+// A polygon's points: the first two, then "..." when there are more than three.
+std::string written_in(const PlanarPolygon& polygon, const char*, const char* unit) {
+  const int n = polygon.outline.edge_count();
+  std::string text = "\"points\": [";
+  for (int i = 0; i < n && (i < 2 || n <= 3); ++i) text += (i ? ", " : "") + length_text(polygon.outline.vertex(i), unit);
+  return text + (n > 3 ? ", ...]" : "]");
+}
+
+// A 2-D shape's unit-slip hint (unit_slip_hint): its lengths written without a unit read
+// in mm (or cm) put its outline across the device's workspace box, where as written they
+// do not (a cage is not hinted to shrink round nothing).
 template <typename Type>
-std::string planar_placement_warning(const Type& e, const PlanarScene& scene) {
+std::string planar_unit_slip_hint(const Type& e, const nlohmann::json& written, const PlanarScene& scene) {
+  std::vector<const char*> keys;
+  for (const char* key : length_keys(e)) {
+    if (written_without_unit(written, key)) keys.push_back(key);
+  }
+  if (keys.empty()) return "";
+  const PlanarWorkspace& device = scene.device.limits.workspace;
+  const Vec2 device_low = device.is_box ? device.box_min_m : scene.safety.workspace_min_m;
+  const Vec2 device_high = device.is_box ? device.box_max_m : scene.safety.workspace_max_m;
+  return unit_slip_hint(
+      [&](double scale) { return meets_box(scaled(e, keys, scale), device_low, device_high); },
+      [&](double scale) {
+        return scaled(e, keys, scale).can_act_within(scene.safety.workspace_min_m, scene.safety.workspace_max_m);
+      },
+      [&](const char* unit) {
+        std::string text;
+        for (const char* key : keys) text += (text.empty() ? "" : ", ") + written_in(e, key, unit);
+        return text;
+      });
+}
+
+// A 2-D effect with a gain that still cannot act: its solid beyond the workspace box, or
+// (a cage) the workspace wholly inside its free part, with a unit-slip hint where one
+// fits. Fields act everywhere.
+template <typename Type>
+std::string planar_placement_warning(const Type& e, const nlohmann::json& written, const PlanarScene& scene) {
   if constexpr (!Type::kUsesProxy) {
     return "";
   } else {
     if (e.can_act_within(scene.safety.workspace_min_m, scene.safety.workspace_max_m)) return "";
     const std::string workspace = planar_workspace_text(scene);
     const std::string solid = solid_text(e);
+    const std::string hint = planar_unit_slip_hint(e, written, scene);
     if (solid.empty()) {
       return std::string("(") + Type::kType + "): " + workspace + " lies wholly inside the " + Type::kType +
-             "'s free part (\"solid\": \"outside\"), so the " + Type::kType + " never acts";
+             "'s free part (\"solid\": \"outside\"), so the " + Type::kType + " never acts" + hint;
     }
     const char* verb = std::is_same_v<Type, PlanarWall> ? " does not meet " : " lies wholly outside ";
     return std::string("(") + Type::kType + "): " + solid + verb + workspace + ", so the " + Type::kType +
-           " never acts";
+           " never acts" + hint;
   }
 }
 
@@ -180,13 +314,13 @@ std::string inert_effect_warning(const Effect& effect, const nlohmann::json& wri
   });
 }
 
-std::string inert_effect_warning(const PlanarEffect& effect, const nlohmann::json&, const PlanarScene& scene) {
+std::string inert_effect_warning(const PlanarEffect& effect, const nlohmann::json& written, const PlanarScene& scene) {
   // A box beyond any workspace, finite so that the shapes' tests stay free of inf - inf.
   constexpr double kFar_m = 1e300;
   const Vec2 unbounded_low{{-kFar_m, -kFar_m}};
   const Vec2 unbounded_high{{kFar_m, kFar_m}};
   return effect_warning(effect, unbounded_low, unbounded_high,
-                        [&](const auto& e) -> std::string { return planar_placement_warning(e, scene); });
+                        [&](const auto& e) -> std::string { return planar_placement_warning(e, written, scene); });
 }
 
 }  // namespace hapscene

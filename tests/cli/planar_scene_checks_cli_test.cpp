@@ -25,7 +25,8 @@ TEST_CASE("planar scene checks cli: an effect that never acts is warned about by
     {"type": "circle", "center": [-15, 130], "radius": 10, "stiffness": "200 N/m", "solid": "inside"}]})");
   const std::string warning = "warning: " + env.string() +
                               ": /effects/1 (circle): the solid disc of radius 10 m about (-15, 130) m lies wholly "
-                              "outside the workspace [-0.07, 0.04] x [0.09, 0.165] m, so the circle never acts\n";
+                              "outside the workspace [-0.07, 0.04] x [0.09, 0.165] m, so the circle never acts; did you "
+                              "mean \"center\": [\"-15 mm\", \"130 mm\"], \"radius\": \"10 mm\"?\n";
   const CliOutcome probe = run_cli("probe '" + env.string() + "' --x -20mm:-20mm:1mm --y 120mm:120mm:1mm");
   CHECK(probe.exit_code == 0);
   CHECK(probe.err == warning);

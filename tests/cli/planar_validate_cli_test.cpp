@@ -47,6 +47,20 @@ TEST_CASE("planar validate cli: the shipped lab scenes" * doctest::test_suite("t
   CHECK(lab.out.find("PASS haply2diy_v3_circle_outside") != std::string::npos);
 }
 
+TEST_CASE("planar validate cli: the maze passes at its shipped 200 N/m, its script's stiffness named unknown" *
+          doctest::test_suite("threaded")) {
+  // Walls round the start: the sweep keeps to the part the hand reaches, press and swipe
+  // leave out the places a neighbouring wall covers or that the hand cannot reach.
+  const CliOutcome maze = run_cli("validate environments/planar/haplink_maze.json");
+  CAPTURE(maze.out);
+  CHECK(maze.exit_code == 0);
+  CHECK(maze.out.rfind("validate haplink_maze (environments/planar/haplink_maze.json): 2 axes, 1000 Hz, stiffest shape "
+                       "or spring 0 N/m (not counting the script: its stiffness is not known)\n",
+                       0) == 0);
+  CHECK(maze.out.find("2 rows left out") != std::string::npos);
+  CHECK(maze.out.find("\nresult: pass (76 checks") != std::string::npos);
+}
+
 TEST_CASE("planar validate cli: ten times the stiffness fails a named check" * doctest::test_suite("threaded")) {
   const ScratchFolder folder("planar_validate_cli_stiff");
   std::string text = slurp_file(std::string(HAPSCENE_SOURCE_DIR) + "/environments/planar/haplink_circle_outside.json");

@@ -57,7 +57,8 @@ TEST_CASE("planar load: shapes whose solid lies outside the workspace warn and a
   REQUIRE(scene.load_warnings.size() == 1);
   CHECK(scene.load_warnings[0] ==
         "test.json: /effects/1 (circle): the solid disc of radius 10 m about (-15, 130) m lies wholly outside the "
-        "workspace [-0.07, 0.04] x [0.09, 0.165] m, so the circle never acts");
+        "workspace [-0.07, 0.04] x [0.09, 0.165] m, so the circle never acts; did you mean \"center\": "
+        "[\"-15 mm\", \"130 mm\"], \"radius\": \"10 mm\"?");
   CHECK(scene.effects.size() == 2);                                   // still listed
   CHECK(scene.bank.group<PlanarCircle>().empty());                    // not compiled
   CHECK(scene.bank.proxy_count() == 0);
@@ -84,6 +85,38 @@ TEST_CASE("planar load: shapes whose solid lies outside the workspace warn and a
   CHECK(only_warning(R"({"type": "polygon", "points": [[-1, 0], [1, 0], [0, 1]], "stiffness": 200,
                         "solid": "outside"})")
             .starts_with("test.json: /effects/0 (polygon): the workspace "));
+}
+
+TEST_CASE("planar load: a shape's lengths written without a unit get the unit hint, as a 1-D wall's position") {
+  // Each shape's unitless lengths, read in mm, would put it across the workspace.
+  CHECK(only_warning(R"({"type": "box", "min": [-40, 110], "max": [0, 135], "stiffness": 200, "solid": "inside"})") ==
+        "test.json: /effects/0 (box): the solid box [-40, 0] x [110, 135] m lies wholly outside the workspace "
+        "[-0.07, 0.04] x [0.09, 0.165] m, so the box never acts; did you mean \"min\": [\"-40 mm\", \"110 mm\"], "
+        "\"max\": [\"0 mm\", \"135 mm\"]?");
+  CHECK(only_warning(R"({"type": "wall", "point": ["0", "150"], "normal": [0, -1], "stiffness": 200})")
+            .ends_with("so the wall never acts; did you mean \"point\": [\"0 mm\", \"150 mm\"]?"));
+  CHECK(only_warning(R"({"type": "polygon", "points": [[-40, 110], [0, 110], [0, 135], [-40, 135]], "stiffness": 200,
+                        "solid": "inside"})")
+            .ends_with("did you mean \"points\": [[\"-40 mm\", \"110 mm\"], [\"0 mm\", \"110 mm\"], ...]?"));
+  // In cm: 1.5 (m) meant as 1.5 cm... a disc of radius 2 cm about (-1.5, 13) cm.
+  CHECK(only_warning(R"({"type": "circle", "center": [-1.5, 13], "radius": 2, "stiffness": 200, "solid": "inside"})")
+            .ends_with("did you mean \"center\": [\"-1.5 cm\", \"13 cm\"], \"radius\": \"2 cm\"?"));
+  // Only the lengths written without a unit are read again: the radius here has one.
+  CHECK(only_warning(R"({"type": "circle", "center": [-15, 127], "radius": "10 mm", "stiffness": 200, "solid": "inside"})")
+            .ends_with("did you mean \"center\": [\"-15 mm\", \"127 mm\"]?"));
+  // Within the device's workspace but outside the environment's own: noted.
+  CHECK(only_warning(R"({"type": "box", "min": [20, 100], "max": [30, 120], "stiffness": 200, "solid": "inside"})",
+                     R"("safety": {"workspace": {"min": ["-40 mm", "100 mm"], "max": ["0 mm", "140 mm"]}}, )")
+            .ends_with("did you mean \"min\": [\"20 mm\", \"100 mm\"], \"max\": [\"30 mm\", \"120 mm\"]? (even there "
+                       "it would not act within /safety/workspace)"));
+  // No hint: lengths with units, numbers that read in mm or cm still miss the device, and
+  // a cage that read in mm would shrink round nothing.
+  CHECK(only_warning(R"({"type": "box", "min": ["50 mm", "100 mm"], "max": ["60 mm", "120 mm"], "stiffness": 200,
+                        "solid": "inside"})").find("did you mean") == std::string::npos);
+  CHECK(only_warning(R"({"type": "box", "min": [500, 100], "max": [600, 120], "stiffness": 200, "solid": "inside"})")
+            .find("did you mean") == std::string::npos);
+  CHECK(only_warning(R"({"type": "polygon", "points": [[-1, 0], [1, 0], [0, 1]], "stiffness": 200, "solid": "outside"})")
+            .find("did you mean") == std::string::npos);
 }
 
 TEST_CASE("planar load: the environment's own safety workspace is named") {
