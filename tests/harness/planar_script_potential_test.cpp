@@ -106,7 +106,7 @@ TEST_CASE("script potential: the scripted box's kinks and jump are integrated, s
   CHECK(potential.at_J(Vec2{{-0.035, 0.1225}}) - off_J == doctest::Approx(2.5e-3).epsilon(1e-3));
 }
 
-TEST_CASE("script potential: a whirl has none; a script with state gets its at-rest field's, coarser") {
+TEST_CASE("script potential: a whirl has none, and a script with state gets its at-rest field's on a coarser grid") {
   const PlanarScriptPotential vortex = planar_script_potential(shipped("haplink_vortex"));
   CHECK(vortex.behaviour.static_field());
   CHECK(vortex.rotational_fraction > 0.9);
