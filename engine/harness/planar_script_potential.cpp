@@ -77,11 +77,11 @@ struct Stretch {
 };
 
 // The edges' work by adaptive Simpson: each edge is split in halves where Simpson's rule
-// and the trapezoid disagree by more than kEdgeTolerance_J (a kink or a jump of the
+// and the trapezoid disagree by more than kEdgeTolerance_J (per edge) (a kink or a jump of the
 // field, at a shape's outline or where its push flips side), down to 1/64 of the step,
 // each round's new points scanned together by `sample`. Where a jump remains, the error
 // is at most the jump times the last stretch's length.
-constexpr double kEdgeTolerance_J = 1e-8;
+constexpr double kEdgeTolerance_J = 1e-7;
 constexpr int kEdgeMaxDepth = 7;
 
 template <typename Sample>
