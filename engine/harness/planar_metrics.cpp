@@ -6,6 +6,7 @@
 #include "engine/base/format.hpp"
 #include "engine/devices/planar/planar_model.hpp"
 #include "engine/harness/metrics_parts.hpp"
+#include "engine/harness/planar_script_potential.hpp"
 
 namespace hapscene {
 namespace {
@@ -19,9 +20,11 @@ double clamped_spring_J(double stiffness_N_per_m, double stretch_m, double limit
   return 0.5 * stiffness_N_per_m * d0 * d0 + limit_N * (stretch_m - d0);
 }
 
-// The rendered springs' energy with the handle at x and the proxies of tick k.
+// The rendered springs' energy with the handle at x and the proxies of tick k, and the
+// scripts' potential there (when given).
 double stored_J(const PlanarScene& scene, const std::vector<PlanarShapeGeometry>& shapes,
-                const std::vector<Vec2>& proxies_m, std::size_t k, const Vec2& x_m) {
+                const std::vector<Vec2>& proxies_m, std::size_t k, const Vec2& x_m,
+                const PlanarScriptPotential* scripts) {
   const double limit_N = scene.safety.max_force_N;
   double energy_J = 0.0;
   for (std::size_t i = 0; i < shapes.size(); ++i) {
@@ -32,12 +35,14 @@ double stored_J(const PlanarScene& scene, const std::vector<PlanarShapeGeometry>
   for (const PlanarSpring& spring : scene.bank.group<PlanarSpring>()) {
     energy_J += clamped_spring_J(spring.stiffness_N_per_m, norm(x_m - spring.center_m), limit_N);
   }
+  if (scripts != nullptr) energy_J += scripts->at_J(x_m);
   return energy_J;
 }
 
 PassivityMetrics measure_passivity(const PlanarScene& scene, const std::vector<PlanarShapeGeometry>& shapes,
                                    const std::vector<PlanarValidateRecord>& records,
-                                   const std::vector<Vec2>& proxies_m, const Vec2& final_q_rad) {
+                                   const std::vector<Vec2>& proxies_m, const Vec2& final_q_rad,
+                                   const PlanarScriptPotential* scripts) {
   PassivityMetrics p;
   const std::size_t n = records.size();
   if (n == 0) return p;
@@ -45,7 +50,7 @@ PassivityMetrics measure_passivity(const PlanarScene& scene, const std::vector<P
   const Vec2 c = scene.device.plant.coulomb_N_m;
   const double period_s = scene.period_s;
   // The springs' stretch as the rendering sees it: from the measured handle.
-  const double start_J = stored_J(scene, shapes, proxies_m, 0, records[0].x_m);
+  const double start_J = stored_J(scene, shapes, proxies_m, 0, records[0].x_m, scripts);
   double net_at_half_J = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     const Vec2 next_q = k + 1 < n ? records[k + 1].q_rad : final_q_rad;
@@ -58,10 +63,10 @@ PassivityMetrics measure_passivity(const PlanarScene& scene, const std::vector<P
     }
     if (k + 1 == n / 2) {
       const Vec2 next_x = records[k + 1].x_m;
-      net_at_half_J = p.motor_work_J + stored_J(scene, shapes, proxies_m, k + 1, next_x) - start_J - p.dissipated_J;
+      net_at_half_J = p.motor_work_J + stored_J(scene, shapes, proxies_m, k + 1, next_x, scripts) - start_J - p.dissipated_J;
     }
   }
-  p.stored_J = stored_J(scene, shapes, proxies_m, n - 1, records[n - 1].x_m) - start_J;
+  p.stored_J = stored_J(scene, shapes, proxies_m, n - 1, records[n - 1].x_m, scripts) - start_J;
   p.created_J = p.motor_work_J + p.stored_J;
   p.net_J = p.created_J - p.dissipated_J;
   p.ratio = p.dissipated_J > 0.0 ? p.created_J / p.dissipated_J : 0.0;
@@ -221,7 +226,8 @@ PlanarScenarioMetrics measure_planar_run(const PlanarScene& scene, const std::ve
                                          const std::vector<PlanarValidateRecord>& records,
                                          const std::vector<Vec2>& proxies_m, const Vec2& final_q_rad,
                                          const Vec2& final_x_m, const RunSummaryOf<2>& summary,
-                                         std::optional<double> watch_from_s) {
+                                         std::optional<double> watch_from_s,
+                                         const PlanarScriptPotential* script_potential) {
   PlanarScenarioMetrics m;
   m.ticks = records.size();
   m.duration_s = static_cast<double>(records.size()) * scene.period_s;
@@ -249,7 +255,7 @@ PlanarScenarioMetrics measure_planar_run(const PlanarScene& scene, const std::ve
     }
   }
   count_pop_throughs(shapes, records, proxies_m, &m);
-  m.passivity = measure_passivity(scene, shapes, records, proxies_m, final_q_rad);
+  m.passivity = measure_passivity(scene, shapes, records, proxies_m, final_q_rad, script_potential);
   (void)final_x_m;
   if (watch_from_s) measure_planar_oscillation(scene, records, *watch_from_s, &m);
 

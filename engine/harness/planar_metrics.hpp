@@ -17,6 +17,8 @@
 
 namespace hapscene {
 
+struct PlanarScriptPotential;  // planar_script_potential.hpp
+
 // One tick of a 2-DOF validate run, with the simulator's truth beside what the host saw.
 struct PlanarValidateRecord {
   double t_s{};
@@ -70,7 +72,8 @@ struct PlanarScenarioMetrics {
   // Passivity in 2-D: created = the work of the joint torques over the true joint motion
   // (sum of tau[k] . (q[k+1] - q[k]): F . dx at the handle) plus the change of the energy
   // the rendered springs store (each shape's spring to its proxy, a spring effect's to its
-  // centre, each with the force limit's clamp; scripts and other effects store none);
+  // centre, each with the force limit's clamp; scripts store their field's potential,
+  // planar_script_potential.hpp, when validate passes one; other effects store none);
   // dissipated = the joints' own viscous loss, sum of dq^T B dq / T over the ticks where
   // the motors pushed.
   PassivityMetrics passivity;
@@ -106,12 +109,14 @@ struct PlanarScenarioMetrics {
 
 // Measures one run; `final_q_rad` and `final_x_m` are the simulator's after the last tick.
 // The springs' stored energy is taken at the measured handle (the stretch the rendering
-// sees), the work at the true joint motion.
+// sees), the work at the true joint motion. `script_potential`: the scripts' stored
+// energy (none credited when null).
 PlanarScenarioMetrics measure_planar_run(const PlanarScene& scene, const std::vector<PlanarShapeGeometry>& shapes,
                                          const std::vector<PlanarValidateRecord>& records,
                                          const std::vector<Vec2>& proxies_m, const Vec2& final_q_rad,
                                          const Vec2& final_x_m, const RunSummaryOf<2>& summary,
-                                         std::optional<double> watch_from_s);
+                                         std::optional<double> watch_from_s,
+                                         const PlanarScriptPotential* script_potential = nullptr);
 
 // Counts the crossings of solids the rendering let through: the handle went into a
 // shape's solid and, as it came out, the shape's proxy (the point its force pulls the

@@ -9,12 +9,14 @@
 #include "engine/devices/planar/simulated_planar.hpp"
 #include "engine/harness/pace.hpp"
 #include "engine/harness/planar_open_loop.hpp"
+#include "engine/harness/planar_script_potential.hpp"
 #include "engine/run/runner.hpp"
 
 namespace hapscene {
 
 PlanarScenarioResult run_planar_validate_scenario(const PlanarScene& scene, const PlanarValidateScenario& scenario,
-                                                  const HarnessOptions& options) {
+                                                  const HarnessOptions& options,
+                                                  const PlanarScriptPotential* script_potential) {
   PlanarScenarioResult result;
   result.scenario = scenario;
   if (!scenario.applicable) return result;
@@ -38,7 +40,7 @@ PlanarScenarioResult run_planar_validate_scenario(const PlanarScene& scene, cons
   const RunSummaryOf<2> summary = run_scene(scene, *device, run_options, &recorder);
 
   result.metrics = measure_planar_run(scene, shapes, recorder.records, recorder.proxies_m, device->plant().q_rad(),
-                                      device->x_m(), summary, scenario.watch_from_s);
+                                      device->x_m(), summary, scenario.watch_from_s, script_potential);
   if (recorder.pace.too_slow()) {
     result.checks = {CheckResult{"pace", 1.0, 0.0, "", false,
                                  printf_string("too slow for the %g Hz loop: the run's ticks took more CPU time than "
@@ -46,6 +48,12 @@ PlanarScenarioResult run_planar_validate_scenario(const PlanarScene& scene, cons
                                                scene.rate_hz, result.metrics.duration_s)}};
   } else {
     result.checks = judge_planar_scenario(scene, options.thresholds, shapes, result.metrics);
+    // The passivity check says where the scripts' stored energy came from.
+    if (script_potential != nullptr) {
+      for (CheckResult& check : result.checks) {
+        if (check.name == "passivity") check.detail += describe_script_potential(scene, *script_potential);
+      }
+    }
   }
   result.records = std::move(recorder.records);
   result.proxies_m = std::move(recorder.proxies_m);
@@ -84,13 +92,16 @@ PlanarValidationReport validate_planar_scene(const PlanarScene& scene, const std
     }
   }
   for (const CheckResult& check : report.scene_checks) report.pass = report.pass && check.pass;
+  // The energy the scripts store, once for every scenario (planar_script_potential.hpp).
+  const PlanarScriptPotential script_potential = planar_script_potential(scene);
   std::vector<PlanarValidateKind> chosen = kinds;
   if (chosen.empty()) {
     for (std::size_t i = 0; i < std::size(kPlanarValidateNames); ++i) chosen.push_back(static_cast<PlanarValidateKind>(i));
   }
   for (const PlanarValidateKind kind : chosen) {
     const PlanarValidateScenario scenario = build_planar_validate_scenario(kind, scene, options);
-    report.scenarios.push_back(run_planar_validate_scenario(scene, scenario, options));
+    report.scenarios.push_back(run_planar_validate_scenario(scene, scenario, options,
+                                                            scene.script_count > 0 ? &script_potential : nullptr));
     report.pass = report.pass && report.scenarios.back().pass;
   }
   return report;

@@ -40,11 +40,15 @@ struct PlanarValidationReport {
 };
 
 // Runs one scenario (deterministic: the same inputs give bit-identical records). Throws
-// InputError when the linkage cannot reach the scenario's start.
+// InputError when the linkage cannot reach the scenario's start. `script_potential`: the
+// scripts' stored energy for the passivity observer (planar_script_potential.hpp; none
+// credited when null).
 PlanarScenarioResult run_planar_validate_scenario(const PlanarScene& scene, const PlanarValidateScenario& scenario,
-                                                  const HarnessOptions& options);
+                                                  const HarnessOptions& options,
+                                                  const PlanarScriptPotential* script_potential = nullptr);
 
-// Runs the given scenarios (all seven when `kinds` is empty).
+// Runs the given scenarios (all seven when `kinds` is empty), with the scripts' stored
+// energy from planar_script_potential.
 PlanarValidationReport validate_planar_scene(const PlanarScene& scene, const std::vector<PlanarValidateKind>& kinds,
                                              const HarnessOptions& options);
 
