@@ -8,14 +8,11 @@
 
 #include "engine/harness/planar_figure.hpp"
 #include "engine/load/environment.hpp"
+#include "tests/harness/planar_harness_support.hpp"
 
 using namespace hapscene;
 
 namespace {
-
-PlanarScene shipped(const std::string& name) {
-  return load_planar_environment_file(std::string(HAPSCENE_SOURCE_DIR) + "/environments/planar/" + name + ".json");
-}
 
 // The text from `from` to the next `to` (empty when `from` is missing).
 std::string between(const std::string& text, const std::string& from, const std::string& to) {
@@ -51,8 +48,8 @@ std::size_t count(const std::string& text, const std::string& what) {
 TEST_CASE("planar figure: a script's declared shapes are drawn as its built-in twin's") {
   for (const char* name : {"box_inside", "box_outside", "circle_inside", "circle_outside"}) {
     CAPTURE(name);
-    const PlanarScene builtin = shipped(std::string("haplink_") + name);
-    PlanarScene scripted = shipped(std::string("haplink_script_") + name);
+    const PlanarScene builtin = test::shipped_planar(std::string("haplink_") + name);
+    PlanarScene scripted = test::shipped_planar(std::string("haplink_script_") + name);
     // The same title (it sets where the plot area starts), so the drawings compare as text.
     scripted.name = builtin.name;
     scripted.source_path = builtin.source_path;
@@ -64,7 +61,7 @@ TEST_CASE("planar figure: a script's declared shapes are drawn as its built-in t
 }
 
 TEST_CASE("planar figure: every shape of the maze's script is drawn") {
-  const std::string svg = planar_figure_svg(shipped("haplink_maze"), {}, {}, "", "");
+  const std::string svg = planar_figure_svg(test::shipped_planar("haplink_maze"), {}, {}, "", "");
   const std::string group = between(svg, "<g id=\"shapes\"", "</g>");
   CHECK(count(group, "<rect class=\"shape\"") == 9);  // four frame walls and five inner ones
   CHECK(count(svg, "<path class=\"solid\"") == 9);
@@ -72,8 +69,8 @@ TEST_CASE("planar figure: every shape of the maze's script is drawn") {
 
 TEST_CASE("planar figure: a script's force counts in the field grid, as its built-in twin's") {
   // Before, the grid summed the built-in effects only: a scripted scene showed no field.
-  const PlanarScene builtin = shipped("haplink_box_inside");
-  const PlanarScene scripted = shipped("haplink_script_box_inside");
+  const PlanarScene builtin = test::shipped_planar("haplink_box_inside");
+  const PlanarScene scripted = test::shipped_planar("haplink_script_box_inside");
   const PlanarFieldGrid a = planar_field_grid(builtin, 24);
   const PlanarFieldGrid b = planar_field_grid(scripted, 24);
   REQUIRE(a.output_N.size() == b.output_N.size());
@@ -82,5 +79,5 @@ TEST_CASE("planar figure: a script's force counts in the field grid, as its buil
     CHECK(a.output_N[i][1] == b.output_N[i][1]);
   }
   CHECK(b.largest_N > 0.0);
-  CHECK(planar_field_grid(shipped("haplink_maze"), 24).largest_N > 0.0);
+  CHECK(planar_field_grid(test::shipped_planar("haplink_maze"), 24).largest_N > 0.0);
 }

@@ -12,15 +12,12 @@
 #include "engine/harness/planar_script_potential.hpp"
 #include "engine/harness/planar_validate.hpp"
 #include "engine/load/environment.hpp"
+#include "tests/harness/planar_harness_support.hpp"
 #include "tests/scratch_folder.hpp"
 
 using namespace hapscene;
 
 namespace {
-
-PlanarScene shipped(const std::string& name) {
-  return load_planar_environment_file(std::string(HAPSCENE_SOURCE_DIR) + "/environments/planar/" + name + ".json");
-}
 
 // bumps.lua's U: E (exp(-|p - hill|^2 / 2w^2) - exp(-|p - hollow|^2 / 2w^2)).
 double bumps_J(const Vec2& p) {
@@ -33,17 +30,10 @@ double bumps_J(const Vec2& p) {
   return energy_J * (bump(-0.035, 0.127) - bump(0.005, 0.127));
 }
 
-const CheckResult* check_named(const PlanarScenarioResult& result, const std::string& name) {
-  for (const CheckResult& c : result.checks) {
-    if (c.name == name) return &c;
-  }
-  return nullptr;
-}
-
 }  // namespace
 
 TEST_CASE("script potential: bumps' potential is its formula, between grid nodes too") {
-  const PlanarScene scene = shipped("haplink_bumps");
+  const PlanarScene scene = test::shipped_planar("haplink_bumps");
   const PlanarScriptPotential potential = planar_script_potential(scene);
   REQUIRE_FALSE(potential.empty());
   CHECK(potential.behaviour.static_field());
@@ -94,7 +84,7 @@ function force(s) return -20 * (s.x + 0.01), -20 * (s.y - 0.13) end
 TEST_CASE("script potential: the scripted box's kinks and jump are integrated, so it is flat off the box") {
   // F = K (nearest point of the outline - p) inside: a kink at the outline and a jump
   // where the push flips side. Off the box U is the same everywhere (within 2 uJ, measured).
-  const PlanarScene scene = shipped("haplink_script_box_inside");
+  const PlanarScene scene = test::shipped_planar("haplink_script_box_inside");
   const PlanarScriptPotential potential = planar_script_potential(scene);
   REQUIRE_FALSE(potential.empty());
   CHECK(potential.rotational_fraction < 1e-3);
@@ -107,11 +97,11 @@ TEST_CASE("script potential: the scripted box's kinks and jump are integrated, s
 }
 
 TEST_CASE("script potential: a whirl has none, and a script with state gets its at-rest field's on a coarser grid") {
-  const PlanarScriptPotential vortex = planar_script_potential(shipped("haplink_vortex"));
+  const PlanarScriptPotential vortex = planar_script_potential(test::shipped_planar("haplink_vortex"));
   CHECK(vortex.behaviour.static_field());
   CHECK(vortex.rotational_fraction > 0.9);
 
-  const PlanarScene mass_spring = shipped("haplink_mass_spring");
+  const PlanarScene mass_spring = test::shipped_planar("haplink_mass_spring");
   const PlanarScriptPotential puck = planar_script_potential(mass_spring);
   REQUIRE_FALSE(puck.empty());
   CHECK(puck.behaviour.stateful);
@@ -127,14 +117,14 @@ TEST_CASE("script potential: a whirl has none, and a script with state gets its 
   CHECK(describe_script_potential(mass_spring, puck).find("keeps state between calls") != std::string::npos);
 
   // No scripts: nothing.
-  const PlanarScene box = shipped("haplink_box_inside");
+  const PlanarScene box = test::shipped_planar("haplink_box_inside");
   CHECK(planar_script_potential(box).empty());
   CHECK(planar_script_potential(box).at_J(Vec2{{0.0, 0.12}}) == 0.0);
   CHECK(describe_script_potential(box, planar_script_potential(box)).empty());
 }
 
 TEST_CASE("script potential: bumps' released potential is stored energy, not energy created") {
-  const PlanarScene scene = shipped("haplink_bumps");
+  const PlanarScene scene = test::shipped_planar("haplink_bumps");
   const HarnessOptions options;
   const PlanarValidateScenario free = build_planar_validate_scenario(PlanarValidateKind::free, scene, options);
   // Without the potential (as before): the hill's slope pushing the handle counts as
@@ -146,7 +136,7 @@ TEST_CASE("script potential: bumps' released potential is stored energy, not ene
   const PlanarScenarioResult with = run_planar_validate_scenario(scene, free, options, &potential);
   CHECK(with.pass);
   CHECK(with.metrics.passivity.created_J < 0.3 * with.metrics.passivity.dissipated_J);
-  const CheckResult* passivity = check_named(with, "passivity");
+  const CheckResult* passivity = test::check_named(with, "passivity");
   REQUIRE(passivity != nullptr);
   CHECK(passivity->detail.find("; stored energy of the script from its field at rest (1 mm grid; 0.0 % of its work "
                                "rotational, shown as created)") != std::string::npos);

@@ -14,31 +14,17 @@
 #include "engine/harness/planar_validate.hpp"
 #include "engine/harness/planar_validate_scenario.hpp"
 #include "engine/load/environment.hpp"
+#include "tests/harness/planar_harness_support.hpp"
 #include "tests/scratch_folder.hpp"
 
 using namespace hapscene;
-
-namespace {
-
-PlanarScene shipped(const std::string& name) {
-  return load_planar_environment_file(std::string(HAPSCENE_SOURCE_DIR) + "/environments/planar/" + name + ".json");
-}
-
-const CheckResult* check_named(const PlanarScenarioResult& result, const std::string& name) {
-  for (const CheckResult& c : result.checks) {
-    if (c.name == name) return &c;
-  }
-  return nullptr;
-}
-
-}  // namespace
 
 TEST_CASE("script shapes in validate: the scripted twins get their built-in twins' scenarios") {
   const HarnessOptions options;
   for (const char* name : {"box_inside", "box_outside", "circle_inside", "circle_outside"}) {
     CAPTURE(name);
-    const PlanarScene builtin = shipped(std::string("haplink_") + name);
-    const PlanarScene scripted = shipped(std::string("haplink_script_") + name);
+    const PlanarScene builtin = test::shipped_planar(std::string("haplink_") + name);
+    const PlanarScene scripted = test::shipped_planar(std::string("haplink_script_") + name);
     REQUIRE(planar_scenario_shapes(scripted).size() == 1);
     CHECK(planar_scenario_shapes(scripted)[0].declared);
     CHECK(planar_shape_list(scripted).empty());  // no proxy: figures and traces see none
@@ -61,19 +47,19 @@ TEST_CASE("script shapes in validate: the scripted twins get their built-in twin
   }
   // The press of the scripted box: the built-in's places, and it passes.
   const PlanarValidationReport report =
-      validate_planar_scene(shipped("haplink_script_box_inside"), {PlanarValidateKind::press}, options);
+      validate_planar_scene(test::shipped_planar("haplink_script_box_inside"), {PlanarValidateKind::press}, options);
   CHECK(report.shapes == 1);
   REQUIRE(report.scenarios.size() == 1);
   CHECK(report.scenarios[0].scenario.description.find("4 edge and 4 corner places of 1 shapes") != std::string::npos);
   CHECK(report.pass);
-  REQUIRE(check_named(report.scenarios[0], "pop_through") != nullptr);
-  CHECK(check_named(report.scenarios[0], "penetration")->value > 0.001);
+  REQUIRE(test::check_named(report.scenarios[0], "pop_through") != nullptr);
+  CHECK(test::check_named(report.scenarios[0], "penetration")->value > 0.001);
 }
 
 TEST_CASE("script shapes in validate: built-in scenes keep their shape list") {
   for (const char* name : {"haplink_box_inside", "haplink_circle_outside", "haply2diy_v3_box_outside"}) {
     CAPTURE(name);
-    const PlanarScene scene = shipped(name);
+    const PlanarScene scene = test::shipped_planar(name);
     const std::vector<PlanarShapeGeometry> all = planar_scenario_shapes(scene);
     const std::vector<PlanarShapeGeometry> built_in = planar_shape_list(scene);
     REQUIRE(all.size() == built_in.size());
@@ -160,9 +146,9 @@ TEST_CASE("script shapes in validate: a thin scripted box lets the swipe through
   REQUIRE(b.scenarios.size() == 1);
   CHECK(a.scenarios[0].scenario.description == b.scenarios[0].scenario.description);
   CHECK(a.scenarios[0].scenario.description.find("across 2 thin places") != std::string::npos);
-  CHECK(check_named(a.scenarios[0], "pop_through")->pass);
+  CHECK(test::check_named(a.scenarios[0], "pop_through")->pass);
   CHECK(a.pass);
-  CHECK_FALSE(check_named(b.scenarios[0], "pop_through")->pass);
+  CHECK_FALSE(test::check_named(b.scenarios[0], "pop_through")->pass);
   CHECK(b.scenarios[0].metrics.pop_throughs > 0);
   CHECK_FALSE(b.pass);
 }
