@@ -1,0 +1,3 @@
+function force(s)
+  return -100 * s.x +
+end

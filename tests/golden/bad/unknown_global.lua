@@ -1,0 +1,3 @@
+function force(s)
+  return -stiffness * s.x
+end
