@@ -205,6 +205,15 @@ constexpr std::string_view kPlotExamples[] = {
     "plot environments/spring.json --scenario release --output spring.svg",
 };
 
+// ---- new
+constexpr OptionDefinition kNewOptions[] = {
+    {"device", 'D', "PROFILE", "2-DOF kinds: the planar device (a shipped name or a profile file)", "haplink", nullptr,
+     nullptr, "", C::json},
+    {"force", 0, "", "overwrite files that exist (default: refuse)"},
+};
+constexpr std::string_view kNewExamples[] = {"new wall my_wall", "new spec my_wall", "new script bumpy",
+                                             "new circle coin --device haply2diy_v3"};
+
 constexpr CommandDefinition kCommands[] = {
     {"run", "", "ENV [ENV...] [options]", "run environments on a device (simulated by default)",
      "Loads every environment first (a bad file stops everything before anything moves), then runs each on the "
@@ -233,6 +242,12 @@ constexpr CommandDefinition kCommands[] = {
      "range, and the motor's direction with a small, slow, force-limited pulse; writes a profile that extends "
      "the calibrated one and overrides only the keys found to differ.",
      kCalibrateOptions, C::none, kCalibrateExamples},
+    {"new", "", "KIND NAME [options]", "start an environment, a script or a test spec from a template",
+     "Writes NAME.json, NAME.lua or NAME.test.json (in NAME's folder) from a commented template of KIND: spring, "
+     "wall, damper, texture (1-DOF environments), script (a 1-DOF Lua force), box, circle (2-DOF environments), "
+     "planar-script (a 2-D Lua force and the environment that runs it), spec (a test spec for NAME.json or "
+     "NAME.lua). Every template validates as written; edit it, then validate and run it.",
+     kNewOptions, C::none, kNewExamples},
     {"plot", "", "ENV [options]", "draw the force-displacement curve and a scenario as SVG",
      "Draws the force-displacement curve and one scenario's time series as an SVG figure (2-DOF: the force "
      "field, the run's paths and time series per axis).",
@@ -265,7 +280,7 @@ constexpr BuiltinCommand kBuiltins[] = {
     {"help", "[COMMAND]", "this text, or a command's options"},
     {"version", "", "the version (also --version)"},
     {"completion", "bash", "print the bash completion script"},
-    {"man", "", "print the man page (roff)"},
+    {"man", "[--markdown]", "print the man page (roff; --markdown: the command reference as Markdown)"},
 };
 
 }  // namespace

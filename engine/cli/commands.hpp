@@ -14,5 +14,6 @@ int plot_command(std::vector<std::string> args);
 int test_command(std::vector<std::string> args);
 int devices_command(std::vector<std::string> args);
 int calibrate_command(std::vector<std::string> args);
+int new_command(std::vector<std::string> args);
 
 }  // namespace hapscene

@@ -25,6 +25,9 @@ std::string bash_completion_script();
 // title line.
 std::string man_page(std::string_view version);
 
+// `hapscene man --markdown`: the same reference as Markdown (docs/reference/options.md).
+std::string command_reference_markdown(std::string_view version);
+
 // Shared by the generators: "-D, --device SPEC", and "default 2 s; range (0, 86400] s".
 std::string option_label(const OptionDefinition& option);
 std::string option_details(const OptionDefinition& option);

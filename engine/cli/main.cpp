@@ -69,8 +69,10 @@ std::optional<int> builtin(const std::vector<std::string>& args) {
     return hapscene::kExitOk;
   }
   if (command == "man") {
-    if (args.size() > 1) throw hapscene::InputError("hapscene man: takes no arguments");
-    write_out(hapscene::man_page(HAPSCENE_VERSION));
+    // man: roff; man --markdown: the documentation site's command reference.
+    const bool markdown = args.size() == 2 && args[1] == "--markdown";
+    if (args.size() > 1 && !markdown) throw hapscene::InputError("hapscene man: takes no arguments but --markdown");
+    write_out(markdown ? hapscene::command_reference_markdown(HAPSCENE_VERSION) : hapscene::man_page(HAPSCENE_VERSION));
     return hapscene::kExitOk;
   }
   return std::nullopt;
@@ -99,6 +101,7 @@ int dispatch(std::vector<std::string> args) {
     if (command == "test") return hapscene::test_command(args);
     if (command == "devices") return hapscene::devices_command(args);
     if (command == "calibrate") return hapscene::calibrate_command(args);
+    if (command == "new") return hapscene::new_command(args);
     std::cerr << "hapscene: " << unknown_command(command) << " (try: hapscene --help)\n";
     return hapscene::kExitInvalidInput;
   } catch (const hapscene::InputError& error) {
