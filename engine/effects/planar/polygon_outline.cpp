@@ -285,9 +285,11 @@ PolygonOutline::PolygonOutline(const std::vector<Vec2>& points, bool solid_insid
   lengths_m_.resize(n);
   wide_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
+    // (check_polygon refused coinciding neighbours, so every edge has a direction; its
+    // length and direction are taken without underflow, however short.)
     const Vec2 d = points[(i + 1) % n] - points[i];
-    lengths_m_[i] = std::sqrt(dot(d, d));
-    tangents_[i] = d / lengths_m_[i];
+    lengths_m_[i] = stable_norm(d);
+    unit_vector(d, &tangents_[i]);
     const Vec2 left{{-tangents_[i][1], tangents_[i][0]}};
     normals_[i] = free_on_left ? left : -left;
   }
