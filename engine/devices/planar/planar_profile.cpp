@@ -7,6 +7,7 @@
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/base/physical_ranges.hpp"
+#include "engine/base/polygon.hpp"
 
 namespace hapscene {
 namespace {
@@ -241,6 +242,10 @@ PlanarWorkspace parse_workspace(ObjectReader& reader) {
       twice_area += cross(workspace.polygon_m[i], workspace.polygon_m[(i + 1) % points.size()]);
     }
     if (!(std::abs(twice_area) > 0.0)) reader.fail("polygon", "encloses no area");
+    // A polygon that crosses itself has no one inside (the crossing-number test and a
+    // person reading the points disagree): refused, naming the edges, as a shape's is.
+    const std::string problem = simple_polygon_problem(workspace.polygon_m);
+    if (!problem.empty()) reader.fail("polygon", problem);
   }
   reader.finish();
   return workspace;

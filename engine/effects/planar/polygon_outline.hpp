@@ -42,7 +42,6 @@
 // the solid (ties: the lowest edge index), else x. These scan every edge: they are for
 // probes and field scans, not the tick.
 #include <cmath>
-#include <string>
 #include <vector>
 
 #include "engine/base/axes.hpp"
@@ -57,14 +56,10 @@ class PolygonOutline {
   static constexpr double kVertexSnap = 1e-9;
 
   PolygonOutline() = default;
-  // Builds from points that pass check_polygon(). `solid_inside`: the enclosed area is
-  // solid (else everything outside it is, and it is a cage).
+  // Builds from points that pass simple_polygon_problem() (engine/base/polygon.hpp).
+  // `solid_inside`: the enclosed area is solid (else everything outside it is, and it is
+  // a cage).
   PolygonOutline(const std::vector<Vec2>& points, bool solid_inside);
-
-  // Empty when `points` (at least 3) make a simple polygon with an area; else what is
-  // wrong, naming the points: coinciding neighbours, edges that fold back on each other,
-  // edges that cross or touch, no area.
-  static std::string check_polygon(const std::vector<Vec2>& points);
 
   int edge_count() const noexcept { return static_cast<int>(vertices_.size()); }
   const Vec2& vertex(int i) const noexcept { return vertices_[static_cast<std::size_t>(i)]; }
