@@ -193,6 +193,7 @@ void PolygonOutline::step_proxy_full(const Vec2& x_m, const FrictionCoefficients
   ProxyContact contact = state.contact;
   int feature = state.feature;
   bool sliding = state.sliding;
+  int reference = contact == ProxyContact::edge ? feature : state.reference_edge;
   int straight_moves = 0;
   // Straight toward x from where the proxy is; true when it got there.
   const auto move_toward_x = [&](int skip_a, int skip_b) {
@@ -206,7 +207,17 @@ void PolygonOutline::step_proxy_full(const Vec2& x_m, const FrictionCoefficients
       return true;
     }
     place(hit, &proxy, &contact, &feature);
+    reference = hit.edge;
     return false;
+  };
+  // Whether a slide over vertex v onto edge e keeps the proxy within a quarter turn of the
+  // reference: over a wide vertex (round a convex part of the solid) e's normal must be
+  // turned less than a quarter turn from the reference's (their dot product positive), so a
+  // slide never carries the proxy round to the far side, however deep the handle went
+  // (through the solid within one tick): it holds on the vertex instead. (A narrow vertex,
+  // a concave corner, turns the proxy toward the free side: no limit.)
+  const auto within_quarter_turn = [&](int v, int e) {
+    return !wide(v) || reference < 0 || dot(normal(e), normal(reference)) > 0.0;
   };
   int from_vertex = -1;  // the vertex a slide along the current edge started from
   for (int step = 0; step < kMaxStepsPerTick && straight_moves < kMaxStraightMovesPerTick; ++step) {
@@ -268,8 +279,8 @@ void PolygonOutline::step_proxy_full(const Vec2& x_m, const FrictionCoefficients
       continue;
     }
     const Vec2 d = x_m - proxy;
-    const double gain_out = side_out <= 0.0 ? dot(d, tangent(out)) : 0.0;
-    const double gain_in = side_in <= 0.0 ? -dot(d, tangent(in)) : 0.0;
+    const double gain_out = side_out <= 0.0 && within_quarter_turn(v, out) ? dot(d, tangent(out)) : 0.0;
+    const double gain_in = side_in <= 0.0 && within_quarter_turn(v, in) ? -dot(d, tangent(in)) : 0.0;
     if (gain_out > kVertexSnap * length_m(out) && gain_out >= gain_in) {
       contact = ProxyContact::edge;
       feature = out;
@@ -296,6 +307,7 @@ void PolygonOutline::step_proxy_full(const Vec2& x_m, const FrictionCoefficients
   state.contact = contact;
   state.feature = feature;
   state.sliding = sliding;
+  state.reference_edge = contact == ProxyContact::edge ? feature : contact == ProxyContact::vertex ? reference : -1;
 }
 
 bool PolygonOutline::in_solid(const Vec2& x_m) const noexcept {
