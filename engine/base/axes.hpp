@@ -83,6 +83,48 @@ inline bool all_finite(const AxisVector<N>& value) noexcept {
   return true;
 }
 
+namespace detail {
+// v scaled by 2^-e, e the exponent of its largest component (exact: std::scalbn), so its
+// largest component lies in [1, 2); the zero vector stays zero.
+template <int N>
+inline AxisVector<N> scaled_to_unit_exponent(const AxisVector<N>& v, int* exponent) noexcept {
+  double largest = 0.0;
+  for (int i = 0; i < N; ++i) largest = std::fmax(largest, std::fabs(v.value[i]));
+  *exponent = largest > 0.0 ? std::ilogb(largest) : 0;
+  AxisVector<N> scaled;
+  for (int i = 0; i < N; ++i) scaled.value[i] = std::scalbn(v.value[i], -*exponent);
+  return scaled;
+}
+}  // namespace detail
+
+// The length of a finite v without underflow or overflow: v is scaled by a power of two
+// first (exact), so components that are subnormal, or whose squares would overflow, still
+// give the length to rounding. Where the squares are normal numbers the result is
+// norm(v) to the bit: a power of two changes no rounding there. (Not finite v: norm(v).)
+template <int N>
+inline double stable_norm(const AxisVector<N>& v) noexcept {
+  if (!all_finite(v)) return norm(v);
+  int exponent = 0;
+  const AxisVector<N> scaled = detail::scaled_to_unit_exponent(v, &exponent);
+  return std::scalbn(std::sqrt(dot(scaled, scaled)), exponent);
+}
+
+// The unit vector along v: the one way a direction read from a file (a 2-D wall's normal,
+// a texture's direction, a polygon's edges, a shake direction) is normalised. v is scaled
+// as in stable_norm first, so the result is v / norm(v) to the bit wherever that is exact,
+// and keeps v's direction where the squares would underflow or overflow. False (*unit
+// untouched) when v is zero or not finite: the caller refuses it, naming where it was read.
+template <int N>
+inline bool unit_vector(const AxisVector<N>& v, AxisVector<N>* unit) noexcept {
+  if (!all_finite(v)) return false;
+  int exponent = 0;
+  const AxisVector<N> scaled = detail::scaled_to_unit_exponent(v, &exponent);
+  const double length = std::sqrt(dot(scaled, scaled));
+  if (!(length > 0.0)) return false;
+  *unit = scaled / length;
+  return true;
+}
+
 // The z component of the cross product of two planar vectors (which side b lies of a).
 constexpr double cross(const Vec2& a, const Vec2& b) noexcept { return a[0] * b[1] - a[1] * b[0]; }
 

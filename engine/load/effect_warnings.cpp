@@ -152,13 +152,15 @@ std::string planar_workspace_text(const PlanarScene& scene) {
   const Vec2& low_m = scene.safety.workspace_min_m;
   const Vec2& high_m = scene.safety.workspace_max_m;
   const PlanarWorkspace& device = scene.device.limits.workspace;
-  if (device.is_box && (low_m != device.box_min_m || high_m != device.box_max_m)) {
+  Vec2 device_low_m;
+  Vec2 device_high_m;
+  workspace_bounds(device, &device_low_m, &device_high_m);
+  const bool narrowed = low_m != device_low_m || high_m != device_high_m;
+  if (narrowed && device.is_box) {
     return "the environment's safety workspace " + box_text(low_m, high_m) + " (/safety/workspace; the device's is " +
-           box_text(device.box_min_m, device.box_max_m) + ")";
+           box_text(device_low_m, device_high_m) + ")";
   }
-  if (!device.is_box && scene.safety.workspace_polygon_m.empty()) {
-    return "the environment's safety workspace " + box_text(low_m, high_m) + " (/safety/workspace)";
-  }
+  if (narrowed) return "the environment's safety workspace " + box_text(low_m, high_m) + " (/safety/workspace)";
   return std::string(device.is_box ? "the workspace " : "the box round the workspace ") + box_text(low_m, high_m);
 }
 
@@ -267,9 +269,9 @@ std::string planar_unit_slip_hint(const Type& e, const nlohmann::json& written, 
     if (written_without_unit(written, key)) keys.push_back(key);
   }
   if (keys.empty()) return "";
-  const PlanarWorkspace& device = scene.device.limits.workspace;
-  const Vec2 device_low = device.is_box ? device.box_min_m : scene.safety.workspace_min_m;
-  const Vec2 device_high = device.is_box ? device.box_max_m : scene.safety.workspace_max_m;
+  Vec2 device_low;
+  Vec2 device_high;
+  workspace_bounds(scene.device.limits.workspace, &device_low, &device_high);
   return unit_slip_hint(
       [&](double scale) { return meets_box(scaled(e, keys, scale), device_low, device_high); },
       [&](double scale) {

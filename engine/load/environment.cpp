@@ -250,8 +250,9 @@ Environment compile(const nlohmann::json& root, const std::string& file, const s
 }
 
 // A planar scene's "safety" block: force and slew limits, soft start, and the workspace
-// as a box ({"min": [x, y], "max": [x, y]}) inside the device's; each only safer than the
-// device's.
+// as a box ({"min": [x, y], "max": [x, y]}) within the device's; each only safer than the
+// device's. The box narrows the device's workspace and never replaces it: the tick tests
+// the box and, when the device's workspace is a polygon, the polygon as well.
 void parse_planar_safety(ObjectReader& reader, const PlanarLimits& device, SafetyConfigOf<2>* safety) {
   parse_common_safety(reader, device, safety);
   if (const nlohmann::json* workspace = reader.get("workspace")) {
@@ -262,36 +263,22 @@ void parse_planar_safety(ObjectReader& reader, const PlanarLimits& device, Safet
     if (!(min_m[0] < max_m[0] && min_m[1] < max_m[1])) {
       reader.fail("workspace", "min must be below max on both axes");
     }
-    if (!workspace_contains(device.workspace, min_m) || !workspace_contains(device.workspace, max_m) ||
-        !workspace_contains(device.workspace, Vec2{{min_m[0], max_m[1]}}) ||
-        !workspace_contains(device.workspace, Vec2{{max_m[0], min_m[1]}})) {
-      reader.fail("workspace", "must lie within the device's workspace");
+    const std::string outside = box_leaves_workspace(device.workspace, min_m, max_m);
+    if (!outside.empty()) reader.fail("workspace", "must lie within the device's workspace: " + outside);
+    // The intersection: the box within the device's box (or the polygon's bounding box);
+    // the device's polygon, if any, stays in safety->workspace_polygon_m.
+    for (int i = 0; i < 2; ++i) {
+      safety->workspace_min_m[i] = std::max(safety->workspace_min_m[i], min_m[i]);
+      safety->workspace_max_m[i] = std::min(safety->workspace_max_m[i], max_m[i]);
     }
-    safety->workspace_min_m = min_m;
-    safety->workspace_max_m = max_m;
-    safety->workspace_polygon_m.clear();
   }
   reader.finish();
 }
 
 // The device's workspace as the tick tests it: its bounding box, and the polygon if any.
 void set_planar_workspace(const PlanarWorkspace& workspace, SafetyConfigOf<2>* safety) {
-  if (workspace.is_box) {
-    safety->workspace_min_m = workspace.box_min_m;
-    safety->workspace_max_m = workspace.box_max_m;
-    return;
-  }
-  Vec2 low = workspace.polygon_m.front();
-  Vec2 high = low;
-  for (const Vec2& p : workspace.polygon_m) {
-    for (int i = 0; i < 2; ++i) {
-      low[i] = std::min(low[i], p[i]);
-      high[i] = std::max(high[i], p[i]);
-    }
-  }
-  safety->workspace_min_m = low;
-  safety->workspace_max_m = high;
-  safety->workspace_polygon_m = workspace.polygon_m;
+  workspace_bounds(workspace, &safety->workspace_min_m, &safety->workspace_max_m);
+  if (!workspace.is_box) safety->workspace_polygon_m = workspace.polygon_m;
 }
 
 PlanarScene compile_planar(const nlohmann::json& root, const std::string& file, const std::string& base_dir,

@@ -37,8 +37,10 @@ struct SafetyConfigOf {
   // Derived from the above and the tick period by finalise_safety().
   double max_step_N{};         // slew_limit_N_per_s * T
   double ramp_step_per_tick{}; // T / soft_start_s (1 when soft_start_s is 0)
-  // More than one axis: when not empty, the workspace is this simple polygon (its
-  // bounding box is workspace_min_m/max_m, tested first).
+  // More than one axis: when not empty, the device's workspace polygon (simple, checked
+  // at load). The workspace is then the intersection of the box workspace_min_m/max_m
+  // (the polygon's bounding box, or the environment's narrower box) and the polygon:
+  // a position must pass both tests, the box first.
   [[no_unique_address]] std::conditional_t<(N > 1), std::vector<AxisVector<(N > 1 ? N : 2)>>, NoPolygon>
       workspace_polygon_m{};
 };

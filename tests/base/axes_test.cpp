@@ -46,3 +46,40 @@ TEST_CASE("all_finite rejects a NaN or an infinity in any component") {
   CHECK_FALSE(all_finite(nan));
   CHECK(all_finite(0.0));
 }
+
+TEST_CASE("unit_vector and stable_norm keep a vector's direction and length at any scale") {
+  // In the normal range: exactly v / norm(v) and norm(v).
+  Vec2 unit;
+  REQUIRE(unit_vector(Vec2{{3.0, 4.0}}, &unit));
+  CHECK(unit == Vec2{{3.0, 4.0}} / norm(Vec2{{3.0, 4.0}}));
+  const Vec2 slanted{{0.3, -0.7}};
+  REQUIRE(unit_vector(slanted, &unit));
+  CHECK(unit == slanted / norm(slanted));
+  CHECK(stable_norm(slanted) == norm(slanted));
+  // Subnormal components (squares that underflow): the direction of the integers they are
+  // multiples of, to the bit (a power of two apart), where v / norm(v) is off or undefined.
+  const double ulp = std::numeric_limits<double>::denorm_min();
+  const Vec2 tiny{{6072.0 * ulp, 8097.0 * ulp}};
+  Vec2 integers;
+  REQUIRE(unit_vector(Vec2{{6072.0, 8097.0}}, &integers));
+  REQUIRE(unit_vector(tiny, &unit));
+  CHECK(unit == integers);
+  CHECK(std::fabs(stable_norm(tiny) / (norm(Vec2{{6072.0, 8097.0}}) * ulp) - 1.0) < 1e-15);
+  // Squares that are subnormal: 1e-161 squared keeps about 20 steps of the subnormal grid.
+  REQUIRE(unit_vector(Vec2{{1e-161, 1e-161}}, &unit));
+  CHECK(unit[0] == doctest::Approx(std::sqrt(0.5)).epsilon(1e-15));
+  CHECK(unit[1] == doctest::Approx(std::sqrt(0.5)).epsilon(1e-15));
+  // Squares that overflow.
+  REQUIRE(unit_vector(Vec2{{3e300, 4e300}}, &unit));
+  CHECK(unit[0] == doctest::Approx(0.6).epsilon(1e-15));
+  CHECK(stable_norm(Vec2{{3e300, 4e300}}) == doctest::Approx(5e300).epsilon(1e-15));
+  // No direction: zero, NaN, infinity; *unit untouched.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  unit = Vec2{{7.0, 7.0}};
+  CHECK_FALSE(unit_vector(Vec2{}, &unit));
+  CHECK_FALSE(unit_vector(Vec2{{nan, 1.0}}, &unit));
+  CHECK_FALSE(unit_vector(Vec2{{inf, 1.0}}, &unit));
+  CHECK(unit == Vec2{{7.0, 7.0}});
+  CHECK(std::isnan(stable_norm(Vec2{{nan, 1.0}})));
+}

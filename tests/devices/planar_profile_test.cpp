@@ -218,6 +218,10 @@ TEST_CASE("planar profile: errors name the file and the JSON pointer") {
     CHECK(planar_error(j) == "x.json: /limits/workspace/polygon: needs 3 to 1024 points, got 2");
     j["limits"]["workspace"] = {{"polygon", {{0, 0.1}, {0.01, 0.1}, {0.02, 0.1}}}};
     CHECK(planar_error(j) == "x.json: /limits/workspace/polygon: encloses no area");
+    // Edges that cross: refused, naming them (the points enclose a non-zero signed area).
+    j["limits"]["workspace"] = {{"polygon", {{-0.07, 0.09}, {0.03, 0.09}, {-0.07, 0.19}, {0.05, 0.19}}}};
+    CHECK(planar_error(j) == "x.json: /limits/workspace/polygon: edges 1 (points 1 to 2) and 3 (points 3 to 0) cross "
+                             "or touch: the outline must not intersect itself");
     j["limits"]["workspace"] = nlohmann::json::object();
     CHECK(planar_error(j) == "x.json: /limits/workspace: give exactly one of \"box\" and \"polygon\"");
   }

@@ -2,6 +2,8 @@
 // errors for bad input (ranges, unknown keys, 1-D forms, degenerate shapes).
 #include <doctest/doctest.h>
 
+#include <cmath>
+
 #include "tests/effects/planar_test_support.hpp"
 
 using namespace hapscene;
@@ -71,6 +73,16 @@ TEST_CASE("planar parse: located errors") {
         "env.json: /effects/2/normal: must not be the zero vector: it gives the direction");
   CHECK(parse_error(R"({"type": "texture", "width": 0.001, "damping": 1, "direction": [0, 0]})") ==
         "env.json: /effects/2/direction: must not be the zero vector: it gives the direction");
+  // Components too small for their squares still give their direction (unit_vector): a
+  // normal of [1e-161, 1e-161] came out 0.6 % long (the wall 1.2 % stiff), one of
+  // [1e-310, 0] was refused as zero.
+  const PlanarWall tiny = parse_as<PlanarWall>(R"({"type": "wall", "point": [0, 0], "normal": [1e-161, 1e-161], "stiffness": 1})");
+  CHECK(tiny.normal[0] == doctest::Approx(std::sqrt(0.5)).epsilon(1e-15));
+  CHECK(tiny.normal[1] == doctest::Approx(std::sqrt(0.5)).epsilon(1e-15));
+  CHECK(parse_as<PlanarWall>(R"({"type": "wall", "point": [0, 0], "normal": [1e-310, 0], "stiffness": 1})").normal ==
+        v2(1.0, 0.0));
+  CHECK(parse_as<PlanarTexture>(R"({"type": "texture", "width": 0.001, "damping": 1, "direction": [0, -3e-320]})")
+            .direction == v2(0.0, -1.0));
   CHECK(parse_error(R"({"type": "box", "min": [0, 0.02], "max": [0.01, 0.02], "stiffness": 1, "solid": "inside"})") ==
         "env.json: /effects/2/max: must be above \"min\" in y, got min 0.02 m and max 0.02 m");
   CHECK(parse_error(R"({"type": "box", "min": [0.03, 0], "max": [0.01, 0.02], "stiffness": 1, "solid": "inside"})") ==

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "engine/base/polygon.hpp"
 #include "tests/effects/planar_test_support.hpp"
 
 using namespace hapscene;
@@ -25,7 +26,7 @@ Vec2 step(const PlanarPolygon& polygon, PlanarProxyState& state, const Vec2& x) 
 
 PlanarPolygon make_polygon(std::vector<Vec2> points, bool solid_inside, double stiffness = 1000.0,
                            FrictionCoefficients friction = {}) {
-  REQUIRE(PolygonOutline::check_polygon(points).empty());
+  REQUIRE(simple_polygon_problem(points).empty());
   PlanarPolygon polygon;
   polygon.outline = PolygonOutline(points, solid_inside);
   polygon.stiffness_N_per_m = stiffness;
@@ -270,7 +271,7 @@ TEST_CASE("planar polygon: the grid lists few edges per cell for 1000 edges") {
   }
   comb.push_back(v2(0.1, -0.01));
   comb.push_back(v2(0.0, -0.01));
-  REQUIRE(PolygonOutline::check_polygon(comb).empty());
+  REQUIRE(simple_polygon_problem(comb).empty());
   const PolygonOutline teeth(comb, true);
   CHECK(teeth.most_edges_per_cell() <= 40);
 }
@@ -370,7 +371,7 @@ TEST_CASE("planar polygon: random star polygons and wild handle paths never put 
       const double radius = 0.005 + 0.04 * uniform();
       points.push_back(v2(radius * std::cos(angle), 0.1 + radius * std::sin(angle)));
     }
-    if (!PolygonOutline::check_polygon(points).empty()) continue;
+    if (!simple_polygon_problem(points).empty()) continue;
     const bool solid_inside = shape % 2 == 0;
     const FrictionCoefficients friction = shape % 3 == 0 ? FrictionCoefficients{0.6, 0.4} : FrictionCoefficients{};
     const PlanarPolygon polygon = make_polygon(points, solid_inside, 1000.0, friction);

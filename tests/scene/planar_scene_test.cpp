@@ -144,6 +144,41 @@ TEST_CASE("planar safety: a polygon workspace renders nothing outside the polygo
   CHECK(counters.outside_workspace_ticks == 1);
 }
 
+TEST_CASE("planar safety: an environment's box narrows a polygon workspace, never replaces it") {
+  // The Haplink's profile with a notched workspace: the notch x in [10, 30] mm, y above 120 mm.
+  test::ScratchFolder scratch("planar_notched_workspace");
+  std::ifstream file(test::source_path("environments/devices/haplink.json"));
+  std::string profile((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const std::string box = R"("workspace": {"box": {"min": ["-70 mm", "90 mm"], "max": ["40 mm", "165 mm"]}})";
+  REQUIRE(profile.find(box) != std::string::npos);
+  profile.replace(profile.find(box), box.size(),
+                  R"("workspace": {"polygon": [["-70 mm", "90 mm"], ["40 mm", "90 mm"], ["40 mm", "165 mm"],
+                     ["30 mm", "165 mm"], ["30 mm", "120 mm"], ["10 mm", "120 mm"], ["10 mm", "165 mm"],
+                     ["-70 mm", "165 mm"]]})");
+  scratch.write("notched.json", profile);
+  const auto load = [&](const std::string& min, const std::string& max) {
+    return load_planar_environment_text(R"({"device": "notched.json", "safety": {"workspace": {"min": )" + min +
+                                            R"(, "max": )" + max + R"(}}, "effects": [{"type": "damper", "damping": 1}]})",
+                                        "env.json", scratch.dir.string());
+  };
+  // Its four corners inside the polygon, but across the notch: refused, naming the edge.
+  CHECK_THROWS_WITH_AS(load(R"(["0 mm", "100 mm"])", R"(["35 mm", "160 mm"])"),
+                       "env.json: /safety/workspace: must lie within the device's workspace: edge 3 (points 3 to 4) "
+                       "of the device's polygon passes through the box",
+                       InputError);
+  CHECK_THROWS_WITH_AS(load(R"(["0 mm", "100 mm"])", R"(["50 mm", "160 mm"])"),
+                       "env.json: /safety/workspace: must lie within the device's workspace: its corner (0.05, 0.1) m "
+                       "is outside it",
+                       InputError);
+  // Within it: the box narrows, and the polygon is still tested.
+  const PlanarScene scene = load(R"(["-60 mm", "100 mm"])", R"(["5 mm", "160 mm"])");
+  CHECK(scene.safety.workspace_min_m == Vec2{{-0.06, 0.1}});
+  CHECK(scene.safety.workspace_max_m == Vec2{{0.005, 0.16}});
+  CHECK(scene.safety.workspace_polygon_m.size() == 8);
+  CHECK(within_workspace(scene.safety, Vec2{{-0.03, 0.13}}));
+  CHECK_FALSE(within_workspace(scene.safety, Vec2{{0.02, 0.14}}));  // the notch, outside the box as well
+}
+
 TEST_CASE("planar tick: a pose near a singularity ramps the force out and counts it") {
   const PlanarScene scene = planar(R"({"type": "spring", "stiffness": "100 N/m", "center": ["-10 mm", "140 mm"]})");
   TickStateOf<2> state = make_tick_state(scene);

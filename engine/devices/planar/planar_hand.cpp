@@ -34,9 +34,9 @@ PlanarHand::PlanarHand(const PlanarHandConfig& config, const Vec2& start_m)
       break;
     case PlanarHandMotion::shake:
       require(finite(c.hold_m), "hold", "must be finite");
-      require(finite(c.shake_direction) && norm(c.shake_direction) > 0.0, "shake direction", "must be a finite, non-zero vector");
+      require(unit_vector(c.shake_direction, &config_.shake_direction), "shake direction",
+              "must be a finite, non-zero vector");
       require(std::isfinite(c.shake_amplitude_m) && std::isfinite(c.shake_frequency_Hz), "shake", "amplitude and frequency must be finite");
-      config_.shake_direction = c.shake_direction / norm(c.shake_direction);
       break;
     case PlanarHandMotion::line:
     case PlanarHandMotion::circle:

@@ -1,12 +1,15 @@
 #include "engine/devices/planar/planar_profile.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/base/physical_ranges.hpp"
+#include "engine/base/polygon.hpp"
 
 namespace hapscene {
 namespace {
@@ -241,6 +244,10 @@ PlanarWorkspace parse_workspace(ObjectReader& reader) {
       twice_area += cross(workspace.polygon_m[i], workspace.polygon_m[(i + 1) % points.size()]);
     }
     if (!(std::abs(twice_area) > 0.0)) reader.fail("polygon", "encloses no area");
+    // A polygon that crosses itself has no one inside (the crossing-number test and a
+    // person reading the points disagree): refused, naming the edges, as a shape's is.
+    const std::string problem = simple_polygon_problem(workspace.polygon_m);
+    if (!problem.empty()) reader.fail("polygon", problem);
   }
   reader.finish();
   return workspace;
@@ -331,6 +338,72 @@ bool workspace_contains(const PlanarWorkspace& workspace, const Vec2& p_m) noexc
     }
   }
   return inside;
+}
+
+void workspace_bounds(const PlanarWorkspace& workspace, Vec2* low_m, Vec2* high_m) noexcept {
+  if (workspace.is_box || workspace.polygon_m.empty()) {
+    *low_m = workspace.box_min_m;
+    *high_m = workspace.box_max_m;
+    return;
+  }
+  *low_m = workspace.polygon_m.front();
+  *high_m = *low_m;
+  for (const Vec2& p : workspace.polygon_m) {
+    for (int i = 0; i < 2; ++i) {
+      (*low_m)[i] = std::min((*low_m)[i], p[i]);
+      (*high_m)[i] = std::max((*high_m)[i], p[i]);
+    }
+  }
+}
+
+namespace {
+
+// Whether segment a-b passes through the open box (low, high): some point of it lies
+// strictly inside (an edge along the box's side, or through a corner only, does not).
+bool segment_enters_open_box(const Vec2& a, const Vec2& b, const Vec2& low, const Vec2& high) noexcept {
+  double enter = 0.0;
+  double leave = 1.0;
+  for (int axis = 0; axis < 2; ++axis) {
+    const double d = b[axis] - a[axis];
+    if (d == 0.0) {
+      if (!(a[axis] > low[axis] && a[axis] < high[axis])) return false;
+      continue;
+    }
+    double t0 = (low[axis] - a[axis]) / d;
+    double t1 = (high[axis] - a[axis]) / d;
+    if (t0 > t1) std::swap(t0, t1);
+    enter = std::max(enter, t0);
+    leave = std::min(leave, t1);
+  }
+  return enter < leave;
+}
+
+}  // namespace
+
+std::string box_leaves_workspace(const PlanarWorkspace& workspace, const Vec2& low_m, const Vec2& high_m) {
+  // A corner outside (for a box workspace, convex, that decides it).
+  for (const Vec2& corner : {low_m, Vec2{{high_m[0], low_m[1]}}, high_m, Vec2{{low_m[0], high_m[1]}}}) {
+    if (!workspace_contains(workspace, corner)) {
+      return "its corner (" + format_number(corner[0]) + ", " + format_number(corner[1]) +
+             ") m is outside it";
+    }
+  }
+  // A polygon need not be convex: no edge of the polygon through the box's inside and
+  // its centre inside put the whole box inside (the inside is connected, meets no edge).
+  const std::size_t n = workspace.is_box ? 0 : workspace.polygon_m.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    if (segment_enters_open_box(workspace.polygon_m[i], workspace.polygon_m[j], low_m, high_m)) {
+      return "edge " + std::to_string(i) + " (points " + std::to_string(i) + " to " + std::to_string(j) +
+             ") of the device's polygon passes through the box";
+    }
+  }
+  const Vec2 centre_m = (low_m + high_m) * 0.5;
+  if (!workspace_contains(workspace, centre_m)) {
+    return "its centre (" + format_number(centre_m[0]) + ", " + format_number(centre_m[1]) +
+           ") m is outside it";
+  }
+  return {};
 }
 
 PlanarProfile parse_planar_profile(std::string_view json_text, const std::string& display_name) {

@@ -92,6 +92,15 @@ struct PlanarWorkspace {
 // a scan); the tick's safety stage owns its own compiled test.
 bool workspace_contains(const PlanarWorkspace& workspace, const Vec2& p_m) noexcept;
 
+// The workspace's bounding box: the box itself, or the polygon's.
+void workspace_bounds(const PlanarWorkspace& workspace, Vec2* low_m, Vec2* high_m) noexcept;
+
+// Empty when the box [low, high] lies within the workspace; else why not, to follow
+// "must lie within the device's workspace: ": a corner of the box outside it, or (a
+// polygon, which need not be convex) the edge of the polygon that passes through the
+// box's inside ("edge 2 (points 2 to 3) of the device's polygon passes through the box").
+std::string box_leaves_workspace(const PlanarWorkspace& workspace, const Vec2& low_m, const Vec2& high_m);
+
 struct PlanarLimits {
   double max_force_N{};
   double slew_limit_N_per_s{};

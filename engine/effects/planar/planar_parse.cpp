@@ -3,6 +3,7 @@
 // checks each number against its finite range, and refuses shapes that make no sense
 // (a zero normal, min >= max, a polygon that crosses itself) with the place and the reason.
 #include "engine/base/json_source.hpp"
+#include "engine/base/polygon.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/base/physical_ranges.hpp"
 #include "engine/effects/planar/planar_fields.hpp"
@@ -83,7 +84,7 @@ PlanarCircle PlanarCircle::parse(ObjectReader& reader) {
 
 PlanarPolygon PlanarPolygon::parse(ObjectReader& reader) {
   const std::vector<Vec2> points = read_points(reader, "points", ranges::kPosition_m, 3, kMaxPolygonPoints);
-  const std::string problem = PolygonOutline::check_polygon(points);
+  const std::string problem = simple_polygon_problem(points);
   if (!problem.empty()) reader.fail("points", problem);
   PlanarPolygon polygon;
   polygon.stiffness_N_per_m = reader.quantity("stiffness", Quantity::stiffness_N_per_m, ranges::kStiffness_N_per_m);

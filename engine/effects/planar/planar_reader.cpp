@@ -59,11 +59,8 @@ Vec2 read_vector_or(ObjectReader& reader, std::string_view key, Quantity quantit
 
 Vec2 read_direction(ObjectReader& reader, std::string_view key) {
   const Vec2 raw = read_vector(reader, key, Quantity::dimensionless, ranges::kDirectionComponent);
-  const double length = std::sqrt(raw[0] * raw[0] + raw[1] * raw[1]);
-  if (!(length > 0.0)) reader.fail(key, "must not be the zero vector: it gives the direction");
   Vec2 unit;
-  unit[0] = raw[0] / length;
-  unit[1] = raw[1] / length;
+  if (!unit_vector(raw, &unit)) reader.fail(key, "must not be the zero vector: it gives the direction");
   return unit;
 }
 

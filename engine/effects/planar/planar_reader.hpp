@@ -31,7 +31,8 @@ Vec2 read_vector(ObjectReader& reader, std::string_view key, Quantity quantity, 
 Vec2 read_vector_or(ObjectReader& reader, std::string_view key, Quantity quantity, Vec2 fallback,
                     Range component);
 // A required direction [dx, dy] (dimensionless, any non-zero length), returned as the unit
-// vector (dx, dy) / sqrt(dx * dx + dy * dy).
+// vector (dx, dy) / sqrt(dx * dx + dy * dy), computed by unit_vector (engine/base/axes.hpp)
+// so that components too small (or large) for their squares still give their direction.
 Vec2 read_direction(ObjectReader& reader, std::string_view key);
 // A required list of at least `min_count` and at most `max_count` points [[x, y], ...].
 std::vector<Vec2> read_points(ObjectReader& reader, std::string_view key, Range component,

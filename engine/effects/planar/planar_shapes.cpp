@@ -86,6 +86,27 @@ Vec2 PlanarCircle::open_loop_proxy_m(const Vec2& x_m) const noexcept {
   return Vec2{{center_m[0] + dx * (radius_m / distance), center_m[1] + dy * (radius_m / distance)}};
 }
 
+namespace {
+
+// Where the path a -> b enters the disc of radius r about the origin (a, b relative to the
+// centre; a outside the disc), put on the circle; false when the path does not enter it.
+bool path_enters_disc(const Vec2& a, const Vec2& b, double radius_m, Vec2* on_circle_m) noexcept {
+  const Vec2 d = b - a;
+  const double dd = dot(d, d);
+  const double ad = dot(a, d);
+  const double excess = dot(a, a) - radius_m * radius_m;  // >= 0 outside the disc
+  // Heading in, and the path's line passing closer to the centre than r.
+  if (!(ad < 0.0) || !(excess * dd < ad * ad)) return false;
+  const double t = std::fmax(0.0, (-ad - std::sqrt(ad * ad - dd * excess)) / dd);
+  if (!(t <= 1.0)) return false;  // it would enter beyond b
+  Vec2 unit;
+  if (!unit_vector(a + d * t, &unit)) return false;
+  *on_circle_m = unit * radius_m;
+  return true;
+}
+
+}  // namespace
+
 Vec2 PlanarCircle::force_N(const PlanarInput& in, PlanarProxyState& state) const noexcept {
   if (!all_finite(in.x_m)) return Vec2{};
   const double dx = in.x_m[0] - center_m[0];
@@ -94,27 +115,71 @@ Vec2 PlanarCircle::force_N(const PlanarInput& in, PlanarProxyState& state) const
   const bool in_solid = solid_inside ? distance < radius_m : distance > radius_m;
   if (!state.started) {
     state = PlanarProxyState{};
+    state.proxy_m = in.x_m;
     state.started = true;
     state.passive = in_solid;
   }
-  if (!in_solid || state.passive) {
+  // Started in the solid: the proxy follows the handle until it has left. Out of the
+  // solid a cage's proxy is the handle (a free path inside a disc stays inside it).
+  if (state.passive || (!solid_inside && !in_solid)) {
     state.passive = state.passive && in_solid;
     state.proxy_m = in.x_m;
     state.contact = ProxyContact::none;
     return Vec2{};
   }
-  if (distance > 0.0) {
-    state.proxy_m = open_loop_proxy_m(in.x_m);
-  } else if (state.contact != ProxyContact::surface) {
-    // Straight in to the centre from outside: the proxy stays where the path met the circle.
-    const double qx = state.proxy_m[0] - center_m[0];
-    const double qy = state.proxy_m[1] - center_m[1];
-    const double q_distance = std::sqrt(qx * qx + qy * qy);
-    state.proxy_m = q_distance > 0.0
-                        ? Vec2{{center_m[0] + qx * (radius_m / q_distance), center_m[1] + qy * (radius_m / q_distance)}}
-                        : open_loop_proxy_m(in.x_m);
+  // The circle's point nearest the handle: the open loop's formula, from the distance
+  // found above (for distance > 0).
+  const auto nearest_on_circle = [&] {
+    return Vec2{{center_m[0] + dx * (radius_m / distance), center_m[1] + dy * (radius_m / distance)}};
+  };
+  // A cage's solid (beyond the circle) has no far side: its proxy is the circle's point
+  // nearest the handle, where any free path to the handle leaves the disc.
+  if (!solid_inside) {
+    state.proxy_m = nearest_on_circle();
+    state.contact = ProxyContact::surface;
+    return proxy_force_N(stiffness_N_per_m, state.proxy_m, in.x_m);
   }
-  state.contact = ProxyContact::surface;
+  const Vec2 x_c{{dx, dy}};  // the handle, from the centre
+  // A disc. A free proxy moves straight toward the handle and stops where its path enters
+  // the disc, however fast the handle went (through the disc and out within one tick too).
+  if (state.contact != ProxyContact::surface) {
+    const Vec2 from_c = state.proxy_m - center_m;
+    // Off the disc, and moved no farther than its gap to the circle: no point of the path
+    // can be in the disc (the common case, in a few instructions).
+    const Vec2 moved = x_c - from_c;
+    const double gap_m = distance - radius_m;
+    if (!in_solid && dot(moved, moved) <= gap_m * gap_m) {
+      state.proxy_m = in.x_m;
+      return Vec2{};
+    }
+    Vec2 entry_c;
+    if (!path_enters_disc(from_c, x_c, radius_m, &entry_c)) {
+      if (!in_solid) {
+        state.proxy_m = in.x_m;
+        return Vec2{};
+      }
+      entry_c = open_loop_proxy_m(in.x_m) - center_m;  // (rounding put the proxy a hair inside)
+    }
+    state.proxy_m = center_m + entry_c;
+    state.contact = ProxyContact::surface;
+  }
+  // On the circle at q. The proxy slides along the circle toward the handle but never a
+  // quarter turn or more: to the circle's point nearest the handle when that is less than
+  // a quarter turn from q, else it holds at q, on the side the handle came in from, however
+  // far through the disc it went. Out of the disc, it leaves the circle for the handle when
+  // a slide of less than a quarter turn puts the handle in view: the handle less than a
+  // quarter turn round, or beside the disc rather than behind it.
+  const Vec2 q = state.proxy_m - center_m;
+  const double toward = dot(q, x_c);  // > 0: the handle less than a quarter turn round
+  if (in_solid) {
+    if (toward > 0.0 && distance > 0.0) state.proxy_m = nearest_on_circle();
+    return proxy_force_N(stiffness_N_per_m, state.proxy_m, in.x_m);
+  }
+  if (toward > 0.0 || std::fabs(cross(q, x_c)) >= radius_m * norm(q)) {
+    state.proxy_m = in.x_m;
+    state.contact = ProxyContact::none;
+    return Vec2{};
+  }
   return proxy_force_N(stiffness_N_per_m, state.proxy_m, in.x_m);
 }
 

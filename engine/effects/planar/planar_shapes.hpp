@@ -105,10 +105,15 @@ struct PlanarBox {
 // ("inside") or distance > r ("outside", a cage); there the proxy is
 // (cx + dx * (r / distance), cy + dy * (r / distance)), and at the very centre (distance 0,
 // "inside" only) (cx + r, cy); elsewhere the proxy is x.
-// Closed loop: on a circle the point the proxy slides to from wherever it met the circle
-// is that same nearest point, so the closed loop differs only at the start (no force
-// until the handle has left a solid it started in) and at the centre, where it keeps
-// the proxy it had (or, coming straight in from outside, the point where it met the circle).
+// Closed loop: a free proxy moves straight toward the handle and stops where its path
+// meets the circle (a disc crossed within one tick included); on the circle it slides to
+// the open loop's nearest point when that lies less than a quarter turn round from it,
+// else it holds (at the centre too), so a handle that went past the middle of a disc
+// is pushed back the way it came, never on through. A disc's proxy leaves the circle for
+// a handle out of the disc that a slide of less than a quarter turn brings into view,
+// and holds for one behind the disc (which crossed it). So the closed loop equals the open
+// loop except at the start (no force until the handle has left a solid it started in)
+// and for a handle past the middle of a disc, or behind it.
 struct PlanarCircle {
   static constexpr const char* kType = "circle";
   static constexpr Needs kNeeds{};

@@ -28,10 +28,15 @@
 // - on a vertex: it leaves toward x when x lies in the free space around the vertex;
 //   else it slides onto whichever of the two edges brings it closer to x (the one with the
 //   larger positive component of x - vertex along it); when neither does it holds there
-//   (a concave corner holds).
+//   (a concave corner holds). Over a wide vertex it never slides onto an edge whose
+//   normal is turned a quarter turn or more from its reference edge's (the edge it
+//   rested on at the start of the tick, or last met on a straight move): a handle that
+//   went deep into a convex solid, past its middle, would otherwise draw the proxy round
+//   to the far side, whose edges push the handle on through; it holds on the vertex.
 // Each step brings the proxy closer to x. A tick takes at most 64 steps and 8 straight
 // moves (bounded work whatever the outline); a proxy left far behind, when the handle
-// went deep through the solid, catches up over the next ticks, always outside the solid.
+// went deep through the solid, catches up over the next ticks, always outside the solid
+// (over thin teeth, by straight moves through the free space between them).
 // The proxy never crosses an edge, so a thin polygon never pops through: the proxy stays
 // on the side the handle came from until the handle leaves the solid there or slides off
 // the end of the wall. A run that starts with the handle in the solid puts the proxy at
@@ -42,7 +47,6 @@
 // the solid (ties: the lowest edge index), else x. These scan every edge: they are for
 // probes and field scans, not the tick.
 #include <cmath>
-#include <string>
 #include <vector>
 
 #include "engine/base/axes.hpp"
@@ -57,14 +61,10 @@ class PolygonOutline {
   static constexpr double kVertexSnap = 1e-9;
 
   PolygonOutline() = default;
-  // Builds from points that pass check_polygon(). `solid_inside`: the enclosed area is
-  // solid (else everything outside it is, and it is a cage).
+  // Builds from points that pass simple_polygon_problem() (engine/base/polygon.hpp).
+  // `solid_inside`: the enclosed area is solid (else everything outside it is, and it is
+  // a cage).
   PolygonOutline(const std::vector<Vec2>& points, bool solid_inside);
-
-  // Empty when `points` (at least 3) make a simple polygon with an area; else what is
-  // wrong, naming the points: coinciding neighbours, edges that fold back on each other,
-  // edges that cross or touch, no area.
-  static std::string check_polygon(const std::vector<Vec2>& points);
 
   int edge_count() const noexcept { return static_cast<int>(vertices_.size()); }
   const Vec2& vertex(int i) const noexcept { return vertices_[static_cast<std::size_t>(i)]; }

@@ -19,6 +19,10 @@ enum class ProxyContact : std::uint8_t {
 struct PlanarProxyState {
   Vec2 proxy_m{};             // the proxy's position; F = K (proxy - x)
   std::int32_t feature{-1};   // edge or vertex index for ProxyContact::edge and ::vertex
+  // An outline's proxy on a vertex: the edge whose normal bounds its slides (it never
+  // slides onto an edge turned more than a quarter turn from it): the edge it came to
+  // rest on, or met on its way to the handle, last. (On an edge: that edge.)
+  std::int32_t reference_edge{-1};
   ProxyContact contact{ProxyContact::none};
   bool sliding{};             // friction: the proxy slides (dynamic cone) rather than sticks
   bool started{};             // false until the first tick of the run
