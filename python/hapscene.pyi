@@ -50,7 +50,8 @@ class Scene:
         """The open-loop force at each point, as `hapscene probe` computes it.
 
         1-DOF: columns x_m, v_m_per_s, force_N, output_N. 2-DOF (x and y): x_m, y_m,
-        vx_m_per_s, vy_m_per_s, force_x_N, force_y_N, output_x_N, output_y_N.
+        vx_m_per_s, vy_m_per_s, force_x_N, force_y_N, output_x_N, output_y_N. Raises
+        RuntimeError when the scripts are too slow for the loop's checks.
         """
         ...
 

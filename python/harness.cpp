@@ -17,6 +17,7 @@
 #include "engine/harness/test_spec.hpp"
 #include "engine/harness/validate.hpp"
 #include "python/harness.hpp"
+#include "python/interruptible.hpp"
 #include "python/scene.hpp"
 #include "python/values.hpp"
 
@@ -73,12 +74,14 @@ py::object validate(const py::object& scene_value, const py::object& scenarios, 
     options.thresholds = loaded.planar->validate;
     py::gil_scoped_release release;
     PlanarValidationReport planar;
-    try {
-      planar = validate_planar_scene(loaded.planar->scene, kinds, options);
-    } catch (const InputError& error) {
-      // As the CLI says it.
-      throw InputError(loaded.path + ": a scenario cannot start where it asks (" + error.what() + ")");
-    }
+    run_interruptible([&](const std::atomic<bool>&) {
+      try {
+        planar = validate_planar_scene(loaded.planar->scene, kinds, options);
+      } catch (const InputError& error) {
+        // As the CLI says it.
+        throw InputError(loaded.path + ": a scenario cannot start where it asks (" + error.what() + ")");
+      }
+    });
     report = planar_report_to_json(planar);
   } else {
     if (!start.is_none()) options.free_start_m = quantity(start, option::free_start, what + ": start");
@@ -86,7 +89,9 @@ py::object validate(const py::object& scene_value, const py::object& scenarios, 
         scenarios, kScenarioNames, scenario_kind_named, "one of sweep, press, release, hold, shake, free");
     options.thresholds = loaded.capstan->validate;
     py::gil_scoped_release release;
-    report = report_to_json(validate_scene(loaded.capstan->scene, kinds, options));
+    run_interruptible([&](const std::atomic<bool>&) {
+      report = report_to_json(validate_scene(loaded.capstan->scene, kinds, options));
+    });
   }
   return json_object(report);
 }
@@ -120,11 +125,13 @@ py::list test(const py::object& paths) {
     std::string error;
     {
       py::gil_scoped_release release;
-      try {
-        result = run_test_spec(spec);
-      } catch (const InputError& e) {
-        error = e.what();
-      }
+      run_interruptible([&](const std::atomic<bool>&) {
+        try {
+          result = run_test_spec(spec);
+        } catch (const InputError& e) {
+          error = e.what();
+        }
+      });
     }
     if (!error.empty()) {
       entry["environment"] = py::none();

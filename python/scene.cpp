@@ -14,6 +14,7 @@
 #include "engine/cli/option_definitions.hpp"
 #include "engine/harness/open_loop.hpp"
 #include "engine/harness/planar_open_loop.hpp"
+#include "python/interruptible.hpp"
 #include "python/values.hpp"
 
 namespace hapscene::python {
@@ -160,13 +161,15 @@ py::dict probe_capstan(const LoadedScene& s, const Array& x, double v_m_per_s, d
   ScriptFaultLog faults;
   {
     py::gil_scoped_release release;
-    OpenLoop open_loop(scene, t_s);
-    OpenLoopScan scan = open_loop.scan(x_m, v_m_per_s);
-    output_N.resize(x_m.size());
-    for (std::size_t i = 0; i < x_m.size(); ++i) output_N[i] = open_loop.output_N(x_m[i], scan.force_N[i]);
-    force_N = std::move(scan.force_N);
-    behaviour = std::move(scan.behaviour);
-    faults = open_loop.faults();
+    run_interruptible([&](const std::atomic<bool>&) {
+      OpenLoop open_loop(scene, t_s);
+      OpenLoopScan scan = open_loop.scan(x_m, v_m_per_s);
+      output_N.resize(x_m.size());
+      for (std::size_t i = 0; i < x_m.size(); ++i) output_N[i] = open_loop.output_N(x_m[i], scan.force_N[i]);
+      force_N = std::move(scan.force_N);
+      behaviour = std::move(scan.behaviour);
+      faults = open_loop.faults();
+    });
   }
   warn_lines(behaviour, t_s, faults);
   py::dict out;
@@ -187,17 +190,19 @@ py::dict probe_planar(const LoadedScene& s, const Array& x, const Array& y, cons
   ScriptFaultLog faults;
   {
     py::gil_scoped_release release;
-    PlanarOpenLoop open_loop(scene, t_s);
-    const PlanarOpenLoopScan scan = open_loop.scan(points, v_m_per_s);
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const Vec2& force_N = scan.force_N[i];
-      const Vec2 output_N = open_loop.output_N(points[i], force_N);
-      const double row[8] = {points[i][0], points[i][1], v_m_per_s[0], v_m_per_s[1],
-                             force_N[0],   force_N[1],   output_N[0],  output_N[1]};
-      for (int c = 0; c < 8; ++c) columns[c][i] = row[c];
-    }
-    behaviour = scan.behaviour;
-    faults = open_loop.faults();
+    run_interruptible([&](const std::atomic<bool>&) {
+      PlanarOpenLoop open_loop(scene, t_s);
+      const PlanarOpenLoopScan scan = open_loop.scan(points, v_m_per_s);
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const Vec2& force_N = scan.force_N[i];
+        const Vec2 output_N = open_loop.output_N(points[i], force_N);
+        const double row[8] = {points[i][0], points[i][1], v_m_per_s[0], v_m_per_s[1],
+                               force_N[0],   force_N[1],   output_N[0],  output_N[1]};
+        for (int c = 0; c < 8; ++c) columns[c][i] = row[c];
+      }
+      behaviour = scan.behaviour;
+      faults = open_loop.faults();
+    });
   }
   warn_lines(behaviour, t_s, faults);
   static const char* kNames[8] = {"x_m",       "y_m",       "vx_m_per_s", "vy_m_per_s",
@@ -254,7 +259,9 @@ Every point comes from fresh script instances at run time ``t`` (s), so points d
 depend on each other. Script faults and notes (what the CLI prints on stderr) are issued
 as hapscene.ScriptFaultWarning warnings. Values may be numbers in SI or strings with
 units ("5 mm"). Raises hapscene.InputError for values outside the CLI's ranges or more
-than 1000000 points.)";
+than 1000000 points, RuntimeError with the "too slow for the loop" message when the
+scripts' calls take more than a tenth of the tick period each (as `hapscene probe` exits
+1), and KeyboardInterrupt on Ctrl-C, within a few script calls.)";
 
 }  // namespace
 

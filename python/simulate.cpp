@@ -7,11 +7,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
-#include <exception>
 #include <memory>
-#include <thread>
 #include <string>
 #include <vector>
 
@@ -23,6 +20,7 @@
 #include "engine/devices/open_device.hpp"
 #include "engine/devices/planar/simulated_planar.hpp"
 #include "engine/devices/virtual_hand.hpp"
+#include "python/interruptible.hpp"
 #include "python/scene.hpp"
 #include "python/simulate.hpp"
 #include "python/values.hpp"
@@ -68,40 +66,6 @@ RunSettings common_settings(const SimulateArgs& a, double rate_hz) {
                      " are kept in memory (for longer runs: hapscene run --sim-time --log FILE.csv)");
   }
   return settings;
-}
-
-// Runs `work` (a run that ends at its next tick once `stop` is set) on a thread of its own
-// while this thread, called without the GIL, lets Python handle signals every 20 ms:
-// Ctrl-C (a notebook's interrupt) stops the run and raises KeyboardInterrupt. Nothing of
-// Python runs on the run's thread.
-template <class Work>
-void run_interruptible(std::atomic<bool>& stop, Work&& work) {
-  std::exception_ptr failure;
-  std::atomic<bool> done{false};
-  std::thread worker([&] {
-    try {
-      work();
-    } catch (...) {
-      failure = std::current_exception();
-    }
-    done.store(true);
-  });
-  bool interrupted = false;
-  while (!done.load()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    if (interrupted) continue;
-    py::gil_scoped_acquire acquire;
-    if (PyErr_CheckSignals() != 0) {  // a handler raised (only the main thread gets signals)
-      interrupted = true;
-      stop.store(true);
-    }
-  }
-  worker.join();
-  if (interrupted) {
-    py::gil_scoped_acquire acquire;
-    throw py::error_already_set();
-  }
-  if (failure) std::rethrow_exception(failure);
 }
 
 template <typename Names>
@@ -203,9 +167,10 @@ py::dict run_capstan(const LoadedScene& loaded, const SimulateArgs& a) {
     } catch (const InputError& error) {
       throw InputError(std::string(kWhat) + ": " + error.what());
     }
-    std::atomic<bool> stop{false};
-    settings.options.stop_requested = &stop;
-    run_interruptible(stop, [&] { recorded = record_run<1>(scene, *device, loaded.path, settings); });
+    run_interruptible([&](const std::atomic<bool>& stop) {
+      settings.options.stop_requested = &stop;
+      recorded = record_run<1>(scene, *device, loaded.path, settings);
+    });
     report = device->report();
     faulted = recorded.run.summary.overrun_fault || device->fault_seen() || script_faulted(recorded.run);
   }
@@ -266,9 +231,10 @@ py::dict run_planar_scene(const LoadedScene& loaded, const SimulateArgs& a) {
     } catch (const InputError& error) {
       throw InputError(std::string(kWhat) + ": " + error.what());
     }
-    std::atomic<bool> stop{false};
-    settings.options.stop_requested = &stop;
-    run_interruptible(stop, [&] { recorded = record_run<2>(scene, *device, loaded.path, settings); });
+    run_interruptible([&](const std::atomic<bool>& stop) {
+      settings.options.stop_requested = &stop;
+      recorded = record_run<2>(scene, *device, loaded.path, settings);
+    });
     report = device->report();
     if (const auto* simulated = dynamic_cast<const SimulatedPlanar*>(device.get())) {
       linkage_faults = simulated->plant().linkage_faults();

@@ -57,7 +57,14 @@ PlotPanel force_displacement_panel(const Scene& scene, ScriptFaultLog* faults) {
     char label[64];
     std::snprintf(label, sizeof label, "v = %g m/s", velocities[i]);
     PlotSeries series{label, kColors[i % std::size(kColors)], {}, {}, false};
-    const OpenLoopScan scan = open_loop.scan(x_m, velocities[i]);
+    OpenLoopScan scan;
+    try {
+      scan = open_loop.scan(x_m, velocities[i]);
+    } catch (const ScriptsTooSlow& slow) {  // found too slow by the scan: as above
+      panel.title += ": not drawn, " + std::string(slow.what());
+      panel.series.clear();
+      return panel;
+    }
     for (std::size_t k = 0; k < x_m.size(); ++k) {
       const double force_N = scan.force_N[k];
       series.x.push_back(x_m[k] * 1e3);

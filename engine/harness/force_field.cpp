@@ -44,16 +44,12 @@ void require_sampleable_workspace(const Scene& scene) {
       scene.safety.workspace_max_m, span_m, step_m * 1e6, max_span_m));
 }
 
-ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m) {
-  constexpr double step_m = kFieldStep_m;
-  require_sampleable_workspace(scene);
-  ForceField field;
-  field.min_m = scene.safety.workspace_min_m;
-  field.step_m = step_m;
-  if (const std::optional<CheckResult> pace = check_script_pace(scene)) {
-    field.too_slow = pace->detail;
-    return field;
-  }
+namespace {
+
+// The field on `field`'s grid (min_m and step_m set); throws ScriptsTooSlow when the
+// scan finds the scripts too slow for the loop's checks.
+ForceField sample_field(const Scene& scene, double stiff_threshold_N_per_m, ForceField field) {
+  const double step_m = field.step_m;
   const double span_m = scene.safety.workspace_max_m - field.min_m;
   const auto points = static_cast<std::size_t>(std::floor(span_m / step_m)) + 1;
 
@@ -134,6 +130,30 @@ ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m)
     i = end + 1;
   }
   return field;
+}
+
+}  // namespace
+
+ForceField scan_force_field(const Scene& scene, double stiff_threshold_N_per_m) {
+  require_sampleable_workspace(scene);
+  ForceField field;
+  field.min_m = scene.safety.workspace_min_m;
+  field.step_m = kFieldStep_m;
+  // Scripts too slow for the loop, in their first calls or in the scan: no field.
+  if (std::optional<CheckResult> pace = check_script_pace(scene)) throw ScriptsTooSlow(std::move(*pace));
+  return sample_field(scene, stiff_threshold_N_per_m, field);
+}
+
+ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m) {
+  try {
+    return scan_force_field(scene, stiff_threshold_N_per_m);
+  } catch (const ScriptsTooSlow& slow) {
+    ForceField field;
+    field.min_m = scene.safety.workspace_min_m;
+    field.step_m = kFieldStep_m;
+    field.too_slow = slow.what();
+    return field;
+  }
 }
 
 }  // namespace hapscene

@@ -54,5 +54,8 @@ void require_sampleable_workspace(const Scene& scene);
 // script instances (see open_loop.hpp). Scripts too slow for the loop are not probed
 // (ForceField::too_slow): thousands of points of them would take hours.
 ForceField probe_force_field(const Scene& scene, double stiff_threshold_N_per_m);
+// The same, but scripts too slow for the loop throw ScriptsTooSlow (pace.hpp) with the
+// failed "pace" check: those of the first calls (check_script_pace) or of the scan.
+ForceField scan_force_field(const Scene& scene, double stiff_threshold_N_per_m);
 
 }  // namespace hapscene

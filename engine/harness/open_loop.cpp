@@ -7,6 +7,7 @@
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
 #include "engine/harness/pace.hpp"
+#include "engine/harness/stop_request.hpp"
 #include "engine/scene/step.hpp"
 
 namespace hapscene {
@@ -17,13 +18,25 @@ namespace {
 bool same_force(double a_N, double b_N) { return a_N == b_N || (std::isnan(a_N) && std::isnan(b_N)); }
 bool same_force(const Vec2& a_N, const Vec2& b_N) { return same_force(a_N[0], b_N[0]) && same_force(a_N[1], b_N[1]); }
 
+// Charges `calls` calls of the scripts that took `cpu_s` to the scan's pace, between
+// calls: the evaluation ends with ScriptsTooSlow when they are too slow for the loop's
+// checks, or with CheckInterrupted when its thread was asked to stop.
+template <int N>
+void charge_calls(const SceneOf<N>& scene, ScanPace* pace, double cpu_s, std::uint64_t calls) {
+  throw_if_stop_requested();
+  if (!pace->charge(cpu_s, calls)) throw ScriptsTooSlow(pace->check(scene));
+}
+
 // One instance per script in `scripts` called at each point of `x_m` (in order, or in
 // reverse when not `forward`; reset() before each call when `reset_each`) at velocity v
 // and run time t. `live[i]` is false where a script had faulted before or at that call.
+// The calls are charged to `pace`: the clock is read every kCallsPerClockRead calls, or
+// around each call when a reset() and a collection (not calls) come between them.
 template <int N>
 std::vector<Axes<N>> call_at_points_N(const SceneOf<N>& scene, ScriptList& scripts, const std::vector<Axes<N>>& x_m,
                                       const Axes<N>& v_m_per_s, double t_s, bool forward, bool reset_each,
-                                      std::vector<bool>* live) {
+                                      ScanPace* pace, std::vector<bool>* live) {
+  constexpr std::size_t kCallsPerClockRead = 16;
   const std::size_t n = x_m.size();
   std::vector<Axes<N>> force_N(n);
   live->assign(n, true);
@@ -32,6 +45,8 @@ std::vector<Axes<N>> call_at_points_N(const SceneOf<N>& scene, ScriptList& scrip
   input.v_m_per_s = v_m_per_s;
   input.t_s = t_s;
   input.dt_s = scene.period_s;
+  double block_start_s = thread_cpu_time_s();
+  std::uint64_t block_calls = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = forward ? k : n - 1 - k;
     if (reset_each) {
@@ -39,9 +54,17 @@ std::vector<Axes<N>> call_at_points_N(const SceneOf<N>& scene, ScriptList& scrip
         script->reset();
         script->collect_garbage();
       }
+      block_start_s = thread_cpu_time_s();
     }
     input.x_m = x_m[i];
     force_N[i] = sum_effects_N(scene, input, scripts);
+    ++block_calls;
+    if (reset_each || block_calls == kCallsPerClockRead || k + 1 == n) {
+      const double now_s = thread_cpu_time_s();
+      charge_calls(scene, pace, now_s - block_start_s, block_calls);
+      block_start_s = now_s;
+      block_calls = 0;
+    }
     faulted = faulted || std::any_of(scripts.begin(), scripts.end(), [](const auto& s) { return s->disabled(); });
     (*live)[i] = !faulted;
   }
@@ -126,7 +149,8 @@ void ScriptFaultLog::merge(const ScriptFaultLog& other) {
 }
 
 template <int N>
-OpenLoopOf<N>::OpenLoopOf(const SceneOf<N>& scene, double t_s) : scene_(scene), t_s_(t_s), budget_(scene) {}
+OpenLoopOf<N>::OpenLoopOf(const SceneOf<N>& scene, double t_s)
+    : scene_(scene), t_s_(t_s), budget_(scene), pace_(scene.period_s) {}
 
 template <int N>
 Axes<N> OpenLoopOf<N>::fresh_force_N(const Axes<N>& x_m, const Axes<N>& v_m_per_s, double t_s, bool record,
@@ -139,13 +163,16 @@ Axes<N> OpenLoopOf<N>::fresh_force_N(const Axes<N>& x_m, const Axes<N>& v_m_per_
   if (!has_scripts()) return sum_effects_N(scene_, input, none_);
   // New instances, each reset, as at the start of a run: nothing carries over.
   ScriptList scripts = create_instances();
+  const double start_s = thread_cpu_time_s();
   const Axes<N> force_N = sum_effects_N(scene_, input, scripts);
+  charge_calls(scene_, &pace_, thread_cpu_time_s() - start_s, 1);
   if (record) faults_.collect(scripts, describe_point(x_m, v_m_per_s, t_s), order_key);
   return force_N;
 }
 
 template <int N>
 ScriptList OpenLoopOf<N>::create_instances() {
+  throw_if_stop_requested();
   budget_.require(1);
   const double start_s = thread_cpu_time_s();
   ScriptList scripts = make_script_instances(scene_);
@@ -167,19 +194,20 @@ Axes<N> OpenLoopOf<N>::output_N(const Axes<N>& x_m, const Axes<N>& force_N) cons
 
 template <int N>
 std::vector<Axes<N>> reset_each_point_N(const SceneOf<N>& scene, ScriptList& scripts, const std::vector<Axes<N>>& x_m,
-                                        const Axes<N>& v_m_per_s, double t_s, std::vector<bool>* live) {
-  return call_at_points_N(scene, scripts, x_m, v_m_per_s, t_s, true, true, live);
+                                        const Axes<N>& v_m_per_s, double t_s, ScanPace* pace,
+                                        std::vector<bool>* live) {
+  return call_at_points_N(scene, scripts, x_m, v_m_per_s, t_s, true, true, pace, live);
 }
 template std::vector<Axes<1>> reset_each_point_N<1>(const SceneOf<1>&, ScriptList&, const std::vector<Axes<1>>&,
-                                                    const Axes<1>&, double, std::vector<bool>*);
+                                                    const Axes<1>&, double, ScanPace*, std::vector<bool>*);
 template std::vector<Axes<2>> reset_each_point_N<2>(const SceneOf<2>&, ScriptList&, const std::vector<Axes<2>>&,
-                                                    const Axes<2>&, double, std::vector<bool>*);
+                                                    const Axes<2>&, double, ScanPace*, std::vector<bool>*);
 
 template <int N>
 std::vector<Axes<N>> OpenLoopOf<N>::sequential_N(const std::vector<Axes<N>>& x_m, const Axes<N>& v_m_per_s,
                                                  bool forward, std::vector<bool>* live) {
   ScriptList scripts = create_instances();
-  return call_at_points_N(scene_, scripts, x_m, v_m_per_s, t_s_, forward, false, live);
+  return call_at_points_N(scene_, scripts, x_m, v_m_per_s, t_s_, forward, false, &pace_, live);
 }
 
 template <int N>
@@ -312,7 +340,7 @@ OpenLoopScanOf<N> OpenLoopOf<N>::scan(const std::vector<Axes<N>>& x_m, const Axe
     budget_.require(1 + spread.size());
     ScriptList scripts = create_instances();
     std::vector<bool> live_reset;
-    std::vector<Axes<N>> reset_N = reset_each_point_N(scene_, scripts, x_m, v_m_per_s, t_s_, &live_reset);
+    std::vector<Axes<N>> reset_N = reset_each_point_N(scene_, scripts, x_m, v_m_per_s, t_s_, &pace_, &live_reset);
     bool agrees = live_reset.back();
     for (const std::size_t i : spread) {
       if (!agrees) break;

@@ -13,10 +13,16 @@
 // that keeps state or faults, or any scan of a script whose top level takes seconds) is
 // refused before the work starts, with an InputError (exit 2) naming the scripts, their
 // creation time and the number of points.
+//
+// The scripts' calls are bounded too (ScanPace): when they take more than a tenth of the
+// tick period each on average (kScanPaceShare), the evaluation ends with ScriptsTooSlow,
+// the failed "pace" check naming the scripts, after about one window of calls. It ends
+// with CheckInterrupted when its thread was asked to stop (stop_request.hpp).
 #include <cstddef>
 #include <string>
 #include <vector>
 
+#include "engine/harness/scan_pace.hpp"
 #include "engine/harness/script_budget.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/scene/tick_state.hpp"
@@ -130,16 +136,18 @@ class OpenLoopOf {
   ScriptList none_;
   ScriptFaultLog faults_;
   ScriptCreationBudget budget_;
+  ScanPace pace_;
 };
 using OpenLoop = OpenLoopOf<1>;
 
 // One instance per script in `scripts`, reset() before the call at each point of `x_m` in
 // order (at velocity v, run time t): what fresh instances give when the scripts' reset()
 // restores all their state, at two calls a point instead of a creation. `live[i]` is
-// false where a script had faulted at or before point i. (1-D and 2-D open loops.)
+// false where a script had faulted at or before point i. The calls are charged to `pace`
+// (ScriptsTooSlow, CheckInterrupted as for OpenLoopOf). (1-D and 2-D open loops.)
 template <int N>
 std::vector<Axes<N>> reset_each_point_N(const SceneOf<N>& scene, ScriptList& scripts, const std::vector<Axes<N>>& x_m,
-                                        const Axes<N>& v_m_per_s, double t_s, std::vector<bool>* live);
+                                        const Axes<N>& v_m_per_s, double t_s, ScanPace* pace, std::vector<bool>* live);
 
 // The script faults met in motion and over time, which a scan at rest (v = 0, t = 0)
 // misses: scan_faults over `x_m` at each of kMotionScanVelocities_m_per_s (both signs,

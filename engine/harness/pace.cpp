@@ -3,11 +3,12 @@
 #include <ctime>
 
 #include "engine/base/format.hpp"
+#include "engine/harness/script_budget.hpp"
+#include "engine/harness/stop_request.hpp"
 #include "engine/scene/step.hpp"
 #include "engine/scene/tick_state.hpp"
 
 namespace hapscene {
-namespace {
 
 // "too slow for the 1000 Hz loop: force() took 48.2 ms of CPU time per call on average
 // over the first 5 calls (the tick period is 1 ms)".
@@ -26,8 +27,10 @@ CheckResult pace_failure(const SceneOf<N>& scene, const char* what, const char* 
                                scene.rate_hz, what, average_s * 1e3, per, over.c_str(), scene.period_s * 1e3);
   return check;
 }
-
-}  // namespace
+template CheckResult pace_failure<1>(const SceneOf<1>&, const char*, const char*, double, std::uint64_t,
+                                     const std::string&);
+template CheckResult pace_failure<2>(const SceneOf<2>&, const char*, const char*, double, std::uint64_t,
+                                     const std::string&);
 
 double thread_cpu_time_s() noexcept {
   timespec now{};
@@ -51,6 +54,7 @@ std::optional<CheckResult> check_script_pace_of(const SceneOf<N>& scene) {
   for (std::uint64_t k = 0; k < kPaceWindowCalls; ++k) {
     input.x_m = scene.safety.workspace_min_m + span_m * (static_cast<double>(k) + 0.5) / static_cast<double>(kPaceWindowCalls);
     input.t_s = static_cast<double>(k) * scene.period_s;
+    throw_if_stop_requested();
     const double start_s = thread_cpu_time_s();
     sum_effects_N(scene, input, scripts);
     cpu_s += thread_cpu_time_s() - start_s;
@@ -68,7 +72,7 @@ std::optional<CheckResult> check_script_pace(const Scene& scene) { return check_
 std::optional<CheckResult> check_script_pace(const PlanarScene& scene) { return check_script_pace_of(scene); }
 
 bool PaceWatch::tick() noexcept {
-  if (too_slow_) return false;
+  if (too_slow_ || stop_requested()) return false;
   if (window_start_s_ < 0.0) window_start_s_ = thread_cpu_time_s();
   ++ticks_;
   ++window_ticks_;
@@ -93,5 +97,43 @@ CheckResult PaceWatch::check(const Scene& scene) const {
                       printf_string("the %llu ticks from t = %g s", static_cast<unsigned long long>(measured_ticks_),
                                     static_cast<double>(measured_from_tick_) * period_s_));
 }
+
+bool ScanPace::charge(double cpu_s, std::uint64_t calls) noexcept {
+  if (too_slow_) return false;
+  window_s_ += cpu_s;
+  window_calls_ += calls;
+  calls_ += calls;
+  const double window_allows_s = static_cast<double>(kPaceWindowCalls) * allowed_per_call_s_;
+  if (window_s_ > window_allows_s ||
+      (window_calls_ >= kPaceWindowCalls && window_s_ > static_cast<double>(window_calls_) * allowed_per_call_s_)) {
+    too_slow_ = true;
+    return false;
+  }
+  if (window_calls_ >= kPaceWindowCalls) {
+    window_s_ = 0.0;
+    window_calls_ = 0;
+  }
+  return true;
+}
+
+template <int N>
+CheckResult ScanPace::check(const SceneOf<N>& scene) const {
+  const std::uint64_t before = calls_ - window_calls_;
+  const std::string over =
+      (before == 0 ? printf_string("the first %llu calls of an open-loop scan",
+                                   static_cast<unsigned long long>(window_calls_))
+                   : printf_string("%llu calls of an open-loop scan after its first %llu",
+                                   static_cast<unsigned long long>(window_calls_),
+                                   static_cast<unsigned long long>(before))) +
+      printf_string(", above the %g ms a call (%g of the tick period) the harness's scans allow a script, as they call "
+                    "it thousands of times",
+                    allowed_per_call_s_ * 1e3, kScanPaceShare);
+  CheckResult check = pace_failure(scene, (script_names(scene) + ": force()").c_str(), "call", window_s_,
+                                   window_calls_, over);
+  check.threshold = allowed_per_call_s_;
+  return check;
+}
+template CheckResult ScanPace::check<1>(const SceneOf<1>&) const;
+template CheckResult ScanPace::check<2>(const SceneOf<2>&) const;
 
 }  // namespace hapscene

@@ -8,15 +8,15 @@
 // the same on any machine for them.
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "engine/harness/checks.hpp"
+#include "engine/harness/scan_pace.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace hapscene {
-
-// Calls per measuring window.
-inline constexpr std::uint64_t kPaceWindowCalls = 200;
 
 // CPU time of the calling thread, in s.
 double thread_cpu_time_s() noexcept;
@@ -38,7 +38,8 @@ class PaceWatch {
   static constexpr std::uint64_t kPaceCheckEvery = 16;
   explicit PaceWatch(double period_s) : period_s_(period_s) {}
 
-  // False once the ticks of the current window took more CPU time than the window allows.
+  // False once the ticks of the current window took more CPU time than the window allows,
+  // or once a stop was requested (stop_request.hpp; too_slow() stays false then).
   bool tick() noexcept;
   bool too_slow() const noexcept { return too_slow_; }
   // The failed "pace" check (only when too_slow()).
@@ -53,6 +54,23 @@ class PaceWatch {
   double measured_s_{};          // CPU time of the window that was too slow
   std::uint64_t measured_ticks_{};
   std::uint64_t measured_from_tick_{};
+};
+
+// The failed "pace" check: `what` (force(), the run's ticks) took `cpu_s` over `count`
+// units (`per`: call, tick) measured over `over` ("the first 5 calls").
+template <int N>
+CheckResult pace_failure(const SceneOf<N>& scene, const char* what, const char* per, double cpu_s, std::uint64_t count,
+                         const std::string& over);
+
+// An evaluation stopped because its scripts are too slow for the loop (check_script_pace)
+// or for its checks' scans (ScanPace): the failed "pace" check, whose detail says so.
+class ScriptsTooSlow : public std::runtime_error {
+ public:
+  explicit ScriptsTooSlow(CheckResult check) : std::runtime_error(check.detail), check_(std::move(check)) {}
+  const CheckResult& check() const noexcept { return check_; }
+
+ private:
+  CheckResult check_;
 };
 
 }  // namespace hapscene

@@ -151,10 +151,9 @@ std::vector<Vec2> region_velocities(const PlanarScene& scene) {
 
 }  // namespace
 
-SpecResult run_planar_test_spec(const std::string& spec_path) {
+void run_planar_test_spec(const std::string& spec_path, SpecResult* out) {
   const PlanarSpec spec = parse_planar_spec(spec_path);
-  SpecResult result;
-  result.spec_path = spec_path;
+  SpecResult& result = *out;
   result.environment_path = spec.environment_path;
   const std::string referrer = spec_path + ": /environment: ";
   std::optional<PlanarEnvironment> loaded;
@@ -178,7 +177,7 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
   // Scripts too slow for the loop: nothing else is evaluated.
   if (const std::optional<CheckResult> pace = check_script_pace(scene)) {
     add("/environment", false, pace->detail);
-    return result;
+    return;
   }
 
   // A script fault fails the spec unless a scenario expects the "script" check to fail
@@ -249,7 +248,6 @@ SpecResult run_planar_test_spec(const std::string& spec_path) {
     for (const auto& [message, line] : run_faults) spec_outcomes.add_fault(message, line);
     for (SpecOutcome& o : outcomes) add(std::move(o.what), o.pass, std::move(o.message));
   }
-  return result;
 }
 
 }  // namespace hapscene

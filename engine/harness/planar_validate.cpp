@@ -10,6 +10,7 @@
 #include "engine/harness/pace.hpp"
 #include "engine/harness/planar_open_loop.hpp"
 #include "engine/harness/planar_script_potential.hpp"
+#include "engine/harness/stop_request.hpp"
 #include "engine/run/runner.hpp"
 
 namespace hapscene {
@@ -38,6 +39,7 @@ PlanarScenarioResult run_planar_validate_scenario(const PlanarScene& scene, cons
   run_options.pacing = Pacing::simulated_time;
   run_options.stop_requested = &stop;
   const RunSummaryOf<2> summary = run_scene(scene, *device, run_options, &recorder);
+  throw_if_stop_requested();  // the run stopped early on request: nothing to judge
 
   result.metrics = measure_planar_run(scene, shapes, recorder.records, recorder.proxies_m, device->plant().q_rad(),
                                       device->x_m(), summary, scenario.watch_from_s, script_potential);
@@ -72,28 +74,35 @@ PlanarValidationReport validate_planar_scene(const PlanarScene& scene, const std
   report.shapes = planar_scenario_shapes(scene).size();
   report.scripts = scene.script_count;
   report.load_warnings = scene.load_warnings;
-  // Scripts too slow for the loop: nothing else is run (as in 1-D).
-  if (const std::optional<CheckResult> pace = check_script_pace(scene)) {
-    report.scene_checks.push_back(*pace);
+  // Scripts too slow for the loop: nothing else is run (as in 1-D). The first calls are
+  // timed alone, then the open-loop scans' (ScanPace).
+  const auto too_slow = [&](CheckResult pace) {
+    report.scene_checks = {std::move(pace)};
     report.pass = false;
     return report;
-  }
+  };
+  if (const std::optional<CheckResult> pace = check_script_pace(scene)) return too_slow(*pace);
   // The scene as a whole: effects that never act, and the faults an open-loop scan of the
   // workspace meets where no scenario may go (every kPlanarFaultScanStep_m at rest, t = 0,
   // each fault with the first point that met it, as fresh instances give it).
   if (auto effects = scene_effects_check(scene.load_warnings)) report.scene_checks.push_back(*effects);
-  if (scene.script_count > 0) {
-    PlanarOpenLoop open_loop(scene);
-    open_loop.scan_faults(planar_workspace_grid(scene, kPlanarFaultScanStep_m), Vec2{});
-    if (auto script = scene_script_check(open_loop.faults(), options.thresholds.max_script_faults,
-                                         printf_string("in the open-loop scan (every %g mm of the workspace, at rest)",
-                                                       kPlanarFaultScanStep_m * 1e3))) {
-      report.scene_checks.push_back(*script);
+  // The energy the scripts store, once for every scenario (planar_script_potential.hpp).
+  PlanarScriptPotential script_potential;
+  try {
+    if (scene.script_count > 0) {
+      PlanarOpenLoop open_loop(scene);
+      open_loop.scan_faults(planar_workspace_grid(scene, kPlanarFaultScanStep_m), Vec2{});
+      if (auto script = scene_script_check(open_loop.faults(), options.thresholds.max_script_faults,
+                                           printf_string("in the open-loop scan (every %g mm of the workspace, at rest)",
+                                                         kPlanarFaultScanStep_m * 1e3))) {
+        report.scene_checks.push_back(*script);
+      }
     }
+    script_potential = planar_script_potential(scene);
+  } catch (const ScriptsTooSlow& slow) {
+    return too_slow(slow.check());
   }
   for (const CheckResult& check : report.scene_checks) report.pass = report.pass && check.pass;
-  // The energy the scripts store, once for every scenario (planar_script_potential.hpp).
-  const PlanarScriptPotential script_potential = planar_script_potential(scene);
   std::vector<PlanarValidateKind> chosen = kinds;
   if (chosen.empty()) {
     for (std::size_t i = 0; i < std::size(kPlanarValidateNames); ++i) chosen.push_back(static_cast<PlanarValidateKind>(i));

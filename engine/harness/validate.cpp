@@ -8,6 +8,7 @@
 #include "engine/devices/kinematics.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/harness/pace.hpp"
+#include "engine/harness/stop_request.hpp"
 #include "engine/run/runner.hpp"
 
 namespace hapscene {
@@ -69,6 +70,7 @@ ScenarioResult run_scenario(const Scene& scene, const ForceField& field, const S
   PacedRecorder observer(&recorder, &pace, &stop);
   RunOptions run_options{.duration_s = scenario.duration_s, .pacing = Pacing::simulated_time, .stop_requested = &stop};
   const RunSummary summary = run_scene(scene, device, run_options, &observer);
+  throw_if_stop_requested();  // the run stopped early on request: nothing to judge
 
   // Measure and judge (a run stopped for its pace is judged on that alone).
   result.records = recorder.take();
@@ -93,14 +95,19 @@ ValidationReport validate_scene(const Scene& scene, const std::vector<ScenarioKi
   report.passivity_bound_N_per_m = bound.N_per_m;
   report.passivity_bound_name = bound.name;
   report.options = options;
-  // Scripts too slow for the loop: nothing else is run (it would take hours).
-  if (const std::optional<CheckResult> pace = check_script_pace(scene)) {
+  // Scripts too slow for the loop: nothing else is run (it would take hours). The first
+  // calls are timed alone, then the field scan's (scan_force_field).
+  const auto too_slow = [&](CheckResult pace) {
     report.load_warnings = scene.load_warnings;
-    report.scene_checks.push_back(*pace);
+    report.scene_checks.push_back(std::move(pace));
     report.pass = false;
     return report;
+  };
+  try {
+    report.field = scan_force_field(scene, options.thresholds.stiff_threshold_N_per_m);
+  } catch (const ScriptsTooSlow& slow) {
+    return too_slow(slow.check());
   }
-  report.field = probe_force_field(scene, options.thresholds.stiff_threshold_N_per_m);
   for (const StiffRegion& region : report.field.regions) {
     report.stiffest_region_N_per_m = std::max(report.stiffest_region_N_per_m, region.stiffness_N_per_m);
   }

@@ -48,9 +48,22 @@ Holds merge(Holds into, Holds from) {
   return into == from ? into : Holds::none;
 }
 
-// Integers beyond 2^53 do not convert to doubles exactly; a comparison or an operation
-// with one would differ from Lua's.
-constexpr double kExactIntegerLimit = 9007199254740992.0;
+// Whether the translation may hold the integer `n` as the double it converts to. Lua
+// converts an integer to a float for arithmetic with a float (the C conversion, as here),
+// but compares integers with integers and with floats mathematically exactly (lvm.c:
+// LTintfloat, luaV_equalobj): 2^53 + 1 > 2^53.0 is true, while its nearest double equals
+// 2^53. Comparing doubles gives Lua's answer only when every integer is exactly its
+// double, so only such integers are taken: n converts to a double and back to n. The
+// double is checked to be in [-2^63, 2^63) before it is converted back (outside, the
+// conversion is undefined; LUA_MAXINTEGER rounds up to 2^63 and is refused there).
+// LUA_MININTEGER (-2^63, exact) is refused too: Lua's -n wraps it to itself, and the
+// translation's -n (integer negation: 0 - n) would give +2^63.
+bool exact_integer(lua_Integer n) {
+  const auto d = static_cast<double>(n);
+  constexpr double kTwoTo63 = 9223372036854775808.0;
+  if (!(d >= -kTwoTo63 && d < kTwoTo63)) return false;
+  return static_cast<lua_Integer>(d) == n && n != LUA_MININTEGER;
+}
 
 }  // namespace
 
@@ -88,7 +101,7 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
     if (lua_getupvalue(L, function, up + 1) == nullptr) return std::nullopt;
     if (lua_type(L, -1) == LUA_TNUMBER) {
       const bool integer = lua_isinteger(L, -1) != 0;
-      if (!integer || std::fabs(lua_tonumber(L, -1)) <= kExactIntegerLimit) {
+      if (!integer || exact_integer(lua_tointeger(L, -1))) {
         upvalue_holds[u(up)] = integer ? Holds::integer : Holds::number;
       }
     }
@@ -108,10 +121,7 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
     if (index >= chunk.constants.size()) return Holds::none;
     const LuaConstant& k = chunk.constants[index];
     if (k.kind == LuaConstant::Kind::number) return Holds::number;
-    if (k.kind == LuaConstant::Kind::integer &&
-        std::fabs(static_cast<double>(k.integer)) <= kExactIntegerLimit) {
-      return Holds::integer;
-    }
+    if (k.kind == LuaConstant::Kind::integer && exact_integer(k.integer)) return Holds::integer;
     return Holds::none;
   };
   const auto constant_value = [&](unsigned index) {
@@ -286,8 +296,9 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
         break;
       }
       case kUnm:
-        // -integer stays an integer, exact as a double within 2^53 (the only integers here).
-        // An integer is negated as 0 - n: integer zero has no sign, and -0.0 would have one.
+        // -integer stays an integer, exactly its double (exact_integer: -n of such an n is
+        // one too). An integer is negated as 0 - n: integer zero has no sign, and -0.0
+        // would have one.
         if (!is_number(holds(b_of(i)))) return fail;
         if (holds(b_of(i)) == Holds::integer) {
           op.kind = Kind::sub;
@@ -386,10 +397,11 @@ bool ForceProgram::read_upvalues(lua_State* L, int function_index) noexcept {
   const int function = lua_absindex(L, function_index);
   for (const Upvalue& u : upvalues_) {
     if (lua_getupvalue(L, function, u.index) == nullptr) return false;
-    const bool ok = lua_type(L, -1) == LUA_TNUMBER && (lua_isinteger(L, -1) != 0) == u.integer;
+    const bool ok = lua_type(L, -1) == LUA_TNUMBER && (lua_isinteger(L, -1) != 0) == u.integer &&
+                    (!u.integer || exact_integer(lua_tointeger(L, -1)));
     const double value = ok ? lua_tonumber(L, -1) : 0.0;
     lua_pop(L, 1);
-    if (!ok || (u.integer && std::fabs(value) > kExactIntegerLimit)) return false;
+    if (!ok) return false;
     values_[static_cast<std::size_t>(u.slot)] = value;
   }
   double unused[2];

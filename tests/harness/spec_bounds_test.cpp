@@ -9,8 +9,11 @@
 #include <string>
 
 #include "engine/harness/figures.hpp"
+#include "engine/harness/open_loop.hpp"
 #include "engine/harness/option_ranges.hpp"
 #include "engine/harness/pace.hpp"
+#include "engine/harness/planar_open_loop.hpp"
+#include "engine/harness/planar_validate.hpp"
 #include "engine/harness/test_spec.hpp"
 #include "engine/harness/validate.hpp"
 #include "tests/scratch_folder.hpp"
@@ -126,12 +129,14 @@ const char* kSlowScript =
     "  for i = 1, 3000000 do a = a + i end\n"
     "  return 0\n"
     "end\n";
-// Fast for the first 0.3 s of a run, then as slow.
+// Fast for the first 0.3 s of a run, then as slow until 0.7 s: between the run times
+// the open-loop scans look at (0.25 s, then 0.7071 s), which would find it too slow
+// before any run (ScanPace).
 const char* kSlowLaterScript =
     "needs = {velocity = false}\n"
     "function force(s)\n"
     "  local a = 0\n"
-    "  if s.t > 0.3 then for i = 1, 3000000 do a = a + i end end\n"
+    "  if s.t > 0.3 and s.t < 0.7 then for i = 1, 3000000 do a = a + i end end\n"
     "  return 0\n"
     "end\n";
 
@@ -216,4 +221,111 @@ TEST_CASE("pace: the force field and the force-displacement curve of a slow scri
   CHECK(panel.series.empty());
   CHECK(panel.title.find(": not drawn, too slow for the 1000 Hz loop") != std::string::npos);
   CHECK(seconds_since(start) < 10.0);  // without the check: thousands of 30 ms calls
+}
+
+namespace {
+
+// Within every limit: about 90000 instructions a call under the default budget of 100000,
+// about 0.3 ms of CPU on an idle machine (under the 1 ms period: it keeps the loop's
+// pace). But the checks call it thousands of times, and their scans allow a tenth of the
+// period a call.
+const char* kBusyScript =
+    "needs = {velocity = false, time = false}\n"
+    "function force(s)\n"
+    "  local a = 0\n"
+    "  for i = 1, 45000 do a = a + i end\n"
+    "  return -100 * s.x\n"
+    "end\n";
+// The same on the Haplink: two values.
+const char* kBusyPlanarScript =
+    "needs = {velocity = false, time = false}\n"
+    "function force(s)\n"
+    "  local a = 0\n"
+    "  for i = 1, 45000 do a = a + i end\n"
+    "  return -100 * (s.x + 0.015), -100 * (s.y - 0.13)\n"
+    "end\n";
+
+bool names_scan_pace(const std::string& message, const std::string& script) {
+  return message.starts_with("too slow for the 1000 Hz loop: " + script + ": force() took ") &&
+         message.find(" calls of an open-loop scan") != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("scan pace: a script within every limit but too slow for the checks' scans stops them, named") {
+  const test::ScratchFolder folder("busy_scan");
+  const std::string script = folder.write("busy.lua", kBusyScript).string();
+  const Scene scene = load_environment_file(script);
+  // Inside every limit: a call does not fault (on an idle machine it also keeps the
+  // loop's pace, at about 0.3 ms).
+  ScriptList one = make_script_instances(scene);
+  EffectInput at_rest;
+  at_rest.x_m = 0.01;
+  at_rest.dt_s = scene.period_s;
+  CHECK(sum_effects_N(scene, at_rest, one) == doctest::Approx(-1.0));
+  CHECK_FALSE(one[0]->disabled());
+
+  // probe (the open loop): ScriptsTooSlow, the pace check naming the script.
+  std::vector<double> x_m;
+  for (int i = 0; i < 4001; ++i) x_m.push_back(-0.02 + 1e-5 * i);
+  OpenLoop open_loop(scene);
+  try {
+    open_loop.scan(x_m, 0.0);
+    FAIL("the scan of 4001 points ran to its end");
+  } catch (const ScriptsTooSlow& slow) {
+    CHECK(slow.check().name == "pace");
+    CHECK(slow.check().value > 0.1 * scene.period_s);
+    CHECK(names_scan_pace(slow.what(), script));
+    MESSAGE(std::string(slow.what()));
+  }
+
+  // validate: the field scan fails the scene's pace check; no scenario runs.
+  const ValidationReport report = validate_scene(scene, {}, {});
+  CHECK_FALSE(report.pass);
+  CHECK(report.scenarios.empty());
+  REQUIRE(report.scene_checks.size() == 1);
+  CHECK(report.scene_checks[0].name == "pace");
+  CHECK(names_scan_pace(report.scene_checks[0].detail, script));
+
+  // plot: the curve is not drawn.
+  const PlotPanel panel = force_displacement_panel(scene);
+  CHECK(panel.series.empty());
+  CHECK(panel.title.find(": not drawn, too slow for the 1000 Hz loop: " + script) != std::string::npos);
+
+  // test: the spec fails with the message alone, whatever it asks.
+  const auto spec = folder.write("busy.test.json", R"({"environment": "busy.lua",
+      "forces": [{"x": "10 mm", "force": "-1 N", "tolerance": "1e-9 N"}],
+      "zero_outside": ["-50 mm", "45 mm"], "passes_validate": true})");
+  const SpecResult result = run_test_spec(spec.string());
+  CHECK_FALSE(result.pass);
+  REQUIRE(result.outcomes.size() == 1);
+  CHECK(result.outcomes[0].what == "/environment");
+  CHECK(names_scan_pace(result.outcomes[0].message, script));
+}
+
+TEST_CASE("scan pace: in 2-D too, test, validate and probe stop with the script named") {
+  const test::ScratchFolder folder("busy_scan_2d");
+  const std::string script = folder.write("busy.lua", kBusyPlanarScript).string();
+  const std::string environment =
+      folder.write("busy.json", R"({"name": "busy", "device": "haplink", "effects": [{"type": "script", "file": "busy.lua"}]})")
+          .string();
+  const PlanarScene scene = load_planar_environment_file(environment);
+
+  PlanarOpenLoop open_loop(scene);
+  CHECK_THROWS_AS(open_loop.scan(planar_workspace_grid(scene, 1e-3), Vec2{}), ScriptsTooSlow);
+
+  const PlanarValidationReport report = validate_planar_scene(scene, {}, {});
+  CHECK_FALSE(report.pass);
+  CHECK(report.scenarios.empty());
+  REQUIRE(report.scene_checks.size() == 1);
+  CHECK(names_scan_pace(report.scene_checks[0].detail, script));
+
+  const auto spec = folder.write("busy.test.json", R"({"environment": "busy.json",
+      "forces": [{"at": ["-15 mm", "130 mm"], "force": ["0 N", "0 N"], "tolerance": "1e-9 N"}],
+      "never_exceeds": "5 N"})");
+  const SpecResult result = run_test_spec(spec.string());
+  CHECK_FALSE(result.pass);
+  REQUIRE(result.outcomes.size() == 1);
+  CHECK(result.outcomes[0].what == "/environment");
+  CHECK(names_scan_pace(result.outcomes[0].message, script));
 }

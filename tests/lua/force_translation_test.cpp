@@ -227,18 +227,116 @@ TEST_CASE("force translation: a metamethod set in reset() hands force back to th
   CHECK(script->force_N(at(0.01)) == -0.03);
 }
 
+// Integers the translation cannot hold as doubles: 2^53 + 1 rounds to 2^53, 2^63 - 1 to
+// 2^63, and Lua compares integers with floats exactly, so each comparison below goes the
+// other way in a translation that rounds them (the force changes sign). Each is written
+// with the integer as a constant and as an upvalue, and run in 1-D and 2-D.
+TEST_CASE("force translation: integers beyond a double's precision compare as the VM compares them") {
+  struct Edge {
+    const char* integer;     // an integer literal
+    const char* comparison;  // with I standing for it
+  };
+  const Edge edges[] = {
+      {"9007199254740993", "I > 9007199254740992.0"},      // 2^53 + 1 > 2^53: true
+      {"9007199254740993", "I == 9007199254740992.0"},     // false
+      {"9007199254740993", "9007199254740992.0 >= I"},     // false
+      {"-9007199254740993", "I < -9007199254740992.0"},    // true
+      {"9223372036854775807", "I < 9223372036854775808.0"},  // 2^63 - 1 < 2^63: true
+      {"9223372036854775807", "I ~= 2^63"},                // true
+      {"9223372036854775807", "I >= 2^63"},                // false
+      {"(-9223372036854775807 - 1)", "I <= -2^63"},       // the minimum integer: -2^63 <= -2^63
+      {"(-9223372036854775807 - 1)", "-I < 0"},           // -minimum wraps to itself: true
+      {"(-9223372036854775807 - 1)", "-I > 2^62"},        // false
+      {"math.mininteger", "-I < 0"},
+      {"math.maxinteger", "I + 0.0 == 2^63"},            // arithmetic converts: true
+      {"9007199254740993", "I * 1.0 == 9007199254740992.0"},  // true
+      {"9007199254740993", "s.x + I > 9007199254740992.0"},   // false at x = 0, true further
+  };
+  for (const Edge& edge : edges) {
+    std::string comparison = edge.comparison;
+    const auto with = [&](const std::string& name) {
+      std::string out = comparison;
+      for (std::size_t at = out.find('I'); at != std::string::npos; at = out.find('I', at + name.size())) {
+        out.replace(at, 1, name);
+      }
+      return out;
+    };
+    const std::string constant_cmp = with(std::string("(") + edge.integer + ")");
+    const std::string upvalue_cmp = with("E");
+    for (const std::string& source : {
+             "function force(s) if " + constant_cmp + " then return -s.x - 0.25 end return s.x + 0.25 end",
+             std::string("local E = ") + edge.integer + "\nfunction force(s) if " + upvalue_cmp +
+                 " then return -s.x - 0.25 end return s.x + 0.25 end",
+         }) {
+      CAPTURE(source);
+      check_same_1d(test::compile_inline(source));
+    }
+    const std::string planar = std::string("local E = ") + edge.integer + "\nfunction force(s) if " + upvalue_cmp +
+                               " then return -s.x - 0.25, 0.5 end return s.x + 0.25, -s.y end";
+    CAPTURE(planar);
+    check_same_2d(compile_planar("edge.lua", planar));
+  }
+  // Integers that are exactly doubles still run translated, and agree.
+  for (const char* source : {
+           "local E = 9007199254740992\nfunction force(s) if E > 9007199254740991.0 then return -s.x end return s.x end",
+           "local E = -9007199254740991\nfunction force(s) return s.x * -E end",
+           "local E = 1152921504606846976\nfunction force(s) if E == 2^60 then return -s.x end return s.x end",
+       }) {
+    CAPTURE(source);
+    CHECK(test::run_inline(source)->force_translated());
+    check_same_1d(test::compile_inline(source));
+  }
+}
+
+TEST_CASE("force translation: an integer upvalue that reset() pushes past 2^53 hands force back to the VM") {
+  // 2^53 - 1, then 2^53 (exact, still translated), then 2^53 + 1 (compares above 2^53.0).
+  const char* source =
+      "local K = 9007199254740990\n"
+      "function reset() K = K + 1 end\n"
+      "function force(s) if K > 9007199254740992.0 then return -s.x - 1 end return s.x + 1 end";
+  const ScriptProgram program = test::compile_inline(source);
+  ScriptProgram vm_program = program;
+  vm_program.limits.translate_force = false;
+  auto translated = ScriptInstance::create(program);
+  auto vm = ScriptInstance::create(vm_program);
+  for (int round = 0; round < 3; ++round) {
+    translated->reset();
+    vm->reset();
+    CAPTURE(round);
+    CHECK(translated->force_translated() == (round < 2));
+    for (double x : {0.01, -0.02}) REQUIRE(bits(translated->force_N(at(x))) == bits(vm->force_N(at(x))));
+  }
+  CHECK(vm->force_N(at(0.01)) == -1.01);  // 2^53 + 1 > 2^53.0
+}
+
 // Random formulas over s's fields, numeric upvalues (integers and floats) and constants,
 // with every arithmetic operator, comparisons and early returns: the translation must
 // agree with the VM on every one it takes, and take most of them.
 struct FormulaMaker {
   std::mt19937 random{20261124};
+  // Integer edges as leaves too: 2^53 - 1, 2^53 + 1, 2^63 - 1 and the minimum integer as
+  // constants (e, f, g, h as upvalues), with floats next to them (2^53, 2^63).
+  bool edges = false;
+  // 2-D: s.y, s.vx, s.vy instead of s.v.
+  bool planar = false;
 
   int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(random); }
+
+  std::string edge() {
+    static const char* kEdges[] = {"9007199254740991", "9007199254740993", "9223372036854775807",
+                                   "(-9223372036854775807 - 1)", "-9007199254740993", "9007199254740992.0",
+                                   "2^63", "e", "f", "g", "h", "k"};
+    return kEdges[pick(12)];
+  }
 
   std::string leaf() {
     static const char* kLeaves[] = {"s.x", "s.v", "s.t", "s.dt", "a", "b", "c", "d", "2", "-3", "0.5",
                                     "-0.0", "1e-3", "7", "0.25", "3.5"};
-    return kLeaves[pick(16)];
+    static const char* kPlanar[] = {"s.y", "s.vx", "s.vy"};
+    if (edges && pick(2) == 0) return edge();
+    const char* out = kLeaves[pick(16)];
+    if (planar && std::string(out) == "s.v") return kPlanar[pick(3)];
+    return out;
   }
   std::string expression(int depth) {
     if (depth == 0 || pick(4) == 0) return leaf();
@@ -250,24 +348,37 @@ struct FormulaMaker {
   }
   std::string comparison() {
     static const char* kCmp[] = {" < ", " <= ", " > ", " >= ", " == ", " ~= "};
+    // With edges, half the comparisons are of two edges (2^53 + 1 against 2^53.0 ...).
+    if (edges && pick(2) == 0) return edge() + kCmp[pick(6)] + edge();
     return expression(1) + kCmp[pick(6)] + expression(1);
   }
+  // In 2-D every return gives two values (the second a short formula).
+  std::string second() { return planar ? ", " + expression(1) : ""; }
   std::string source() {
     std::string body;
     switch (pick(5)) {
-      case 0: body = "  return " + expression(3) + "\n"; break;
-      case 1: body = "  if " + comparison() + " then return " + expression(2) + " end\n  return " + expression(2) + "\n"; break;
+      case 0: body = "  return " + expression(3) + second() + "\n"; break;
+      case 1:
+        body = "  if " + comparison() + " then return " + expression(2) + second() + " end\n  return " +
+               expression(2) + second() + "\n";
+        break;
       case 2:
-        body = "  local u = " + expression(2) + "\n  if u > " + leaf() + " then return u * " + leaf() +
-               " elseif " + comparison() + " then return -u end\n  return " + expression(1) + "\n";
+        body = "  local u = " + expression(2) + "\n  if u > " + leaf() + " then return u * " + leaf() + second() +
+               " elseif " + comparison() + " then return -u" + second() + " end\n  return " + expression(1) +
+               second() + "\n";
         break;
       case 3:
         body = "  local g\n  if " + comparison() + " then g = " + expression(2) + " else g = " + expression(1) +
-               " end\n  return g * " + leaf() + "\n";
+               " end\n  return g * " + leaf() + second() + "\n";
         break;
       default: body = "  local p, q = " + expression(2) + ", " + expression(2) + "\n  return p - q, q\n"; break;
     }
-    return "local a, b, c, d = 1.5, 2, -0.75, 10\nfunction force(s)\n" + body + "end\n";
+    std::string upvalues = "local a, b, c, d = 1.5, 2, -0.75, 10\n";
+    if (edges) {
+      upvalues += "local e, f, g, h, k = 9007199254740991, 9007199254740993, math.maxinteger, math.mininteger, "
+                  "9007199254740992.0\n";
+    }
+    return upvalues + "function force(s)\n" + body + "end\n";
   }
 };
 
@@ -291,6 +402,39 @@ TEST_CASE("force translation: random formulas agree with the VM to the bit") {
   MESSAGE(translated << " of " << compared << " formulas ran translated");
   CHECK(compared >= 1000);
   CHECK(translated * 2 >= compared);
+}
+
+// The same with integers at the edges of a double's precision and of the integer range,
+// mixed with floats in comparisons and arithmetic, as constants and as upvalues, in 1-D
+// and in 2-D (where force returns two values: a one-value return is the VM's fault).
+TEST_CASE("force translation: random formulas with integer edges agree with the VM to the bit") {
+  for (const bool planar : {false, true}) {
+    FormulaMaker maker;
+    maker.edges = true;
+    maker.planar = planar;
+    int compared = 0;
+    int translated = 0;
+    for (int i = 0; i < 1500; ++i) {
+      const std::string source = maker.source();
+      CAPTURE(source);
+      ScriptProgram program;
+      try {
+        program = planar ? compile_planar("edges.lua", source) : test::compile_inline(source);
+      } catch (const InputError&) {
+        continue;  // faulted while loading: nothing runs
+      }
+      ++compared;
+      if (ScriptInstance::create(program)->force_translated()) ++translated;
+      if (planar) {
+        check_same_2d(program);
+      } else {
+        check_same_1d(program);
+      }
+    }
+    MESSAGE((planar ? "2-D: " : "1-D: ") << translated << " of " << compared << " formulas ran translated");
+    CHECK(compared >= 200);
+    CHECK(translated * 8 >= compared);  // most leave an integer edge to the VM
+  }
 }
 
 }  // namespace
