@@ -13,6 +13,8 @@
 // nothing and gives each step a fixed time. On sim and hil the simulated hand plays the
 // user: it holds the handle centred, moves it end to end and lets go (--simulated-kit
 // FILE builds the simulated Hapkit from another profile, to rehearse on a kit that differs).
+// A board that stops giving positions during a step (no fresh reading for kSilentTicks) is
+// named as such, not measured as a handle that did not move.
 #include <nlohmann/json.hpp>
 #include <poll.h>
 #include <unistd.h>
@@ -54,6 +56,7 @@ constexpr double kTravelMargin_m = 3e-3;       // workspace kept this far inside
 constexpr double kMinTravel_m = 20e-3;         // less: the handle was not moved end to end
 constexpr double kPulseTravel_m = 3e-3;        // the pulse stops once the handle moved this far
 constexpr double kPulseRamp_N_per_s = 1.0;     // slow: from 0 to 0.5 N in half a second
+constexpr int kSilentTicks = 100;              // no fresh reading for this long (ms) in a step: the board stopped
 
 // The simulated user on sim and hil: centre, then end to end, then let go.
 constexpr double kCentre_s = 0.5;
@@ -95,8 +98,15 @@ class Ticker {
     x_m_ = sense_position_m(model_, device_.read(), &sensor_);
     device_.write(force_N == 0.0 ? MotorCommand{} : motor_command(model_, sensor_, force_N));
     t_s_ += kTick_s;
+    // How long the device has given no fresh position (a silent board, not a still handle).
+    gap_ticks_ = fresh() ? 0 : gap_ticks_ + 1;
+    longest_gap_ticks_ = std::max(longest_gap_ticks_, gap_ticks_);
     return x_m_;
   }
+  // A measuring step begins: gaps before it do not count against it.
+  void begin_step() { longest_gap_ticks_ = gap_ticks_; }
+  // The longest run of ticks without a fresh position since begin_step().
+  int longest_gap_ticks() const { return longest_gap_ticks_; }
   // Ticks for `duration_s` with the motor off, or until Enter on an interactive input.
   template <typename Each>
   void idle(double duration_s, bool until_enter, Each each) {
@@ -125,6 +135,8 @@ class Ticker {
   SensorState sensor_;
   bool simulated_;
   std::int64_t next_ns_;
+  int gap_ticks_{};
+  int longest_gap_ticks_{};
   double x_m_{};
   double t_s_{};
   std::uint64_t polls_{};
@@ -161,6 +173,19 @@ PulseResult pulse(Ticker& ticker, double direction, double max_N) {
   return result;
 }
 
+// After a measuring step: whether the device stopped giving positions in it (then it says
+// so, with the device's link report, and nothing is measured from the step).
+bool board_stopped(const Ticker& ticker, const Device& device, const char* step) {
+  if (ticker.longest_gap_ticks() < kSilentTicks) return false;
+  DeviceLinkHealth health;
+  device.link_health(&health);
+  const std::string link = health.links > 0 ? std::string(", its link ") + health.link[0].state : std::string();
+  print_out("FAIL the board stopped answering after the handshake (no reading for %d ms in the %s step%s): "
+            "check its cable and power and run again (nothing written)\n%s",
+            ticker.longest_gap_ticks(), step, link.c_str(), device.report().c_str());
+  return true;
+}
+
 // "-1.2 mm" (never "-0.0 mm").
 std::string mm(double x_m) { return printf_string("%.1f mm", std::round(x_m * 1e4) / 10.0 + 0.0); }
 
@@ -193,7 +218,8 @@ int calibrate_command(std::vector<std::string> args) {
   }
   const double pulse_limit_N = std::min(2.0, profile.limits.max_force_N);
   if (pulse_max_N > pulse_limit_N) {
-    arguments.fail("--pulse-force: at most " + format_number(pulse_limit_N) + " N for this profile, got " +
+    arguments.fail("--pulse-force: at most " + format_number(pulse_limit_N) + " N for profile " +
+                   profile_place(profile.source, "/limits/max_force") + " (and never above 2 N), got " +
                    format_number(pulse_max_N) + " N");
   }
   const double travel_s = travel_option.value_or(simulated ? 4.0 : 15.0);
@@ -217,13 +243,15 @@ int calibrate_command(std::vector<std::string> args) {
   prompt(ticker, interactive, "step 1 of 3, centre: hold the handle upright, in the middle of its travel (as at power-up)");
   double centre_sum_counts = 0.0;
   int centre_samples = 0;
+  ticker.begin_step();
   ticker.idle(simulated ? kCentre_s : 1.0, false, [&](double) {
     if (!ticker.fresh()) return;
     centre_sum_counts += ticker.counts();
     ++centre_samples;
   });
-  if (centre_samples == 0) throw std::runtime_error("calibrate: the device gave no position (see its report below)\n" + device->report());
   if (g_calibrate_stop.load()) throw std::runtime_error("calibrate: interrupted (nothing written)");
+  if (board_stopped(ticker, *device, "centre")) return kExitFailure;
+  if (centre_samples == 0) throw std::runtime_error("calibrate: the device gave no position (see its report below)\n" + device->report());
   const double centre_counts = centre_sum_counts / centre_samples;
   const double centre_m = counts_to_position_m(kinematics, centre_counts);
   print_out("  centre reads %.1f counts: %s with %s's offset\n", centre_counts + 0.0, mm(centre_m).c_str(),
@@ -234,12 +262,17 @@ int calibrate_command(std::vector<std::string> args) {
                                     "back to the middle (%g s%s)",
                                     travel_s, interactive ? ", Enter when done" : ""));
   std::int32_t low_counts = ticker.counts(), high_counts = ticker.counts();
+  ticker.begin_step();
   ticker.idle(travel_s, interactive, [&](double) {
     if (!ticker.fresh()) return;
     low_counts = std::min(low_counts, ticker.counts());
     high_counts = std::max(high_counts, ticker.counts());
   });
   if (g_calibrate_stop.load()) throw std::runtime_error("calibrate: interrupted (nothing written)");
+  if (board_stopped(ticker, *device, "travel")) {
+    device->write(MotorCommand{});
+    return kExitFailure;
+  }
   const double span = std::max(1, profile.sensor.span_counts);
   // Positions with the offset the centre step found (the slope is the profile's).
   const double offset_m = std::abs(centre_m) > kCentreTolerance_m ? centre_m : 0.0;
@@ -261,10 +294,12 @@ int calibrate_command(std::vector<std::string> args) {
                                     "(at most %s N, about 3 mm) one way, then the other",
                                     format_number(pulse_max_N).c_str()));
   ticker.idle(simulated ? 0.3 : 1.0, false, [](double) {});
+  ticker.begin_step();
   const PulseResult forward = pulse(ticker, +1.0, pulse_max_N);
   const PulseResult backward = pulse(ticker, -1.0, pulse_max_N);
   device->write(MotorCommand{});
   if (g_calibrate_stop.load()) throw std::runtime_error("calibrate: interrupted (nothing written)");
+  if (board_stopped(ticker, *device, "motor direction")) return kExitFailure;
   print_out("  +%.2f N moved the handle %+.2f mm, -%.2f N moved it %+.2f mm\n", forward.force_N, forward.moved_m * 1e3,
             backward.force_N, backward.moved_m * 1e3);
   const bool moved = std::abs(forward.moved_m) >= kPulseTravel_m * 0.5 && std::abs(backward.moved_m) >= kPulseTravel_m * 0.5;

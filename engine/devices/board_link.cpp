@@ -337,32 +337,32 @@ void BoardLink::on_state(const hs_frame& frame, std::int64_t now_ns) noexcept {
 }
 
 
-// The board's reading becomes counts_ only when it is in range and reachable: every sum
-// is formed in 64 bits from 32-bit inputs (so it cannot overflow) and must fit 32 bits.
+// The board's reading becomes counts_ only when judge_reading() finds it plausible: its
+// unwrapped count within max_board_periods of zero, and its step from the last accepted
+// position (after a reconnection too, once realigned) within the speed bound. Every sum is
+// formed in 64 bits from 32-bit inputs (so it cannot overflow) and must fit 32 bits.
 bool BoardLink::accept_counts(const hs_state& state, std::int64_t now_ns) noexcept {
   constexpr std::uint16_t kMaxRawCounts = 1023;  // 10-bit ADC
   if (state.raw_counts > kMaxRawCounts) return false;
   const std::int64_t span = config_.span_counts;
   const std::int64_t board = state.unwrapped_counts;
-  const std::int64_t board_limit = static_cast<std::int64_t>(config_.max_board_periods) * span;
-  if (board > board_limit || board < -board_limit) return false;
 
   std::int64_t offset = offset_counts_;
-  std::int64_t counts = board + offset;
   if (realign_) {
     // After a reconnection: shift by whole sensor periods so the position stays
     // continuous with the last one.
-    const std::int64_t behind = static_cast<std::int64_t>(counts_) - counts;
+    const std::int64_t behind = static_cast<std::int64_t>(counts_) - (board + offset);
     const std::int64_t periods = span > 0 ? std::llround(static_cast<double>(behind) / static_cast<double>(span)) : 0;
     offset += periods * span;
-    counts += periods * span;
-  } else if (have_counts_ && measured_) {
-    // Within one connection: no farther than the handle can move since the last STATE.
-    const double elapsed_s = static_cast<double>(std::max<std::int64_t>(0, now_ns - last_state_ns_) +
-                                                 config_.motion_slack_ns) * 1e-9;
-    const double reach_counts = config_.max_speed_counts_per_s * elapsed_s;
-    if (!(std::abs(static_cast<double>(counts - counts_)) <= reach_counts)) return false;
   }
+  // The last accepted position in this reading's terms (board counts with this offset).
+  const double board_limit = static_cast<double>(config_.max_board_periods) * static_cast<double>(span);
+  const ReadingBounds bounds{-board_limit, board_limit, config_.max_speed_counts_per_s, config_.motion_slack_ns};
+  const TrustedReading last{static_cast<double>(static_cast<std::int64_t>(counts_) - offset), last_state_ns_};
+  if (judge_reading(bounds, static_cast<double>(board), have_counts_ ? &last : nullptr, now_ns) != ReadingFault::none) {
+    return false;
+  }
+  const std::int64_t counts = board + offset;
   constexpr std::int64_t kMin = INT32_MIN, kMax = INT32_MAX;
   if (counts < kMin || counts > kMax || offset < kMin || offset > kMax) return false;
   offset_counts_ = static_cast<std::int32_t>(offset);

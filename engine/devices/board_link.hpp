@@ -20,9 +20,10 @@
 //   (re)connection           until a STATE has arrived
 //   no new STATE for         the position is "stale": the loop ramps force out, and in
 //   max_position_age_ns      again (soft start) when STATEs come back
-//   a STATE out of range or  "implausible": rejected (the position stays the last good
-//   farther from the last    one), counted and reported, and the loop commands no force
-//   than the handle can move until a plausible STATE arrives
+//   a STATE out of range or  "implausible" (reading_judge.hpp): rejected (the position
+//   farther from the last    stays the last good one), counted and reported, and the loop
+//   than the handle can move commands no force until a plausible STATE arrives; judged
+//                            so after a reconnection too, once realigned
 // Whenever the link comes back, take_restart() tells the loop to ramp force in again.
 // Count arithmetic on the board's numbers is done in 64 bits and checked before it
 // becomes a 32-bit position.
@@ -34,6 +35,7 @@
 #include "engine/devices/byte_link.hpp"
 #include "engine/devices/device.hpp"
 #include "engine/devices/kinematics.hpp"
+#include "engine/devices/reading_judge.hpp"
 #include "protocol/protocol.h"
 
 namespace hapscene {
@@ -62,12 +64,13 @@ struct BoardLinkConfig {
 inline constexpr double kMaxHandleSpeed_m_per_s = 2.0;
 
 // `link` with the sensor period of `profile` (for realigning the position after a reset)
-// and its speed bound in that profile's counts.
-inline BoardLinkConfig link_config_for(BoardLinkConfig link, const DeviceProfile& profile) {
+// and the speed bound (kMaxHandleSpeed_m_per_s unless given) in that profile's counts.
+inline BoardLinkConfig link_config_for(BoardLinkConfig link, const DeviceProfile& profile,
+                                       double max_speed_m_per_s = kMaxHandleSpeed_m_per_s) {
   link.span_counts = profile.sensor.span_counts;
   const double m_per_count = std::abs(compile_kinematics(profile).x_m_per_count);
   if (m_per_count > 0.0 && std::isfinite(m_per_count)) {
-    link.max_speed_counts_per_s = kMaxHandleSpeed_m_per_s / m_per_count;
+    link.max_speed_counts_per_s = max_speed_m_per_s / m_per_count;
   }
   return link;
 }

@@ -23,9 +23,11 @@ HapkitPlant::HapkitPlant(const DeviceProfile& profile, const SimulationConfig& c
   const double low_m = std::min(a_m, b_m);
   const double high_m = std::max(a_m, b_m);
   if (sensor.kind == SensorKind::mr && !(config.start_x_m >= low_m && config.start_x_m <= high_m)) {
-    throw InputError("start position " + format_number(config.start_x_m) +
-                     " m is outside the sensor's home period [" + format_number(low_m) + ", " +
-                     format_number(high_m) + "] m, where the board starts counting");
+    // (The start may be the user's, the period is the profile's: the message names both.)
+    throw InputError("start position " + format_number(config.start_x_m) + " m is outside the sensor's home period [" +
+                     format_number(low_m) + ", " + format_number(high_m) +
+                     "] m, where the board starts counting (the period from " +
+                     profile_place(profile.source, "/sensor") + ")");
   }
   if (config.substeps_per_tick < 1) throw InputError("substeps per tick must be >= 1");
   stop_damping_N_s_per_m_ =

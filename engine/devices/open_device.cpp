@@ -43,7 +43,8 @@ void require_hapkit_board(const std::string& spec, const DeviceProfile& profile)
   const std::string device = spec.substr(0, spec.find(':'));
   if (profile.sensor.kind != SensorKind::mr) {
     throw InputError("--device " + device + ": profile \"" + profile.name +
-                     "\" has an encoder, but the hapscene firmware reads the Hapkit's MR sensor");
+                     "\" has an encoder, but the hapscene firmware reads the Hapkit's MR sensor (in " +
+                     profile_place(profile.source, "/sensor/type") + ")");
   }
 }
 

@@ -128,6 +128,7 @@ DeviceProfile parse_device_profile(std::string_view json_text, const std::string
     reader.fail("kind", "a 2-DOF (planar) profile: a 1-DOF device needs a 1-DOF profile such as \"hapkit3\"");
   }
   profile.name = reader.string("name");
+  profile.source = display_name;
   reader.string_or("description", "");  // for people: checked to be text, not kept
   profile.sensor = parse_part(reader, "sensor", parse_sensor);
   profile.drive = parse_part(reader, "drive", parse_drive);
@@ -225,9 +226,15 @@ ProfileText find_profile_text(const std::string& name_or_path, const std::string
   return resolve_extends(std::move(profile), dir, planar, 0);
 }
 
+std::string profile_source(const std::string& name_or_path, const std::string& display_name) {
+  return looks_like_path(name_or_path) ? display_name : name_or_path + " (built-in profile)";
+}
+
 DeviceProfile load_device_profile(const std::string& name_or_path, const std::string& base_dir) {
-  const ProfileText profile = find_profile_text(name_or_path, base_dir, /*planar=*/false);
-  return parse_device_profile(profile.json_text, profile.display_name);
+  const ProfileText text = find_profile_text(name_or_path, base_dir, /*planar=*/false);
+  DeviceProfile profile = parse_device_profile(text.json_text, text.display_name);
+  profile.source = profile_source(name_or_path, text.display_name);
+  return profile;
 }
 
 }  // namespace hapscene

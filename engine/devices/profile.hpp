@@ -80,6 +80,10 @@ struct PlantModel {
 
 struct DeviceProfile {
   std::string name;
+  // Where it came from, for every message about it after parsing (with profile_place()):
+  // its file ("my_kit.json", "my_kit.json (extends hapkit3)"), or "hapkit3 (built-in
+  // profile)" for a compiled-in one.
+  std::string source;
   SensorModel sensor;
   DriveModel drive;
   DeviceLimits limits;
@@ -91,6 +95,16 @@ class UnknownProfileError : public InputError {
  public:
   using InputError::InputError;
 };
+
+// "SOURCE: POINTER" ("my_kit.json: /sensor"): names the profile and the key that a check
+// made after parsing (at device open, at kinematics setup, by calibrate) objects to.
+inline std::string profile_place(const std::string& source, std::string_view pointer) {
+  return source + ": " + std::string(pointer);
+}
+
+// The source a profile loaded by `name_or_path` is given: the file it was read from
+// (`display_name`), or "NAME (built-in profile)" for a compiled-in one.
+std::string profile_source(const std::string& name_or_path, const std::string& display_name);
 
 // Loads a profile by name ("hapkit3": shipped and compiled in) or by path (contains a
 // "/" or ends in ".json"; relative paths are taken from `base_dir`). Throws InputError.

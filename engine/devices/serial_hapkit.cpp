@@ -8,7 +8,7 @@ namespace hapscene {
 
 SerialHapkit::SerialHapkit(const DeviceProfile& profile, const SerialConfig& config)
     : port_(config.path, config.baud, "--device serial:" + config.path),
-      link_(port_, link_config_for(config.link, profile)),
+      link_(port_, link_config_for(config.link, profile, config.max_handle_speed_m_per_s)),
       start_ns_(monotonic_now_ns()) {
   // The handshake, before the loop starts: HELLO until the board answers.
   const BoardToOpen board{&link_, "--device serial:" + config.path};

@@ -20,6 +20,7 @@ struct SerialConfig {
   int baud{1000000};
   double handshake_timeout_s{3.0};  // an Uno-style board resets when the port opens
   BoardLinkConfig link;
+  double max_handle_speed_m_per_s{kMaxHandleSpeed_m_per_s};  // the link's speed bound (see BoardLinkConfig)
 };
 
 class SerialHapkit final : public Device {

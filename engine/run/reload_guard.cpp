@@ -28,7 +28,8 @@ static_assert(sizeof(PlanarWorkspace) == 64 && sizeof(PlanarLimits) == 104,
               "PlanarLimits changed: update compare_profiles (planar)");
 static_assert(sizeof(PlanarLinkMass) == 24 && sizeof(PlanarPlantEstimates) == 208,
               "PlanarPlantEstimates changed: update compare_profiles (planar)");
-static_assert(sizeof(PlanarProfile) == 944, "PlanarProfile changed: update compare_profiles (planar)");
+// (name and source name the profile in messages: not compared.)
+static_assert(sizeof(PlanarProfile) == 976, "PlanarProfile changed: update compare_profiles (planar)");
 
 struct Changes {
   std::vector<std::string> items;

@@ -9,6 +9,7 @@
 
 #include "engine/devices/profile.hpp"
 #include "tests/cli/cli_support.hpp"
+#include "tests/devices/pty_board.hpp"
 #include "tests/scratch_folder.hpp"
 
 using namespace hapscene;
@@ -65,6 +66,12 @@ TEST_CASE("calibrate: refusals" * doctest::test_suite("threaded")) {
   // A simulated kit only stands in for simulated devices; a pulse stays small.
   CHECK(run_cli("calibrate --device serial:/dev/null --simulated-kit hapkit3").exit_code == 2);
   CHECK(run_cli("calibrate --device sim --pulse-force 3N").exit_code == 2);
+  // A pulse above a profile file's force limit: the file and its key are named.
+  const std::string weak = (folder.dir / "weak.json").string();
+  std::ofstream(weak) << R"({"extends": "hapkit3", "name": "weak", "limits": {"max_force": "0.3 N"}})";
+  const CliOutcome too_strong = run_cli("calibrate --device sim --profile " + weak + " --pulse-force 0.5N");
+  CHECK(too_strong.exit_code == 2);
+  CHECK(too_strong.err.find(weak + " (extends hapkit3): /limits/max_force") != std::string::npos);
   CHECK(run_cli("calibrate --device sim --profile hapkit33").err.find("did you mean \"hapkit3\"") != std::string::npos);
   // A handle that never moves: nothing is written, exit 1. (A kit whose end stops leave
   // 10 mm of travel.)
@@ -75,4 +82,33 @@ TEST_CASE("calibrate: refusals" * doctest::test_suite("threaded")) {
   CHECK(stuck.exit_code == 1);
   CHECK(stuck.out.find("FAIL the handle moved only ") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(output));
+}
+
+// A board on a serial port that answers the handshake and then stops answering is named as
+// that, not measured as a handle that moved 0.0 mm: in the centre step (silent from its
+// first COMMAND on) and in the travel step (silent after the 1000 COMMANDs of the centre
+// step and 200 more). The steps count ticks, so where the silence falls does not depend
+// on this machine's speed.
+TEST_CASE("calibrate: a board that stops answering is not a handle that did not move" * doctest::test_suite("threaded")) {
+  ScratchFolder folder("calibrate_silent");
+  const struct {
+    int mute_after;
+    const char* step;
+  } cases[] = {{0, "centre"}, {1200, "travel"}};
+  for (const auto& c : cases) {
+    CAPTURE(c.step);
+    PtyBoard board;
+    board.mute_after_commands.store(c.mute_after);
+    const std::string output = (folder.dir / "never.json").string();
+    const CliOutcome out =
+        run_cli("calibrate --device serial:" + board.path() + " --yes --travel-time 1s --output " + output);
+    CAPTURE(out.out);
+    CAPTURE(out.err);
+    CHECK(out.exit_code == 1);
+    CHECK(out.out.find(std::string("FAIL the board stopped answering after the handshake (no reading for ")) !=
+          std::string::npos);
+    CHECK(out.out.find(std::string(" ms in the ") + c.step + " step, its link ") != std::string::npos);
+    CHECK(out.out.find("the handle moved only") == std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(output));
+  }
 }

@@ -78,7 +78,8 @@ TEST_CASE("board identity: swapped cables, a wrong board and a board without a s
   CHECK_THROWS_WITH_AS(check_board_identities(profile, {"/dev/ttyACM1", "/dev/ttyACM0"}, root.string()),
                        "--device serial:/dev/ttyACM1,/dev/ttyACM0: the cables are swapped: /dev/ttyACM1 is joint 2's "
                        "board (USB serial B2) and /dev/ttyACM0 joint 1's (A1), as profile \"hapkit_pantograph\" names "
-                       "them; give serial:/dev/ttyACM0,/dev/ttyACM1",
+                       "them; give serial:/dev/ttyACM0,/dev/ttyACM1 (in hapkit_pantograph (built-in profile): "
+                       "/board_serials)",
                        InputError);
   CHECK_THROWS_WITH_AS(check_board_identities(pantograph_with_serials("A1", "C3"), {"/dev/ttyACM0", "/dev/ttyACM1"},
                                               root.string()),
@@ -100,5 +101,12 @@ TEST_CASE("board identity: board_serials in a profile file must be two different
     CHECK_THROWS_WITH_AS(load_planar_profile((dir / "bad.json").string(), "."), doctest::Contains("/board_serials"),
                          InputError);
   }
+  // Checked against the boards (after parsing): the message names the file and the key.
+  const fs::path root = make_root();
+  const std::string mine = (dir / "mine.json").string();
+  CHECK_THROWS_WITH_AS(check_board_identities(load_planar_profile(mine, "."), {"/dev/ttyACM0", "/dev/ttyUSB0"},
+                                              root.string()),
+                       doctest::Contains((mine + " (extends hapkit_pantograph): /board_serials").c_str()), InputError);
+  fs::remove_all(root);
   fs::remove_all(dir);
 }

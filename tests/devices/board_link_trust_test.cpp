@@ -284,3 +284,29 @@ TEST_CASE("board link: a loop that starts long after the handshake is not a boar
   CHECK_FALSE(has_event(link, LinkEventKind::no_position));
   CHECK_FALSE(link.fault_seen());
 }
+
+// After a board reset the position is realigned to the last one's sensor period, and then
+// judged like any reading: a step farther than the handle can move since the last good
+// STATE is rejected (before, a realigned reading was taken whatever its step).
+TEST_CASE("board link: a realigned reading after a reset is judged for speed too") {
+  LoopbackLink wire;
+  BoardLinkConfig config;
+  config.max_speed_counts_per_s = 1000.0;  // 1 count a ms: 400 counts need 0.4 s
+  BoardLink link(wire, config);
+  std::int64_t now_ns = 0;
+  for (int i = 0; i < 5; ++i) tick(&link, &now_ns);
+  REQUIRE(link.counts() == 500);
+  wire.board.reset(900);
+  for (int i = 0; i < 10; ++i) tick(&link, &now_ns);
+  CHECK(link.events_of(LinkEventKind::board_reset) == 1);
+  CHECK(link.state() == LinkState::running);
+  CHECK(link.counts() == 500);
+  CHECK(link.position_status() == PositionStatus::implausible);
+  CHECK(link.counters().implausible_states >= 1);
+  CHECK(link.fault_seen());
+  // Where the handle was: plausible again.
+  wire.board.unwrapped_counts = 505;
+  for (int i = 0; i < 3; ++i) tick(&link, &now_ns);
+  CHECK(link.position_status() == PositionStatus::fresh);
+  CHECK(link.counts() == 505);
+}

@@ -133,7 +133,8 @@ TEST_CASE("device model: profile errors for the sensor type and duty law name th
 TEST_CASE("device model: the firmware's devices refuse an encoder profile, naming it") {
   const DeviceProfile encoder = profile_of(encoder_hapkit_json());
   const std::string serial = test::input_error_of([&] { open_device("serial:/dev/null", encoder, {}, {}); });
-  CHECK(serial == "--device serial: profile \"hapkit-encoder\" has an encoder, but the hapscene firmware reads the Hapkit's MR sensor");
+  CHECK(serial == "--device serial: profile \"hapkit-encoder\" has an encoder, but the hapscene firmware reads the "
+                  "Hapkit's MR sensor (in kit.json: /sensor/type)");
   const std::string hil = test::input_error_of([&] { open_device("hil", encoder, {}, {}); });
   CHECK(hil.find("--device hil: profile \"hapkit-encoder\" has an encoder") == 0);
 }

@@ -4,7 +4,8 @@
 // firmware does (a command byte, then as many bytes as that command takes), keeps the
 // torques until the next command (no timeout), presets its encoders at setup and answers
 // each torque frame with the id and an angle per encoder port. Faults on demand: garbage,
-// short replies, wrong ids, silence, a reset (encoder counts back at their preset).
+// short replies, wrong ids, silence, a reset (encoder counts back at their preset), and
+// replies whose angles are whatever the test says (3e17 deg, NaN, a jump).
 #include <array>
 #include <bit>
 #include <cmath>
@@ -37,6 +38,8 @@ class FakeHaplyBoard {
   bool mute_after_reply{false};      // after the next reply, mute
   int wrong_ids{0};                  // the next n replies carry id + 1
   std::vector<std::uint8_t> garbage; // sent before the next reply, once
+  int forced_replies{0};             // the next n replies report forced_deg on every port
+  float forced_deg{0.0f};
 
   // What the board saw.
   int resets{0}, setups{0}, torque_frames{0};
@@ -45,6 +48,7 @@ class FakeHaplyBoard {
   std::array<std::uint8_t, 4> motor_direction{}, encoder_direction{};
   std::array<float, 4> torque_N_m{};  // per port, as last applied
   float peak_torque_N_m{0.0f};        // the largest |torque| ever applied
+  int torque_since_reset{0};          // torque frames with a non-zero torque since the last reset command
   std::array<double, 4> offset_deg_{}, cpr_{};
 
  private:
@@ -83,6 +87,7 @@ class FakeHaplyBoard {
 
   void on_reset() {
     ++resets;
+    torque_since_reset = 0;
     torque_N_m = {};
     motor_mask = encoder_mask = 0;
     pwm_count_ = 0;
@@ -121,6 +126,7 @@ class FakeHaplyBoard {
       peak_torque_N_m = std::fmax(peak_torque_N_m, std::fabs(torque_N_m[index(port)]));
       n += 4;
     }
+    if (torque_N_m != std::array<float, 4>{}) ++torque_since_reset;
     if (muted) return;
     out->insert(out->end(), garbage.begin(), garbage.end());
     garbage.clear();
@@ -129,9 +135,10 @@ class FakeHaplyBoard {
     for (int port = 1; port <= 4; ++port) {
       if (!(encoder_mask & (1u << (port - 1)))) continue;
       std::uint8_t bytes[4];
-      put_float_le(static_cast<float>(angle_deg(port)), bytes);
+      put_float_le(forced_replies > 0 ? forced_deg : static_cast<float>(angle_deg(port)), bytes);
       reply.insert(reply.end(), bytes, bytes + 4);
     }
+    if (forced_replies > 0) --forced_replies;
     if (short_replies > 0) {
       --short_replies;
       reply.resize(reply.size() - 3);

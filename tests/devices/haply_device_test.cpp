@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -96,5 +97,74 @@ TEST_CASE("haply device: a board that never answers is an error after the handsh
   // It said hello (reset and setup) and asked again on silence, with no torque ever.
   CHECK(board.with_board([](auto& b) { return b.setups; }) >= 1);
   CHECK(board.with_board(torque_off));
+}
+
+// On a serial port, a board that answers a resync with angles no arm can have: 3e17 deg, a
+// NaN, a jump farther from the preset offsets than the arm turns (a speed bound of 0.5
+// rad/s here, so that no delay of this shared machine can make the jump possible). Not
+// one torque frame with a torque reaches the board after the resync's reset (the port
+// keeps the order: frames sent before the reset arrive before it), the rejections are
+// counted and reported, and the run would fail.
+TEST_CASE("haply device: implausible angles after a resync never give a torque frame") {
+  struct Bad {
+    const char* name;
+    float deg;
+    const char* said;
+  };
+  const Bad bads[] = {{"3e17 deg", 3e17f, "outside the sensor's range"},
+                      {"NaN", std::numeric_limits<float>::quiet_NaN(), "not a finite number"},
+                      {"a jump", 100.0f, "farther than the device can move"}};
+  for (const Bad& bad : bads) {
+    CAPTURE(std::string(bad.name));
+    PtyHaplyBoard board;
+    HaplyConfig config = config_for(board.path());
+    config.link.max_joint_speed_rad_per_s = 0.5;
+    config.watchdog = false;
+    HaplyDevice device(v3(), config);
+    for (int i = 0; i < 20; ++i) {
+      (void)device.read();
+      device.write(torque_command(0.04, 0.02));
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    REQUIRE(board.wait_for([](auto& b) { return b.torque_since_reset > 0; }, 500));
+    // The next reply has a wrong id (a resync), and every one after it the bad angles.
+    board.with_board([&](auto& b) {
+      b.wrong_ids = 1;
+      b.forced_replies = 1'000'000;
+      b.forced_deg = bad.deg;
+      return 0;
+    });
+    // Ticks until the board has seen the resync's reset and two setups after it.
+    const int resets_before = board.with_board([](auto& b) { return b.resets; });
+    int ticks = 0;
+    for (; ticks < 2000 && board.with_board([](auto& b) { return b.resets; }) < resets_before + 3; ++ticks) {
+      (void)device.read();
+      device.write(torque_command(0.04, 0.02));
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    REQUIRE(ticks < 2000);
+    CHECK(board.with_board([](auto& b) { return b.torque_since_reset; }) == 0);
+    CHECK(device.link().counters().implausible >= 1);
+    CHECK(device.fault_seen());
+    CHECK(device.report().find(bad.said) != std::string::npos);
+    DeviceLinkHealth health;
+    device.link_health(&health);
+    CHECK(health.link[0].implausible == device.link().counters().implausible);
+  }
+}
+
+TEST_CASE("haply device: a board that answers the setup only with implausible angles is not opened") {
+  PtyHaplyBoard board;
+  board.with_board([](auto& b) {
+    b.forced_replies = 1'000'000;
+    b.forced_deg = 3e17f;
+    return 0;
+  });
+  HaplyConfig config = config_for(board.path());
+  config.handshake_timeout_s = 0.2;
+  config.watchdog = false;
+  CHECK_THROWS_WITH_AS(HaplyDevice(v3(), config), doctest::Contains("no plausible reply to the setup within 0.2 s"),
+                       std::runtime_error);
+  CHECK(board.with_board([](auto& b) { return b.torque_since_reset; }) == 0);
 }
 }

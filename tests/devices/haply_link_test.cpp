@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "engine/devices/haply/haply_link.hpp"
@@ -255,4 +256,71 @@ TEST_CASE("haply link: a reply late by a few ticks is stale, not a fault") {
   rig.ticks(2, kTorque);
   CHECK(rig.link.position_status() == PositionStatus::fresh);
   CHECK(rig.link.counters().resyncs == 0);
+}
+
+// Every reply is judged before a torque may follow from it, after a resync as at the
+// start: a board that answers the setup with 3e17 deg, a NaN, or angles farther from its
+// preset offsets than the arm can turn since the setup is set up again, never trusted.
+// (Before, two such replies that agreed with each other became the angle correction, and
+// the torques that followed were computed from a made-up pose.)
+TEST_CASE("haply link: implausible angles after a resync are rejected, and no torque follows them") {
+  struct Bad {
+    const char* name;
+    float deg;
+    ReadingFault fault;
+  };
+  const Bad bads[] = {
+      {"3e17 deg", 3e17f, ReadingFault::out_of_range},
+      {"NaN", std::numeric_limits<float>::quiet_NaN(), ReadingFault::not_finite},
+      // 68 deg (joint 1) and 88 deg (joint 2) from the preset a few ms after the setup:
+      // far more than 60 rad/s allows.
+      {"a jump too fast for the arm", 100.0f, ReadingFault::too_fast},
+  };
+  for (const Bad& bad : bads) {
+    CAPTURE(std::string(bad.name));
+    Rig rig;
+    REQUIRE(rig.until_running() > 0);
+    (void)rig.link.take_restart();
+    for (int i = 0; i < 20; ++i) {
+      rig.board.turn(2, -0.5);
+      rig.tick(kTorque);
+    }
+    rig.tick(kTorque);  // the reply to a tick's frame is read at the next tick
+    REQUIRE(rig.board.torque_since_reset > 0);
+    const Vec2 before = rig.link.angles_deg();
+    // A wrong id starts a resync; from then on the board answers with the bad angles.
+    rig.board.wrong_ids = 1;
+    rig.board.forced_replies = 1'000'000;
+    rig.board.forced_deg = bad.deg;
+    rig.ticks(300, kTorque);
+    CHECK(rig.board.resets >= 2);
+    CHECK(rig.board.torque_since_reset == 0);  // zero torque, and nothing else, since the resync
+    CHECK(rig.link.state() == HaplyLinkState::configuring);
+    CHECK(rig.link.position_status() == PositionStatus::unmeasured);
+    CHECK(rig.link.counters().implausible >= 2);
+    CHECK(rig.link.counters().first_implausible_fault == bad.fault);
+    CHECK(rig.link.report(0).find("implausible") != std::string::npos);
+    // The board answers sensibly again: running, the angles continuous, torque back.
+    rig.board.forced_replies = 0;
+    REQUIRE(rig.until_running(200, kTorque) > 0);
+    CHECK(within_a_count(rig.link.angles_deg()[0], before[0]));
+    CHECK(within_a_count(rig.link.angles_deg()[1], before[1]));
+    rig.ticks(3, kTorque);
+    CHECK(rig.board.torque_since_reset > 0);
+  }
+}
+
+// While running too: each bad reply is counted as implausible (with the resync it causes).
+TEST_CASE("haply link: an implausible reply while running is counted and resynchronises") {
+  Rig rig;
+  REQUIRE(rig.until_running() > 0);
+  rig.ticks(5, kTorque);
+  rig.board.forced_replies = 1;
+  rig.board.forced_deg = 3e17f;
+  rig.ticks(3, kTorque);
+  CHECK(rig.link.counters().implausible == 1);
+  CHECK(rig.link.counters().first_implausible_fault == ReadingFault::out_of_range);
+  CHECK(rig.resyncs(HaplyResyncReason::jump) == 1);
+  CHECK(rig.board.torque_since_reset == 0);
+  CHECK(rig.until_running(200, kTorque) > 0);
 }

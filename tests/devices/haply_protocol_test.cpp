@@ -78,7 +78,9 @@ TEST_CASE("haply protocol: torques go out in port order and replies come back pe
   CHECK_FALSE(decode_reply(setup, reply).has_value());  // another id
   reply[0] = 0x05;
   put_float_le(std::numeric_limits<float>::infinity(), &reply[1]);
-  CHECK_FALSE(decode_reply(setup, reply).has_value());  // not an angle
+  const std::optional<Vec2> unjudged = decode_reply(setup, reply);  // the link judges it
+  REQUIRE(unjudged.has_value());
+  CHECK(std::isinf((*unjudged)[1]));
 }
 
 TEST_CASE("haply protocol: only Haply-style profiles, each joint on its own port") {

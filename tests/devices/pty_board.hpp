@@ -44,9 +44,10 @@ class PtyBoard {
 
   const std::string& path() const { return path_; }
   std::atomic<bool> muted{false};         // answers nothing
+  std::atomic<int> mute_after_commands{-1};  // >= 0: mutes itself once it has taken this many COMMANDs
   std::atomic<bool> states_muted{false};  // answers COMMANDs with STATS: alive, no position
   std::atomic<int> counts{500};           // the board's unwrapped counts
-  std::atomic<int> reset_to{INT_MIN};     // != INT_MIN: reset the board, counts then this
+  std::atomic<int> reset_to{INT_MIN};     // != INT_MIN: reset the board, `counts` then this
   std::atomic<int> garbage_bytes{0};      // bytes of noise sent before the next answers
   std::atomic<bool> corrupt{false};       // every answer's last byte (its CRC) flipped
   std::atomic<int> commands{0};
@@ -54,6 +55,7 @@ class PtyBoard {
   std::atomic<int> last_duty{-1};
   std::atomic<int> nonzero_commands{0};   // COMMANDs with a duty above zero
   std::atomic<int> zero_commands{0};      // COMMANDs with zero duty
+  std::atomic<int> nonzero_since_reset{0};  // COMMANDs with a duty the board took since its last reset
 
  private:
   void serve() {
@@ -69,7 +71,11 @@ class PtyBoard {
       board.muted = muted.load();
       board.states_muted = states_muted.load();
       const int reset = reset_to.exchange(INT_MIN);
-      if (reset != INT_MIN) board.reset(reset);
+      if (reset != INT_MIN) {
+        board.reset(reset);
+        counts.store(reset);
+        nonzero_since_reset.store(0);
+      }
       board.unwrapped_counts = counts.load();
       out.clear();
       for (int garbage = garbage_bytes.exchange(0); garbage > 0; --garbage) {
@@ -80,8 +86,11 @@ class PtyBoard {
       if (board.commands != seen_commands) {
         seen_commands = board.commands;
         (board.last_command.duty > 0 ? nonzero_commands : zero_commands).fetch_add(1);
+        if (board.last_command.duty > 0) nonzero_since_reset.fetch_add(1);
       }
       commands.store(board.commands);
+      const int mute_after = mute_after_commands.load();
+      if (mute_after >= 0 && board.commands >= mute_after) muted.store(true);
       hellos.store(board.hellos);
       last_duty.store(board.last_command.duty);
       if (!out.empty()) (void)!write(master_, out.data(), out.size());

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "engine/devices/serial_hapkit.hpp"
+#include "engine/run/runner.hpp"
 #include "tests/devices/pty_board.hpp"
 #include "tests/support.hpp"
 
@@ -87,4 +88,41 @@ TEST_CASE("serial: a port that does not answer the handshake is an error, not a 
   CHECK_THROWS_WITH_AS(SerialHapkit(hapkit3(), config),
                        doctest::Contains("the handshake did not complete within 0.2"), std::runtime_error);
   CHECK(std::chrono::steady_clock::now() - begin < std::chrono::seconds(1));
+}
+
+// A board reset, after which the board's count (realigned to the last position's sensor
+// period) is farther from the last position than the handle can move in the time since:
+// judged as every reading is, so rejected, and the loop never drives the motor on it. The
+// speed bound is 1 mm/s here (82 counts/s), so that a 400-count step needs 5 s: no
+// delay of this shared machine within the 0.6 s run makes it plausible. The board counts
+// only the COMMANDs it takes once armed again, all sent after the host saw the reset.
+TEST_CASE("serial: a reading too far from the last after a board reset gives no force" * doctest::test_suite("threaded")) {
+  PtyBoard board;
+  SerialConfig config;
+  config.path = board.path();
+  config.handshake_timeout_s = 2.0;
+  config.max_handle_speed_m_per_s = 0.001;  // 82 counts/s
+  const Scene scene = test::scene_from(
+      R"({"effects": [{"type": "spring", "stiffness": "2000 N/m", "center": "-50 mm"}]})");
+  SerialHapkit device(scene.device, config);
+  struct ResetAt final : TickObserver {
+    PtyBoard* board{};
+    int ticks{};
+    int nonzero_before{};
+    void on_tick(const TickState&) noexcept override {
+      if (++ticks != 200) return;
+      nonzero_before = board->nonzero_commands.load();
+      board->reset_to.store(900);  // 400 counts from 500
+    }
+  } observer;
+  observer.board = &board;
+  const RunOptions options{.duration_s = 0.6, .pacing = Pacing::real_time};
+  (void)run_scene(scene, device, options, &observer);
+  CHECK(observer.nonzero_before > 0);                // it rendered before the reset
+  CHECK(device.link().events_of(LinkEventKind::board_reset) == 1);
+  CHECK(device.link().events_of(LinkEventKind::connected) == 2);
+  CHECK(device.link().counters().implausible_states >= 1);
+  CHECK(board.nonzero_since_reset.load() == 0);      // and never after it
+  CHECK(device.fault_seen());
+  CHECK(device.report().find("implausible") != std::string::npos);
 }

@@ -135,7 +135,7 @@ TEST_CASE("sim: a start outside the sensor's home period is refused") {
   config.start_x_m = 0.02;
   CHECK(test::input_error_of([&] { SimulatedHapkit device(scene.device, config); }) ==
         "start position 0.02 m is outside the sensor's home period [-0.006232220045, 0.005060928469] m, "
-        "where the board starts counting");
+        "where the board starts counting (the period from hapkit3 (built-in profile): /sensor)");
 }
 
 TEST_CASE("sim: the motor saturates and the PWM is quantized") {

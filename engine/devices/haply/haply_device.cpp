@@ -19,16 +19,22 @@ HaplyDevice::HaplyDevice(const PlanarProfile& profile, const HaplyConfig& config
   while (link_.state() != HaplyLinkState::running) {
     const std::int64_t now_ns = monotonic_now_ns();
     if (now_ns > deadline_ns) {
-      throw std::runtime_error("--device haply:" + config.path + ": no reply to the setup within " +
-                               printf_string("%g", config.handshake_timeout_s) + " s (" +
-                               std::to_string(link_.counters().replies) + " replies, " +
-                               std::to_string(link_.counters().bytes_dropped) +
-                               " bytes that made no reply; is it a Haply board with its stock firmware?)");
+      const HaplyLinkCounters& c = link_.counters();
+      const std::string rejected =
+          c.implausible == 0 ? std::string()
+                             : std::to_string(c.implausible) + " rejected as implausible (the first: an angle " +
+                                   reading_fault_name(c.first_implausible_fault) + "), ";
+      throw std::runtime_error("--device haply:" + config.path + (c.implausible == 0 ? ": no reply" : ": no plausible reply") +
+                               " to the setup within " + printf_string("%g", config.handshake_timeout_s) + " s (" +
+                               std::to_string(c.replies) + " replies, " + rejected + std::to_string(c.bytes_dropped) +
+                               " bytes that made no reply; is it a Haply board with its stock firmware, its arm at "
+                               "the reference pose?)");
     }
     link_.poll(now_ns);
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   handshake_resyncs_ = link_.counters().resyncs;
+  handshake_implausible_ = link_.counters().implausible;
   (void)link_.take_restart();  // the run's own soft start covers the first contact
   if (config.watchdog) {
     watchdog_ = std::make_unique<ZeroTorqueWatchdog>(config.path, encode_torques(setup_, Vec2{}),
@@ -75,7 +81,8 @@ bool HaplyDevice::take_restart() noexcept {
 }
 
 bool HaplyDevice::fault_seen() const noexcept {
-  return link_.counters().resyncs > handshake_resyncs_ || (watchdog_ && watchdog_->fired() > 0);
+  return link_.counters().resyncs > handshake_resyncs_ || link_.counters().implausible > handshake_implausible_ ||
+         (watchdog_ && watchdog_->fired() > 0);
 }
 
 void HaplyDevice::link_health(DeviceLinkHealth* out) const noexcept {
@@ -89,6 +96,7 @@ void HaplyDevice::link_health(DeviceLinkHealth* out) const noexcept {
   h.frames_not_sent = c.frames_dropped;
   h.bytes_skipped = c.bytes_dropped;
   h.resyncs = c.resyncs;
+  h.implausible = c.implausible;
   h.silences = c.by_reason[static_cast<std::size_t>(HaplyResyncReason::silence)];
   h.vanished = c.by_reason[static_cast<std::size_t>(HaplyResyncReason::vanished)];
   out->links = 1;
@@ -97,9 +105,11 @@ void HaplyDevice::link_health(DeviceLinkHealth* out) const noexcept {
 
 std::string HaplyDevice::report() const {
   std::string text = link_.report(start_ns_);
-  if (handshake_resyncs_ > 0) {
-    text += printf_string("  opening          %llu of the resyncs were before the first reply\n",
-                          static_cast<unsigned long long>(handshake_resyncs_));
+  if (handshake_resyncs_ > 0 || handshake_implausible_ > 0) {
+    text += printf_string("  opening          %llu of the resyncs and %llu of the implausible replies were before the "
+                          "first reply\n",
+                          static_cast<unsigned long long>(handshake_resyncs_),
+                          static_cast<unsigned long long>(handshake_implausible_));
   }
   if (watchdog_) {
     text += printf_string("  watchdog         zero-torque process %d: fired %llu times on a stalled loop (%llu restarts)\n",

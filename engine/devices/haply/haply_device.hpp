@@ -53,6 +53,7 @@ class HaplyDevice final : public DeviceOf<2> {
   std::unique_ptr<ZeroTorqueWatchdog> watchdog_;
   std::int64_t start_ns_{};
   std::uint64_t handshake_resyncs_{};
+  std::uint64_t handshake_implausible_{};
   std::uint64_t watchdog_restarts_{};
 };
 

@@ -74,11 +74,29 @@ void HaplyLink::send_request(std::int64_t now_ns) noexcept {
   waiting_since_ns_ = now_ns;
 }
 
-// Whether the joints can turn by `move_deg` in `elapsed_ns` (plus the arrival jitter).
-bool HaplyLink::plausible_move(const Vec2& move_deg, std::int64_t elapsed_ns) const noexcept {
-  const double allowed_deg = config_.max_joint_speed_rad_per_s * (180.0 / std::numbers::pi) * 1e-9 *
-                             static_cast<double>(elapsed_ns + config_.motion_slack_ns);
-  return std::fabs(move_deg[0]) <= allowed_deg && std::fabs(move_deg[1]) <= allowed_deg;
+// A reply's angles (board terms) against each joint's range around its board offset and
+// against the reference at the joints' top speed; the first fault found (a non-finite
+// angle on either joint first: the other's step says nothing about it).
+ReadingFault HaplyLink::judge(const Vec2& board_deg, std::int64_t now_ns) const noexcept {
+  if (!std::isfinite(board_deg[0]) || !std::isfinite(board_deg[1])) return ReadingFault::not_finite;
+  const double speed_deg_per_s = config_.max_joint_speed_rad_per_s * (180.0 / std::numbers::pi);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double offset_deg = setup_.encoder_offset_deg[i];
+    const ReadingBounds bounds{offset_deg - config_.max_turn_from_offset_deg,
+                               offset_deg + config_.max_turn_from_offset_deg, speed_deg_per_s,
+                               config_.motion_slack_ns};
+    const TrustedReading last{reference_deg_[static_cast<int>(i)], reference_ns_};
+    const ReadingFault fault = judge_reading(bounds, board_deg[static_cast<int>(i)], &last, now_ns);
+    if (fault != ReadingFault::none) return fault;
+  }
+  return ReadingFault::none;
+}
+
+void HaplyLink::count_implausible(ReadingFault fault, std::int64_t now_ns) noexcept {
+  if (counters_.implausible++ == 0) {
+    counters_.first_implausible_ns = now_ns;
+    counters_.first_implausible_fault = fault;
+  }
 }
 
 void HaplyLink::send_zero() noexcept { send_frame(encode_torques(setup_, Vec2{})); }
@@ -95,7 +113,10 @@ void HaplyLink::restart_setup(std::int64_t now_ns) noexcept {
   rx_partial_since_ns_ = -1;
   configured_ns_ = now_ns;
   request_sent_ = false;
-  candidate_ns_ = -1;
+  have_candidate_ = false;
+  // The board reads its offsets from now on, wherever the arm is.
+  reference_deg_ = Vec2{{setup_.encoder_offset_deg[0], setup_.encoder_offset_deg[1]}};
+  reference_ns_ = now_ns;
   outstanding_ = 0;
   waiting_since_ns_ = -1;
 }
@@ -125,6 +146,8 @@ void HaplyLink::accept(const Vec2& board_deg, std::int64_t now_ns) noexcept {
     realign_ = false;
   }
   angles_deg_ = board_deg + correction_deg_;
+  reference_deg_ = board_deg;
+  reference_ns_ = now_ns;
   have_trusted_ = true;
   last_reply_ns_ = now_ns;
   ++counters_.replies;
@@ -168,9 +191,11 @@ void HaplyLink::poll(std::int64_t now_ns) noexcept {
   }
 
   // Setting up: drop what comes during the quiet time, then ask for replies one at a time
-  // until two in a row come back exactly (nine bytes, nothing more, the id, angles that
-  // agree): a stray byte (a late answer to a frame sent before the reset) would otherwise
-  // shift a reply and hand the loop a made-up pose.
+  // until two in a row come back exactly (nine bytes, nothing more, the id) and plausible
+  // (each judged against the one before, the first against the preset offsets): a stray
+  // byte (a late answer to a frame sent before the reset) would otherwise shift a reply
+  // and hand the loop a made-up pose, and a board's absurd angles would become the
+  // correction that every later angle carries.
   if (state_ == HaplyLinkState::configuring) {
     ++counters_.unmeasured_polls;
     if (!request_sent_) {
@@ -188,16 +213,21 @@ void HaplyLink::poll(std::int64_t now_ns) noexcept {
     }
     const std::optional<Vec2> board_deg =
         rx_size_ == kHaplyReplyBytes ? decode_reply(setup_, rx_.data()) : std::optional<Vec2>{};
-    const bool agrees = board_deg && candidate_ns_ >= 0 && plausible_move(*board_deg - candidate_deg_, now_ns - candidate_ns_);
-    if (!board_deg || (candidate_ns_ >= 0 && !agrees)) {
+    if (!board_deg) {
       ++counters_.setup_retries;
       restart_setup(now_ns);
       return;
     }
+    if (const ReadingFault fault = judge(*board_deg, now_ns); fault != ReadingFault::none) {
+      count_implausible(fault, now_ns);
+      restart_setup(now_ns);
+      return;
+    }
     rx_size_ = 0;
-    if (!agrees) {
-      candidate_deg_ = *board_deg;
-      candidate_ns_ = now_ns;
+    if (!have_candidate_) {
+      have_candidate_ = true;
+      reference_deg_ = *board_deg;
+      reference_ns_ = now_ns;
       send_request(now_ns);
       return;
     }
@@ -209,16 +239,16 @@ void HaplyLink::poll(std::int64_t now_ns) noexcept {
     return;
   }
 
-  // Running: whole replies, oldest first; each must carry the id, finite angles, and a
-  // plausible move.
+  // Running: whole replies, oldest first; each must carry the id and plausible angles.
   std::size_t used = 0;
   while (rx_size_ - used >= kHaplyReplyBytes) {
     const std::uint8_t* reply = rx_.data() + used;
-    if (reply[0] != setup_.id) return begin_resync(HaplyResyncReason::wrong_id, now_ns);
     const std::optional<Vec2> board_deg = decode_reply(setup_, reply);
-    if (!board_deg) return begin_resync(HaplyResyncReason::corrupt, now_ns);
-    if (!plausible_move(*board_deg + correction_deg_ - angles_deg_, now_ns - last_reply_ns_)) {
-      return begin_resync(HaplyResyncReason::jump, now_ns);
+    if (!board_deg) return begin_resync(HaplyResyncReason::wrong_id, now_ns);
+    if (const ReadingFault fault = judge(*board_deg, now_ns); fault != ReadingFault::none) {
+      count_implausible(fault, now_ns);
+      return begin_resync(fault == ReadingFault::not_finite ? HaplyResyncReason::corrupt : HaplyResyncReason::jump,
+                          now_ns);
     }
     accept(*board_deg, now_ns);
     used += kHaplyReplyBytes;
@@ -287,6 +317,13 @@ std::string HaplyLink::report(std::int64_t start_ns) const {
                         static_cast<double>(config_.max_angle_age_ns) * 1e-6,
                         static_cast<unsigned long long>(c.bytes_dropped),
                         static_cast<unsigned long long>(c.setup_retries));
+  if (c.implausible > 0) {
+    text += printf_string("  implausible      %llu replies rejected, the first at t %.3f s (an angle %s): no torque "
+                          "from any of them\n",
+                          static_cast<unsigned long long>(c.implausible),
+                          static_cast<double>(c.first_implausible_ns - start_ns) * 1e-9,
+                          reading_fault_name(c.first_implausible_fault));
+  }
   if (c.resyncs > 0 && ever_running_) {
     text += printf_string("  angles           carried across the resyncs by a correction of (%.3f, %.3f) deg: if the "
                           "arm moved while the link was down, stop, put it at its reference pose and start again\n",

@@ -5,8 +5,9 @@
 // judges each reply by what it can check:
 //   a reply whose first byte is not the device id     "wrong id"     resync
 //   an angle that is not a finite number              "corrupt"      resync
-//   angles farther from the last ones than the arm    "jump"         resync
-//     can turn in the time between them
+//   an angle more than a turn from the joint's board  "jump"         resync
+//     offset, or farther from the last one than the
+//     arm can turn in the time between them
 //   a reply begun but not completed in short_reply_ns "short reply"  resync
 //   no reply at all for silence_ns                    "silence"      resync (again every
 //                                                                    silence_ns until one comes)
@@ -16,8 +17,13 @@
 // A resync: a zero-torque frame, a reset, the setup again, a quiet time in which every
 // byte that arrives is dropped (replies to frames sent before), then zero-torque requests
 // one at a time until two replies in a row come back exactly (nine bytes and no more, the
-// id, angles that agree); anything else runs the setup again (counted as a setup retry). The setup
-// presets the board's encoders to their offsets wherever the arm is, so after a resync
+// id); anything else runs the setup again (counted as a setup retry). The setup presets the
+// board's encoders to their offsets, so each of those replies is judged as above against
+// the one before it, the first against the offsets at the time the setup went out: a
+// board that answers the setup with absurd angles (3e17 deg, NaN, a jump) is set up again,
+// never trusted. Every reply rejected so (in any state) is counted as implausible, with
+// the first's time and kind, and reported (reading_judge.hpp makes the judgement).
+// Since the setup presets the encoders wherever the arm is, after a resync
 // the link carries an angle correction per joint that makes the first angles continue
 // the last trusted ones (the arm moves little in the few ms a resync takes); every resync
 // is counted by its reason and reported.
@@ -33,6 +39,7 @@
 #include "engine/devices/byte_link.hpp"
 #include "engine/devices/device.hpp"
 #include "engine/devices/haply/haply_protocol.hpp"
+#include "engine/devices/reading_judge.hpp"
 
 namespace hapscene {
 
@@ -48,6 +55,9 @@ struct HaplyLinkConfig {
   // well under 30 rad/s), and the arrival jitter allowed on top of the time between replies.
   double max_joint_speed_rad_per_s{60.0};
   std::int64_t motion_slack_ns{3'000'000};
+  // A joint reads within this of its board offset (the board counts from the offset at
+  // the setup, and no joint of a pantograph turns a whole turn).
+  double max_turn_from_offset_deg{360.0};
 };
 
 enum class HaplyResyncReason : std::uint8_t { wrong_id, corrupt, jump, short_reply, silence, overflow, vanished };
@@ -67,6 +77,9 @@ struct HaplyLinkCounters {
   std::uint64_t unmeasured_polls{};   // ticks with no position (configuring, vanished)
   std::uint64_t stale_polls{};        // ticks whose newest reply was older than the bound
   std::uint64_t setup_retries{};      // setups run again because their replies did not come back exactly
+  std::uint64_t implausible{};        // replies whose angles judge_reading() rejected
+  std::int64_t first_implausible_ns{-1};
+  ReadingFault first_implausible_fault{};
   std::int64_t first_resync_ns{-1};   // when the first resync began (-1: none)
   HaplyResyncReason first_reason{};
 };
@@ -105,7 +118,8 @@ class HaplyLink {
   void begin_resync(HaplyResyncReason reason, std::int64_t now_ns) noexcept;
   void restart_setup(std::int64_t now_ns) noexcept;
   void send_request(std::int64_t now_ns) noexcept;
-  bool plausible_move(const Vec2& move_deg, std::int64_t elapsed_ns) const noexcept;
+  ReadingFault judge(const Vec2& board_deg, std::int64_t now_ns) const noexcept;
+  void count_implausible(ReadingFault fault, std::int64_t now_ns) noexcept;
   void send_frame(const HaplyFrame& frame) noexcept;
   bool flush_tx() noexcept;  // true when nothing is left queued
   void accept(const Vec2& board_deg, std::int64_t now_ns) noexcept;
@@ -127,8 +141,11 @@ class HaplyLink {
 
   std::int64_t configured_ns_{};           // when the last reset and setup went out
   bool request_sent_{};                    // configuring: a zero-torque request is out
-  Vec2 candidate_deg_{};                   // configuring: the first of two replies that must agree
-  std::int64_t candidate_ns_{-1};          // ... and when it came (-1: none yet)
+  bool have_candidate_{};                  // configuring: the first of two replies came
+  // The board's angles the next reply is judged against, and when they held: the offsets
+  // when the setup went out, then each reply accepted (board terms, no correction).
+  Vec2 reference_deg_{};
+  std::int64_t reference_ns_{};
   std::int64_t last_reply_ns_{-1};
   int outstanding_{};                      // frames sent and not yet answered
   std::int64_t waiting_since_ns_{-1};      // since when a frame has waited for its reply (-1: none)

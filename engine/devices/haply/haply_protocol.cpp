@@ -44,7 +44,8 @@ HaplySetup haply_setup_for(const PlanarProfile& profile, std::uint8_t id) {
     if (joint.sensor.kind != PlanarSensorKind::angle || joint.drive.law != PlanarDriveLaw::torque) {
       throw InputError("--device haply: " + where +
                        " is not a Haply-style joint (it needs \"sensor\": {\"type\": \"angle\"} and "
-                       "\"drive\": {\"law\": \"torque\"}, as haply2diy_v1..v3 have)");
+                       "\"drive\": {\"law\": \"torque\"}, as haply2diy_v1..v3 have; in " +
+                       profile_place(profile.source, "/joints/" + std::to_string(i)) + ")");
     }
     setup.port[i] = joint.board_port;
     setup.motor_counter_clockwise[i] = joint.drive.board_counter_clockwise;
@@ -54,7 +55,7 @@ HaplySetup haply_setup_for(const PlanarProfile& profile, std::uint8_t id) {
   }
   if (setup.port[0] == setup.port[1]) {
     throw InputError("--device haply: profile \"" + profile.name + "\" puts both joints on board port " +
-                     std::to_string(setup.port[0]));
+                     std::to_string(setup.port[0]) + " (in " + profile_place(profile.source, "/joints/1/board_port") + ")");
   }
   return setup;
 }
@@ -107,9 +108,7 @@ std::optional<Vec2> decode_reply(const HaplySetup& setup, const std::uint8_t* re
   Vec2 angle_deg{};
   std::size_t n = 1;
   for (const int j : joints_in_port_order(setup)) {
-    const float value = get_float_le(&reply[n]);
-    if (!std::isfinite(value)) return std::nullopt;
-    angle_deg[j] = value;
+    angle_deg[j] = get_float_le(&reply[n]);
     n += 4;
   }
   return angle_deg;

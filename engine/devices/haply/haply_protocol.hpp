@@ -57,8 +57,9 @@ HaplyFrame encode_setup(const HaplySetup& setup) noexcept;
 // Torques per joint (N m, the sign as the board's motor direction); placed in port order.
 HaplyFrame encode_torques(const HaplySetup& setup, const Vec2& joint_torque_N_m) noexcept;
 
-// A reply's angles per joint (deg), from kHaplyReplyBytes starting at `reply`; empty when
-// the first byte is not the device id or an angle is not finite.
+// A reply's angles per joint (deg), from kHaplyReplyBytes starting at `reply`, as the board
+// sent them (not judged: HaplyLink does that, infinities and NaN included); empty when the
+// first byte is not the device id.
 std::optional<Vec2> decode_reply(const HaplySetup& setup, const std::uint8_t* reply) noexcept;
 
 // Little-endian float32, as the board's ARM core stores them.

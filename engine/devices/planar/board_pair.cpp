@@ -41,14 +41,16 @@ void require_hapkit_joints(const PlanarProfile& profile, const std::string& what
     if (joint.sensor.kind == PlanarSensorKind::encoder) {
       throw InputError(what + ": profile \"" + profile.name + "\" joint " + std::to_string(i + 1) +
                        " reads an encoder, but the hapscene firmware reads the Hapkit's MR sensor (a Hapkit "
-                       "pantograph's joints, \"hapkit_pantograph\", are what two boards drive)");
+                       "pantograph's joints, \"hapkit_pantograph\", are what two boards drive; in " +
+                       profile_place(profile.source, "/joints/" + std::to_string(i) + "/sensor/type") + ")");
     }
     const bool counts = joint.sensor.kind == PlanarSensorKind::mr;
     const bool duty = joint.drive.law == PlanarDriveLaw::sqrt || joint.drive.law == PlanarDriveLaw::linear;
     if (!counts || !duty) {
       throw InputError(what + ": profile \"" + profile.name + "\" joint " + std::to_string(i + 1) +
                        " is not a Hapkit board (it needs an \"mr\" sensor and a \"sqrt\" or "
-                       "\"linear\" drive; a Haply-style profile runs on --device haply:PATH)");
+                       "\"linear\" drive; a Haply-style profile runs on --device haply:PATH; in " +
+                       profile_place(profile.source, "/joints/" + std::to_string(i)) + ")");
     }
   }
 }

@@ -67,13 +67,14 @@ void check_board_identities(const PlanarProfile& profile, const std::array<std::
                             const std::string& devices_root) {
   const std::array<std::string, 2>& wanted = profile.board_serials;
   if (wanted[0].empty() && wanted[1].empty()) return;
+  const std::string place = " (in " + profile_place(profile.source, "/board_serials") + ")";
   const std::vector<SerialPortEntry> ports = list_serial_ports(devices_root);
   const std::array<std::string, 2> found{usb_serial_of(paths[0], devices_root, ports),
                                          usb_serial_of(paths[1], devices_root, ports)};
   if (found[0] == wanted[1] && found[1] == wanted[0]) {
     throw InputError(std::string(kWhat) + ":" + paths[0] + "," + paths[1] + ": the cables are swapped: " + paths[0] +
                      " is joint 2's board (USB serial " + found[0] + ") and " + paths[1] + " joint 1's (" + found[1] +
-                     "), as profile \"" + profile.name + "\" names them; give serial:" + paths[1] + "," + paths[0]);
+                     "), as profile \"" + profile.name + "\" names them; give serial:" + paths[1] + "," + paths[0] + place);
   }
   for (std::size_t i = 0; i < 2; ++i) {
     if (found[i] == wanted[i]) continue;
@@ -81,10 +82,10 @@ void check_board_identities(const PlanarProfile& profile, const std::array<std::
     if (found[i].empty()) {
       throw InputError(std::string(kWhat) + " (" + joint + "): " + paths[i] +
                        ": no USB serial number to check against profile \"" + profile.name + "\"'s board_serials (\"" +
-                       wanted[i] + "\"): not a USB board, or one without a serial number (`hapscene devices` lists them)");
+                       wanted[i] + "\"): not a USB board, or one without a serial number (`hapscene devices` lists them)" + place);
     }
     throw InputError(std::string(kWhat) + " (" + joint + "): " + paths[i] + " is the board with USB serial " + found[i] +
-                     ", not " + joint + "'s (\"" + wanted[i] + "\") as profile \"" + profile.name + "\" names it");
+                     ", not " + joint + "'s (\"" + wanted[i] + "\") as profile \"" + profile.name + "\" names it" + place);
   }
 }
 

@@ -422,6 +422,7 @@ PlanarProfile parse_planar_profile(std::string_view json_text, const std::string
                         "such as \"haplink\" or \"haply2diy_v3\"");
   }
   profile.name = reader.string("name");
+  profile.source = display_name;
   reader.string_or("description", "");  // for people: checked to be text, not kept
   reader.string_or("note", "");
   profile.frame = parse_part(reader, "frame", parse_frame);
@@ -451,8 +452,10 @@ PlanarProfile parse_planar_profile(std::string_view json_text, const std::string
 }
 
 PlanarProfile load_planar_profile(const std::string& name_or_path, const std::string& base_dir) {
-  const ProfileText profile = find_profile_text(name_or_path, base_dir, /*planar=*/true);
-  return parse_planar_profile(profile.json_text, profile.display_name);
+  const ProfileText text = find_profile_text(name_or_path, base_dir, /*planar=*/true);
+  PlanarProfile profile = parse_planar_profile(text.json_text, text.display_name);
+  profile.source = profile_source(name_or_path, text.display_name);
+  return profile;
 }
 
 }  // namespace hapscene

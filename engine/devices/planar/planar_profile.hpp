@@ -143,6 +143,7 @@ struct PlanarFrame {
 
 struct PlanarProfile {
   std::string name;
+  std::string source;  // its file, or "NAME (built-in profile)" (DeviceProfile::source)
   PlanarFrame frame;
   Linkage linkage;
   std::array<PlanarJoint, 2> joints{};

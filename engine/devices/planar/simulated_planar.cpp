@@ -82,8 +82,11 @@ Vec2 planar_joint_angles_at(const PlanarProfile& profile, const Vec2& handle_m) 
   }
   Vec2 q{};
   if (!std::isfinite(best_m) || !joint_angles_for_handle(profile.linkage, handle_m, best_q, &q)) {
-    throw InputError(printf_string("the %s cannot put its handle at (%s, %s) m", profile.name.c_str(),
-                                   format_number(handle_m[0]).c_str(), format_number(handle_m[1]).c_str()));
+    throw InputError(printf_string("the %s cannot put its handle at (%s, %s) m (in %s and /plant/end_stops: the "
+                                   "linkage and the joints' travel)",
+                                   profile.name.c_str(), format_number(handle_m[0]).c_str(),
+                                   format_number(handle_m[1]).c_str(),
+                                   profile_place(profile.source, "/kinematics").c_str()));
   }
   return q;
 }
