@@ -91,10 +91,16 @@ void print_timing(const RunSettings&, const RunSummaryOf<N>& summary) {
   print_out("  scheduling       %s\n", summary.realtime_note.c_str());
   if (!summary.realtime_hint.empty()) print_out("  to allow it      %s\n", summary.realtime_hint.c_str());
   if (summary.overrun_warnings > 0 || summary.overrun_fault) {  // (a window fault may come without a warning)
+    // (The simulation's share only where there was one: a simulated board's.)
+    const std::string simulation =
+        summary.simulation_misses > 0 ? ", " + std::to_string(summary.simulation_misses) +
+                                            " while the simulated board computed (its process behind real time)"
+                                      : "";
     print_out("  overruns         %llu warnings (first at %.3f s), longest streak %u misses, "
-              "at most %u misses in %u deadlines, %llu misses after late wake-ups (stalls of the system)\n",
+              "at most %u misses in %u deadlines, %llu misses after late wake-ups (stalls of the system)%s\n",
               count(summary.overrun_warnings), summary.first_overrun_warning_s, summary.longest_miss_streak,
-              summary.most_misses_in_window, summary.overrun_limits.window_deadlines, count(summary.stall_misses));
+              summary.most_misses_in_window, summary.overrun_limits.window_deadlines, count(summary.stall_misses),
+              simulation.c_str());
   }
   if (summary.overrun_fault_kind == OverrunFault::streak) {
     print_out("  FAULT            sustained overrun at %.3f s (%u deadline misses in a row): "

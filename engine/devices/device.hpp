@@ -94,6 +94,10 @@ class DeviceStatus {
   virtual void link_health(DeviceLinkHealth* out) const noexcept { out->links = 0; }
   // A name per link, in link_health()'s order ("/dev/ttyACM0", "simulated board 1").
   virtual std::vector<std::string> link_names() const { return {}; }
+  // The processes of the device's own that compute in lock-step with the loop (a simulated
+  // board's: the loop waits on them inside advance()), which the loop's real-time
+  // scheduling covers too (RealtimeGuard). None for other devices.
+  virtual std::vector<int> lockstep_processes() const { return {}; }
 };
 
 template <int N>

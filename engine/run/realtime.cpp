@@ -30,7 +30,7 @@ std::string user_name() {
 }  // namespace
 
 
-RealtimeGuard::RealtimeGuard(bool enabled) : enabled_(enabled) {
+RealtimeGuard::RealtimeGuard(bool enabled, const std::vector<int>& lockstep_processes) : enabled_(enabled) {
   constexpr int priority = kPriority;
   if (!enabled) {
     note_ = "off (simulated time)";
@@ -58,15 +58,34 @@ RealtimeGuard::RealtimeGuard(bool enabled) : enabled_(enabled) {
   const bool lock_refused = !locked_ && (lock_error == EPERM || lock_error == ENOMEM || lock_error == EAGAIN);
   hint_ = realtime_permission_hint(fifo_refused, lock_refused, executable_path(), user_name());
 
+  // The lock-step processes: the loop's priority too, when the loop has it.
+  std::string followers_note;
+  std::size_t followed = 0;
+  for (const int pid : fifo_ ? lockstep_processes : std::vector<int>{}) {
+    if (pid <= 0) continue;
+    Follower follower{pid, sched_getscheduler(pid), 0};
+    sched_param old{};
+    if (follower.old_policy < 0 || sched_getparam(pid, &old) != 0) continue;  // already gone
+    follower.old_priority = old.sched_priority;
+    if (sched_setscheduler(pid, SCHED_FIFO, &param) != 0) {
+      followers_note = std::string("; not the board process (") + std::strerror(errno) + ")";
+      continue;
+    }
+    followers_.push_back(follower);
+    ++followed;
+  }
+  if (followed > 0) followers_note = followed == 1 ? "; the board process too" : "; the board processes too";
+
   // One line either way.
   if (fifo_ && locked_) {
-    note_ = "SCHED_FIFO priority " + std::to_string(priority) + ", memory locked";
+    note_ = "SCHED_FIFO priority " + std::to_string(priority) + ", memory locked" + followers_note;
   } else {
     note_ = std::string(fifo_ ? "SCHED_FIFO priority " + std::to_string(priority)
                               : "normal scheduling (SCHED_FIFO not permitted: " +
                                     std::string(std::strerror(fifo_error)) + ")") +
             (locked_ ? ", memory locked"
-                     : ", memory not locked (" + std::string(std::strerror(lock_error)) + ")");
+                     : ", memory not locked (" + std::string(std::strerror(lock_error)) + ")") +
+            followers_note;
   }
 }
 
@@ -86,6 +105,11 @@ std::string realtime_permission_hint(bool fifo_refused, bool lock_refused, const
 
 RealtimeGuard::~RealtimeGuard() {
   if (!enabled_) return;
+  for (const Follower& follower : followers_) {  // a process gone since is no error
+    sched_param param{};
+    param.sched_priority = follower.old_priority;
+    sched_setscheduler(follower.pid, follower.old_policy, &param);
+  }
   if (locked_) munlockall();
   if (fifo_) {
     sched_param param{};

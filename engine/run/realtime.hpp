@@ -4,19 +4,27 @@
 // stalls one). Without the privilege (CAP_SYS_NICE / an rtprio limit, CAP_IPC_LOCK / a
 // memlock limit) the loop runs as it is and note() says so in one line. Everything is
 // restored when the guard goes out of scope.
+//
+// Processes that compute in lock-step with the loop (a simulated board's, which the loop
+// waits on inside its tick: Device::lockstep_processes) get the same SCHED_FIFO priority
+// when the loop got it: otherwise any busy process on the machine delays the loop's tick
+// through them. They are given back their own scheduling at the end.
 #include <string>
+#include <vector>
 
 namespace hapscene {
 
 class RealtimeGuard {
  public:
-  // SCHED_FIFO at kPriority. Does nothing when `enabled` is false.
-  explicit RealtimeGuard(bool enabled);
+  // SCHED_FIFO at kPriority, for this thread and for `lockstep_processes` (process ids).
+  // Does nothing when `enabled` is false.
+  explicit RealtimeGuard(bool enabled, const std::vector<int>& lockstep_processes = {});
   ~RealtimeGuard();
   RealtimeGuard(const RealtimeGuard&) = delete;
   RealtimeGuard& operator=(const RealtimeGuard&) = delete;
 
-  // One line for the summary: what was obtained, or why not.
+  // One line for the summary: what was obtained, or why not (the lock-step processes
+  // included).
   const std::string& note() const noexcept { return note_; }
   // When the system refused SCHED_FIFO or the memory lock for lack of privilege: how to
   // allow them (limits.conf or a capability) and what running without them costs. Empty
@@ -27,6 +35,14 @@ class RealtimeGuard {
   static constexpr int kPriority = 80;
 
  private:
+  // A lock-step process and the scheduling it had.
+  struct Follower {
+    int pid{};
+    int old_policy{};
+    int old_priority{};
+  };
+  std::vector<Follower> followers_;
+
   bool enabled_{};
   bool fifo_{};
   bool locked_{};

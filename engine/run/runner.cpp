@@ -87,7 +87,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   // Real-time scheduling and locked memory when permitted, for the length of a real-time
   // run (see RealtimeGuard).
   if (real_time) prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
-  const RealtimeGuard realtime(real_time);
+  const RealtimeGuard realtime(real_time, real_time ? device.lockstep_processes() : std::vector<int>{});
   summary.realtime_note = realtime.note();
   summary.realtime_hint = realtime.hint();
   std::uint32_t miss_streak = 0;
@@ -134,7 +134,12 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     summary.max_abs_requested_N = std::fmax(summary.max_abs_requested_N, norm(state.effects_force_N));
     summary.max_abs_output_N = std::fmax(summary.max_abs_output_N, norm(state.output_N));
     if (observer != nullptr) observer->on_tick(state);
+    // Device time passes. A simulated device computes it here (a simulated board's
+    // process runs its firmware for the period while the loop waits): the simulated
+    // world's time, which a real device spends in the world, not the loop's own work.
+    const std::int64_t advance_begin_ns = real_time ? monotonic_now_ns() : 0;
     device.advance(scene.period_s);
+    const std::int64_t advance_ns = real_time ? monotonic_now_ns() - advance_begin_ns : 0;
     if (device.lost()) {  // nothing left to drive: zero force below, and stop
       summary.device_lost = true;
       break;
@@ -149,12 +154,19 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
       const std::int64_t missed = behind_ns / period_ns + 1;
       summary.deadline_misses += static_cast<std::uint64_t>(missed);
       deadline_ns += missed * period_ns;
-      // Of these, the misses the loop's own work made (the tick, the device, the observers:
-      // those it would have made had it woken on time); the rest came from a late wake-up,
-      // a stall of the system (the OS or the VM did not run the loop), not of the loop.
-      const std::int64_t own_behind_ns = now_ns - woke_ns - period_ns;
-      const std::int64_t own_missed = own_behind_ns > 0 ? std::min(missed, own_behind_ns / period_ns + 1) : 0;
-      summary.stall_misses += static_cast<std::uint64_t>(missed - own_missed);
+      // Of these, the misses the loop's own work made (the tick, the device's read and
+      // write, the observers: those it would have made had it woken on time and the
+      // device's simulation taken no time); then those the simulation's time added (a
+      // simulated board that fell behind real time: its process was not run in time, or
+      // is slower than real time); the rest came from a late wake-up, a stall of the
+      // system (the OS or the VM did not run the loop), not of the loop.
+      const auto misses_after = [&](std::int64_t late_by_ns) {
+        return late_by_ns > 0 ? std::min(missed, late_by_ns / period_ns + 1) : std::int64_t{0};
+      };
+      const std::int64_t on_time_missed = misses_after(now_ns - woke_ns - period_ns);
+      const std::int64_t own_missed = std::min(on_time_missed, misses_after(now_ns - woke_ns - advance_ns - period_ns));
+      summary.simulation_misses += static_cast<std::uint64_t>(on_time_missed - own_missed);
+      summary.stall_misses += static_cast<std::uint64_t>(missed - on_time_missed);
       overrun_streak = own_missed > 0
                            ? static_cast<std::uint32_t>(std::min<std::int64_t>(overrun_streak + own_missed, UINT32_MAX))
                            : 0;

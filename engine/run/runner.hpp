@@ -38,9 +38,11 @@ struct RunOptions {
   // Sustained overruns: this many deadline misses in a row (a single stall of k periods
   // counts k) is a warning, this many a fault: the device is commanded zero force and
   // the run ends. The fault counts only the misses the loop's own work made (the tick, the
-  // device, the observers took too long); misses after a late wake-up (the OS or the VM
-  // did not run the loop in time: an isolated stall of the system) are counted, warned of,
-  // and fault only as frequent misses (the window below).
+  // device's read and write, the observers took too long); misses after a late wake-up
+  // (the OS or the VM did not run the loop in time: an isolated stall of the system) and
+  // misses while a simulated device computed its period (Device::advance: a simulated
+  // board's process that fell behind real time) are counted, warned of, and fault only as
+  // frequent misses (the window below).
   std::uint32_t overrun_warn_ticks{3};
   std::uint32_t overrun_fault_ticks{10};
   // Frequent overruns: more than overrun_window_misses deadline misses among the last
@@ -125,6 +127,7 @@ struct RunSummaryOf {
   std::uint64_t script_budget_overruns{}; // scripts disabled by their instruction, time or memory limit
   std::uint64_t deadline_misses{};  // deadlines passed without a command (a tick overrunning k periods: k)
   std::uint64_t stall_misses{};     // of these, the ones a late wake-up made (the system stalled the loop)
+  std::uint64_t simulation_misses{};  // and the ones a simulated device's advance() made (its board process fell behind)
   LatencyHistogram compute_ns;      // read + step + write of each tick
   LatencyHistogram wake_late_ns;    // real time: how late each tick started
   std::vector<ScriptReport> scripts;  // one per script effect, in scene order

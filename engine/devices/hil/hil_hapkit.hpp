@@ -50,6 +50,7 @@ class HilHapkit final : public Device, public SimulationTruth {
     fill_link_health(link_, &out->link[0]);
   }
   std::vector<std::string> link_names() const override { return {"simulated board"}; }
+  std::vector<int> lockstep_processes() const override { return {board_.process_id()}; }
   const SimulationTruth* truth() const noexcept override { return this; }
 
   // The plant's true state (observers: `run --plot`, the recorder).

@@ -58,6 +58,9 @@ class HilPair final : public DeviceOf<2>, public SimulationTruthOf<2> {
     for (std::size_t i = 0; i < 2; ++i) fill_link_health(joints_[i].link, &out->link[i]);
   }
   std::vector<std::string> link_names() const override { return {"simulated board 1", "simulated board 2"}; }
+  std::vector<int> lockstep_processes() const override {
+    return {joints_[0].board.process_id(), joints_[1].board.process_id()};
+  }
   const SimulationTruthOf<2>* truth() const noexcept override { return this; }
 
   // The plant's true state.
