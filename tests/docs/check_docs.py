@@ -17,7 +17,9 @@ Reads README.md, scripts/README.md and docs/**/*.md and checks:
     order, in a scratch folder (environments/ and scripts/ linked in, build/hapscene the
     binary), and where a ```console block shows output after `$ command`, the output is
     compared line by line (a line `...` stands for any lines);
-  - README.md's "first environment" and docs/index.md's are the same text.
+  - README.md's "first environment" and docs/index.md's are the same text;
+  - every docs/*.md page the sources name (comments, messages, schemas) exists, and no
+    source points into a README section any more (the sections are pages under docs/).
 
 Conventions, written as an HTML comment on the line before a fenced block:
   <!-- no-test: REASON -->  the block is not run or loaded (hardware, another repository);
@@ -281,6 +283,30 @@ def run_page(path, blocks, folder):
                                                                        '\n'.join(expected)))
 
 
+def check_code_references():
+    """Paths of pages named in the sources (comments, messages, schemas) exist, and no source
+    points into a README section: those sections are pages under docs/ now."""
+    for top in ('engine', 'schemas', 'python', 'tests', 'scripts', 'firmware', 'protocol', '.ci', 'docs'):
+        for folder, _, names in os.walk(os.path.join(SOURCE, top)):
+            for name in names:
+                path = os.path.join(folder, name)
+                if os.path.abspath(path) == os.path.abspath(__file__):
+                    continue
+                if name.endswith(('.md', '.csv', '.svg', '.elf', '.hex')) or 'corpus' in path or 'golden' in path:
+                    continue
+                try:
+                    text = open(path, encoding='utf-8').read()
+                except (UnicodeDecodeError, OSError):
+                    continue
+                where = os.path.relpath(path, SOURCE)
+                for page in set(re.findall(r'\bdocs/[\w/.-]+\.md', text)):
+                    counts['links'] += 1
+                    if not os.path.exists(os.path.join(SOURCE, page)):
+                        fail(where, 'names %s: no such page' % page)
+                if re.search(r'README(\.md)?(\'s)?,? \(?\\?"|README \(|README, [A-Z]', text):
+                    fail(where, 'points into a README section; name the page under docs/ instead')
+
+
 def first_environment(path):
     text = open(path, encoding='utf-8').read()
     m = re.search(r'<!-- first-environment: begin.*?-->\n(.*?)<!-- first-environment: end -->', text, re.S)
@@ -326,6 +352,7 @@ def main():
                 first_line, last_line = text[:begin].count('\n'), text[:end].count('\n')
                 run_page(path, [b for b in blocks if first_line < b.start < last_line + 1],
                          scratch_folder(root, 'page%d' % page_number))
+        check_code_references()
         readme, index = (first_environment(os.path.join(SOURCE, p)) for p in ('README.md', 'docs/index.md'))
         if readme is None or readme != index:
             fail('docs/index.md', 'its "first environment" differs from README.md\'s (or a marker is missing)')
