@@ -18,6 +18,7 @@ Reads README.md, scripts/README.md and docs/**/*.md and checks:
     binary), and where a ```console block shows output after `$ command`, the output is
     compared line by line (a line `...` stands for any lines);
   - README.md's "first environment" and docs/index.md's are the same text;
+  - mkdocs.yml's nav lists every page of docs/;
   - every docs/*.md page the sources name (comments, messages, schemas) exists, and no
     source points into a README section any more (the sections are pages under docs/).
 
@@ -353,6 +354,13 @@ def main():
                 run_page(path, [b for b in blocks if first_line < b.start < last_line + 1],
                          scratch_folder(root, 'page%d' % page_number))
         check_code_references()
+        # The site's navigation (mkdocs.yml) lists every page, and only pages that exist.
+        nav = set(re.findall(r':\s*([\w/.-]+\.md)\s*$', open(os.path.join(SOURCE, 'mkdocs.yml')).read(), re.M))
+        pages = {os.path.relpath(p, os.path.join(SOURCE, 'docs')) for p in markdown_files() if '/docs/' in p}
+        for page in sorted(pages - nav):
+            fail('mkdocs.yml', 'the nav does not list docs/' + page)
+        for page in sorted(nav - pages):
+            fail('mkdocs.yml', 'the nav lists docs/%s, which does not exist' % page)
         readme, index = (first_environment(os.path.join(SOURCE, p)) for p in ('README.md', 'docs/index.md'))
         if readme is None or readme != index:
             fail('docs/index.md', 'its "first environment" differs from README.md\'s (or a marker is missing)')
