@@ -1,6 +1,6 @@
 """Sweep a wall's stiffness, validate each value, plot the passivity ratio.
 
-A script a notebook can paste (README "Python"). For each stiffness it writes the lab
+A script a notebook can paste (docs/tutorials/python.md). For each stiffness it writes the lab
 wall (environments/wall.json) with that stiffness to a temporary file, runs
 hapscene.validate on it (the `hapscene validate` scenarios, in simulated time), and
 plots the passivity ratio (energy the loop created / energy dissipated) of the sweep,

@@ -1,4 +1,4 @@
-// The Python module `hapscene` (README "Python"): the engine's load, probe, simulate,
+// The Python module `hapscene` (docs/reference/python.md): the engine's load, probe, simulate,
 // validate and test for notebooks and scripts, with numpy arrays in and out. Everything
 // runs the command line's code (the hapscene_cli library), so results are the CLI's bit
 // for bit. The GIL is released while the engine works; nothing from Python runs in a tick.

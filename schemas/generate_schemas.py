@@ -166,7 +166,7 @@ def script_effect(axes):
         "load_time": quantity("time", minimum=0, maximum=600, exclusive_min=True),
         "log_rate": quantity("frequency", minimum=0, maximum=1e5),
         "log_burst": whole(0, 64),
-    }, description="the script's limits (scripts/README.md \"Limits\")")
+    }, description="the script's limits (docs/reference/lua.md, \"Limits\")")
     return closed({
         "type": {"const": "script"},
         "enabled": BOOLEAN,
@@ -295,7 +295,7 @@ def validate_block(axes):
         common.update({"max_pop_through": whole(0, 1_000_000_000),
                        "max_singularity_ticks": whole(0, 1_000_000_000),
                        "release_from": quantity("length", **POSITIVE_LENGTH)})
-    return closed(common, description="thresholds of hapscene validate (README \"Validate\")")
+    return closed(common, description="thresholds of hapscene validate (docs/reference/validate.md)")
 
 
 def environment_form(axes):
@@ -343,7 +343,7 @@ def environment_schema(capstan_names, planar_names):
         },
     }
     return root("environment", "hapscene environment",
-                "An environment file (README \"Environment files\", \"2-DOF devices (planar)\"): 1-D for a "
+                "An environment file (docs/reference/environments.md): 1-D for a "
                 "capstan device profile, 2-D for a planar one.", list(UNITS), body, defs)
 
 
@@ -493,7 +493,7 @@ def planar_profile():
         "limits": limits,
         "plant": plant,
     }, required=["kind", "name", "frame", "kinematics", "joints", "home", "limits", "plant"],
-        description="a 2-DOF (planar) device profile (docs/devices-2d.md)")
+        description="a 2-DOF (planar) device profile (docs/reference/devices-2d.md)")
 
 
 def without_required(schema):
@@ -529,7 +529,7 @@ def profile_schema():
         "else": whole,
     }
     return root("device-profile", "hapscene device profile",
-                "A device profile (README \"Device profiles and kinematics\"; planar: docs/devices-2d.md).",
+                "A device profile (docs/reference/devices.md; planar: docs/reference/devices-2d.md).",
                 list(UNITS), body, {"capstan": capstan, "planar": planar,
                                     "capstan_override": without_required(capstan),
                                     "planar_override": without_required(planar)})
@@ -592,7 +592,7 @@ def spec_form(axes):
 def spec_schema():
     body = {"type": "object", "anyOf": [{"$ref": "#/$defs/spec_1d"}, {"$ref": "#/$defs/spec_2d"}]}
     return root("test-spec", "hapscene test spec",
-                "A test spec, NAME.test.json (README \"Test specs\", \"Test specs in 2-D\"): the 1-D form for a "
+                "A test spec, NAME.test.json (docs/reference/test-specs.md): the 1-D form for a "
                 "1-DOF environment (\"x\", [a, b]), the 2-D form for a planar one (\"at\": [x, y], boxes).",
                 list(UNITS), body, {"spec_1d": spec_form(1), "spec_2d": spec_form(2)})
 
@@ -700,7 +700,7 @@ def report_schema():
             "if": {"properties": {"axes": {"const": 2}}, "required": ["axes"]},
             "then": {"$ref": "#/$defs/report_2d"}, "else": {"$ref": "#/$defs/report_1d"}}
     schema = root("validate-report", "hapscene validate report (hapscene-validate/1)",
-                  "What `hapscene validate --report FILE` writes (README \"Validate\"): a 1-D report, or a 2-D "
+                  "What `hapscene validate --report FILE` writes (docs/reference/validate-report.md): a 1-D report, or a 2-D "
                   "one marked \"axes\": 2. Fields are only ever added to hapscene-validate/1, so objects here "
                   "allow keys they do not list; the test json_schemas checks that they list every key hapscene "
                   "writes today.", [], body,

@@ -1,6 +1,6 @@
 #pragma once
 // The finite range of every physical number an environment or device profile may give
-// (README "Environment files" and "Device profiles and kinematics" list them). They are
+// (docs/reference/environments.md and docs/reference/devices.md list them). They are
 // generous: far beyond anything a Hapkit-sized device can render or be, yet small enough
 // that every product the engine forms (stiffness x length, damping x speed) stays finite,
 // so no absurd value from a file reaches the tick.

@@ -294,7 +294,7 @@ int bench_command(std::vector<std::string> args) {
     print_out("instr: instructions per tick from the CPU's counters (one more pass)\n\n");
   } else {
     print_out("instr: not available here (%s); count them with valgrind: hapscene bench --callgrind "
-              "(see README, Measurements)\n\n", counter.reason().c_str());
+              "(see docs/explanation/measurements.md)\n\n", counter.reason().c_str());
   }
   // Each environment's group: the hand-written code first (the ratios' reference), then
   // the engine, then Lua, on the environment's own recorded readings.

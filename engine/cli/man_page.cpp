@@ -78,8 +78,8 @@ std::string man_page(std::string_view version) {
   out += ".SH \"EXIT STATUS\"\n" + roff(kExitNote) + "\n";
   out += ".SH FILES\n.TP\n.I environments/\nThe shipped environments (*.json, *.lua) and their test specs "
          "(*.test.json).\n.TP\n.I scripts/\nLua scripts and their specs.\n";
-  out += ".SH \"SEE ALSO\"\nThe README of the hapscene sources: environment files, scripts, device profiles, "
-         "the test harness and the device path.\n";
+  out += ".SH \"SEE ALSO\"\nThe documentation in /usr/share/doc/hapscene (README.md, docs/, and html/ when built) or in "
+         "the sources: tutorials, environment files, scripts, device profiles, the test harness and the device path.\n";
   return out;
 }
 

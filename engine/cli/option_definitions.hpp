@@ -3,7 +3,7 @@
 // their numbers through these definitions only (Arguments::take), so a value outside its
 // range is refused in one place, with exit code 2 and a message naming the option and
 // the range. The ranges are generous for real use and keep every allocation and loop a
-// value drives bounded (the README's "Using it" lists them).
+// value drives bounded (docs/reference/commands.md lists them).
 #include <cstdint>
 #include <limits>
 

@@ -9,7 +9,7 @@
 // encoder's continuous counter), a linear map from counts to sector angle and the capstan
 // to the handle; force to motor torque through the same ratios, then the duty law (the
 // Hapkit's sqrt law, or linear) and a direction pin (engine/devices/kinematics.hpp).
-// docs/n-axis.md says how models for other devices and more axes plug in here.
+// docs/explanation/n-axis.md says how models for other devices and more axes plug in here.
 #include <cstdint>
 
 #include "engine/devices/device.hpp"

@@ -19,8 +19,8 @@ struct SimulationConfig {
   double start_x_m{0.0};
   HandConfig hand;
   std::uint64_t noise_seed{1};
-  // How the plant is integrated over each tick (see plant_integrators.hpp and the README's
-  // "Measurements": chosen from the accuracy bench's Pareto front).
+  // How the plant is integrated over each tick (see plant_integrators.hpp and docs/explanation/
+  // measurements.md: chosen from the accuracy bench's Pareto front).
   PlantIntegrator integrator{PlantIntegrator::exact};
   int substeps_per_tick{2};  // plant integration steps per advance()
 };

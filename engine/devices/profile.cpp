@@ -12,7 +12,7 @@
 namespace hapscene {
 namespace {
 
-// Ranges of the profile's own numbers (README "Device profiles and kinematics"); the
+// Ranges of the profile's own numbers (docs/reference/devices.md); the
 // shared ones are in physical_ranges.hpp. Each is far wider than any desktop haptic device
 // and keeps the kinematics and the simulated plant finite.
 constexpr double kMaxDegPerCount = 10.0;  // |slope|: at least 1e-6 deg per count

@@ -6,7 +6,7 @@
 namespace hapscene {
 
 // Handle state for one tick of a scene with N axes, in SI units and the device's task
-// frame (docs/n-axis.md). For N = 1 the vectors are doubles.
+// frame (docs/explanation/n-axis.md). For N = 1 the vectors are doubles.
 template <int N>
 struct EffectInputOf {
   Axes<N> x_m{};          // handle position

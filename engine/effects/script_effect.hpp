@@ -16,8 +16,8 @@ namespace hapscene {
 
 class ObjectReader;
 
-// Bounds on all the script effects of one environment together (scripts/README.md
-// "Limits"): each has its own Lua state, and every run creates them all again.
+// Bounds on all the script effects of one environment together (docs/reference/
+// lua.md, "Limits"): each has its own Lua state, and every run creates them all again.
 inline constexpr std::size_t kMaxScriptEffects = 64;
 // Their memory_bytes add up to at most this (the most one script may have).
 inline constexpr std::size_t kMaxScriptMemoryBytesTotal = std::size_t{1} << 30;

@@ -25,8 +25,8 @@ inline std::string describe_planar_point(const Vec2& x_m, const Vec2& v_m_per_s,
   return describe_point(x_m, v_m_per_s, t_s);
 }
 
-// The grid step of 2-D validate's open-loop scan for script faults (README "Validation
-// in 2-D"), as test specs' region and fault scans use (kPlanarSpecGridStep_m).
+// The grid step of 2-D validate's open-loop scan for script faults (docs/reference/
+// validate.md, "Validation in 2-D"), as test specs' region and fault scans use (kPlanarSpecGridStep_m).
 inline constexpr double kPlanarFaultScanStep_m = 1e-3;
 
 // The points of the scene's workspace box every `step_m` on both axes from its lower left

@@ -1,5 +1,5 @@
 #pragma once
-// Test specs for 2-DOF (planar) environments (README "Test specs in 2-D"): the 1-D format
+// Test specs for 2-DOF (planar) environments (docs/reference/test-specs.md, "Test specs in 2-D"): the 1-D format
 // with vectors. `forces` at points "at": [x, y] with "v": [vx, vy] and "force": [fx, fy]
 // (tolerance on the magnitude of the difference), `zero_outside` a box region, and
 // `never_exceeds` over a grid of the workspace, all open loop as the 2-D `probe` computes
@@ -22,8 +22,8 @@ namespace hapscene {
 // workspace box, on both axes.
 inline constexpr double kPlanarSpecGridStep_m = kPlanarFaultScanStep_m;
 
-// A scenario expectation of a 2-D spec, as written: the keys of the 1-D ones (README
-// "Test specs"); the scenario's name and the check names in `fail` are not checked
+// A scenario expectation of a 2-D spec, as written: the keys of the 1-D ones (docs/reference/
+// test-specs.md); the scenario's name and the check names in `fail` are not checked
 // against a list here (2-D validate names its own).
 struct PlanarScenarioExpectation {
   std::string pointer;  // "/scenarios/0"

@@ -1,6 +1,6 @@
 #pragma once
-// Validation reports: a table for the terminal and JSON for tools (schema in README,
-// "hapscene validate").
+// Validation reports: a table for the terminal and JSON for tools (schema in
+// docs/reference/validate-report.md).
 #include <string>
 
 #include <nlohmann/json.hpp>

@@ -1,6 +1,5 @@
 #pragma once
-// Environment test specs (`environments/<name>.test.json`, format in README "Test
-// specs"): what an environment should feel like, checked by `hapscene test`.
+// Environment test specs (`environments/<name>.test.json`, format in docs/reference/test-specs.md): what an environment should feel like, checked by `hapscene test`.
 #include <string>
 #include <vector>
 
@@ -22,7 +21,7 @@ struct SpecResult {
 
 // Loads the spec and its environment (InputError, located, for anything invalid), then
 // probes, validates and compares. A spec whose environment is a 2-DOF scene is run by
-// run_planar_test_spec (planar_test_spec.hpp: README "Test specs in 2-D").
+// run_planar_test_spec (planar_test_spec.hpp: docs/reference/test-specs.md, "Test specs in 2-D").
 SpecResult run_test_spec(const std::string& spec_path);
 
 // Every *.test.json under the given folders (recursively), sorted.

@@ -37,7 +37,7 @@ Scene load_environment_text(std::string_view json_text, const std::string& displ
 // planar profile, else 1. Throws InputError when the file cannot be read or parsed.
 int environment_axes(const std::string& path);
 
-// A planar (2-DOF) environment: the same format with vectors (README "2-DOF devices").
+// A planar (2-DOF) environment: the same format with vectors (docs/reference/environments.md, "2-D environments").
 // Throws InputError naming the file and the place.
 PlanarScene load_planar_environment_file(const std::string& path);
 PlanarScene load_planar_environment_text(std::string_view json_text, const std::string& display_name,

@@ -189,7 +189,7 @@ bool time_exceeded(ScriptVm* vm, lua_State* L, int level) {
   locate();
   record_fault(vm, ScriptFault::time_limit,
                "%s: time backstop exceeded (%g ms of CPU time per call; instructions that cost "
-               "far more than usual, see scripts/README.md)", where, vm->backstop_s * 1e3);
+               "far more than usual, see docs/reference/lua.md)", where, vm->backstop_s * 1e3);
   return true;
 }
 

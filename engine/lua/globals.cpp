@@ -644,7 +644,7 @@ int global_index(lua_State* L) {
                               "dofile", "loadfile", "warn", "module", "setfenv", "getfenv"}) {
     if (std::strcmp(name, removed) == 0) {
       return luaL_error(L, "undefined global '%s' (scripts run in a sandbox without it; see "
-                           "scripts/README.md)", name);
+                           "docs/reference/lua.md)", name);
     }
   }
   if (std::strcmp(name, "unpack") == 0) {

@@ -4,7 +4,7 @@
 // its own ScriptInstance from it, which owns one sandboxed lua_State. So a scene can be
 // run twice, reset or hot-reloaded without one run seeing another's script state.
 //
-// Script API (scripts/README.md has the full text with examples):
+// Script API (docs/reference/lua.md has the full text with examples):
 //   params = { stiffness = "100 N/m", center = "0 mm" }   -- defaults; JSON overrides them
 //   needs = { velocity = false, time = false }             -- optional: what force() reads
 //   function force(s) return -params.stiffness * (s.x - params.center) end
@@ -61,7 +61,7 @@ struct ScriptLimits {
   // checks), always on. A well-behaved load takes milliseconds; this stops a source
   // that is pathological to compile or a top level whose C work the instruction count
   // does not see. Hot reload relies on it: ScriptInstance::create and compile_script
-  // return or throw within load_time_s plus the overshoot bound in scripts/README.md.
+  // return or throw within load_time_s plus the overshoot bound in docs/reference/lua.md.
   double load_time_s{5.0};
   // log()/print(): messages admitted per second of run time (s.t), and the burst.
   double log_messages_per_s{10.0};
@@ -128,7 +128,7 @@ struct ScriptParam {
   bool overridden{};  // set from the JSON params
 };
 
-// A shape a 2-D script declares in its optional global `shapes` (scripts/README.md,
+// A shape a 2-D script declares in its optional global `shapes` (docs/reference/lua.md,
 // "Scripts in 2-D"), in SI: where validate's scenarios press, corner, swipe and release,
 // as they do for the built-in shapes. It describes the script; the script still renders
 // itself, and nothing checks that it renders this shape.

@@ -416,7 +416,7 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
     } else if (results == 1 && lua_type(L, -1) == LUA_TNUMBER) {
       detail::record_fault(vm, ScriptFault::bad_return,
                            "%s:%d: force(s) returned one number, expected two, fx, fy (N): this is a 2-D scene, "
-                           "and a 1-D script returns one (scripts/README.md, \"Scripts in 2-D\")",
+                           "and a 1-D script returns one (docs/reference/lua.md, \"Scripts in 2-D\")",
                            name, vm->force_line);
     } else {
       detail::record_fault(vm, ScriptFault::bad_return,

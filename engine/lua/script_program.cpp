@@ -147,7 +147,7 @@ ScriptProgram compile_script(std::string display_name, std::string source,
       const std::string where = instance->vm_->short_source + ":" + std::to_string(instance->vm_->force_line);
       throw InputError(where + ": force(s) returned " + std::to_string(results) + " values, expected one number (N)" +
                        (results == 2 ? ": this is a 1-D scene, and a 2-D script returns two, fx, fy "
-                                       "(scripts/README.md, \"Scripts in 2-D\")"
+                                       "(docs/reference/lua.md, \"Scripts in 2-D\")"
                                      : "") +
                        " (while checking force(s) at x = 0 m, v = 0 m/s, t = 0 s)");
     }

@@ -98,7 +98,7 @@ std::string realtime_permission_hint(bool fifo_refused, bool lock_refused, const
   if (lock_refused) caps += std::string(caps.empty() ? "" : ",") + "cap_ipc_lock";
   return "add " + limits + " to /etc/security/limits.d/hapscene.conf and log in again, or run `sudo setcap " + caps +
          "+ep " + executable + "`; without " + (fifo_refused ? "it other processes can preempt the loop" :
-         "it a page fault can stall a tick") + " (README \"The loop\": on a busy 2-core machine runs without "
+         "it a page fault can stall a tick") + " (docs/explanation/loop.md: on a busy 2-core machine runs without "
          "SCHED_FIFO ended on overrun faults in 4 of 4 tries)";
 }
 

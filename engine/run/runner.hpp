@@ -49,7 +49,7 @@ struct RunOptions {
   // overrun_window_deadlines deadlines (a sliding window; at most kMaxOverrunWindow) is a
   // fault too. Periodic slow ticks never make a streak of 10, yet leave the device
   // running at a fraction of its rate. 100 of 1000: a loaded machine without real-time
-  // scheduling misses far fewer (README "The loop" gives the measurement).
+  // scheduling misses far fewer (docs/explanation/loop.md gives the measurement).
   std::uint32_t overrun_window_deadlines{1000};
   std::uint32_t overrun_window_misses{100};
   // The four numbers above are deadlines at 1 kHz. Above 1 kHz each is scaled by

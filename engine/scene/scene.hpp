@@ -20,7 +20,7 @@ namespace hapscene {
 
 // What a scene with N axes is made of: its device's profile and compiled model, what the
 // device reads and takes each tick, and its effect types. One specialisation per N
-// (docs/n-axis.md); everything else of a scene, its tick and its run is written once.
+// (docs/explanation/n-axis.md); everything else of a scene, its tick and its run is written once.
 template <int N>
 struct SceneParts;
 

@@ -14,7 +14,7 @@
 //   POST /api/params    {"effect": I, "parameter": NAME, "value": V}: 200 taken, 400 refused
 //   POST /api/save      writes the values back to the environment file
 //   POST /api/validate  runs the harness on the current values; the verdict table
-// (README "Live view" gives the formats.)
+// (docs/reference/live-view-api.md gives the formats.)
 #include <cstdint>
 #include <memory>
 #include <string>

@@ -29,7 +29,7 @@ if not solid_inside and params.solid ~= "outside" then
 end
 if not (x0 < x1 and y0 < y1) then error("box: need min_x < max_x and min_y < max_y") end
 if K < 0 then error("box: need stiffness >= 0") end
--- The box as validate sees it (scripts/README.md, "Scripts in 2-D"): it presses into its
+-- The box as validate sees it (docs/reference/lua.md, "Scripts in 2-D"): it presses into its
 -- edges and corners as it does into the built-in box's.
 shapes = { { type = "box", min = { x0, y0 }, max = { x1, y1 }, solid = params.solid } }
 local min = math.min

@@ -22,7 +22,7 @@ if not solid_inside and params.solid ~= "outside" then
   error('circle: params.solid must be "inside" or "outside", got "' .. params.solid .. '"')
 end
 if r <= 0 or K < 0 then error("circle: need radius > 0 and stiffness >= 0") end
--- The circle as validate sees it (scripts/README.md, "Scripts in 2-D").
+-- The circle as validate sees it (docs/reference/lua.md, "Scripts in 2-D").
 shapes = { { type = "circle", center = { cx, cy }, radius = r, solid = params.solid } }
 local sqrt = math.sqrt
 

@@ -40,7 +40,7 @@ for i = 1, n do
   X0[i], Y0[i], X1[i], Y1[i] = w[1] * 1e-3, w[2] * 1e-3, w[3] * 1e-3, w[4] * 1e-3
 end
 
--- The walls as validate sees them (scripts/README.md, "Scripts in 2-D"): it presses into
+-- The walls as validate sees them (docs/reference/lua.md, "Scripts in 2-D"): it presses into
 -- their faces and corners and swipes across the thin ones, as for built-in boxes.
 shapes = {}
 for i = 1, n do

@@ -1,5 +1,5 @@
-// The folders of the source tree form layers that include only downward (README
-// "Architecture"). This test reads the #include lines of every source file and fails on
+// The folders of the source tree form layers that include only downward (docs/
+// explanation/architecture.md). This test reads the #include lines of every source file and fails on
 // an include that goes up or sideways, which also rules out cycles between folders.
 #include <doctest/doctest.h>
 

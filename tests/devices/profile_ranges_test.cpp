@@ -1,5 +1,5 @@
-// Every number of a device profile has a finite physical range (README "Device profiles
-// and kinematics"): an absurd value is refused with the profile's file and JSON pointer,
+// Every number of a device profile has a finite physical range (docs/reference/
+// devices.md): an absurd value is refused with the profile's file and JSON pointer,
 // after the environment's /device when the profile is referenced from one.
 #include <doctest/doctest.h>
 

@@ -1,5 +1,5 @@
 // One environment's effects are bounded in number, and its script effects together in
-// number, memory and load time (scripts/README.md "Limits"), so no file can make a load
+// number, memory and load time (docs/reference/lua.md, "Limits"), so no file can make a load
 // grow without bound.
 #include <doctest/doctest.h>
 

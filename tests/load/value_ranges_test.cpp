@@ -1,5 +1,5 @@
-// Every physical number of an environment has a finite range (README "Environment
-// files"): an absurd value is refused at load with the file and the JSON pointer, and the
+// Every physical number of an environment has a finite range (docs/reference/
+// environments.md): an absurd value is refused at load with the file and the JSON pointer, and the
 // ends of each range load.
 #include <doctest/doctest.h>
 

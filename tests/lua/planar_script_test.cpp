@@ -1,4 +1,4 @@
-// 2-D scripts (scripts/README.md, "Scripts in 2-D"): force(s) reads s.x, s.y, s.vx, s.vy,
+// 2-D scripts (docs/reference/lua.md, "Scripts in 2-D"): force(s) reads s.x, s.y, s.vx, s.vy,
 // s.t, s.dt and returns fx, fy. The shipped scripts/planar/ files against their formulas,
 // the box and circle twins against the built-ins to the bit, faults, the dimension
 // checks at load, planar scenes with script effects, and no allocation per call.

@@ -1,5 +1,5 @@
 // Cost per call of a script in the tick: the lab spring and texture as shipped Lua, next
-// to the same formulas in C++. Prints the medians (the README quotes them); the check is
+// to the same formulas in C++. Prints the medians (docs/reference/lua.md quotes them); the check is
 // loose on purpose, to catch a regression by an order of magnitude, not machine noise.
 #include <algorithm>
 #include <chrono>

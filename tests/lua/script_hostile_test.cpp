@@ -1,5 +1,5 @@
 // Hostile scripts: whatever a script does, one force()/reset() call or one load ends
-// within its budget's time (scripts/README.md, "What bounds a call"). Each case is C work
+// within its budget's time (docs/reference/lua.md, "What bounds a call"). Each case is C work
 // that the instruction count does not see at its real cost; without its fix each took
 // seconds to forever. The time bounds are loose (a loaded 2-core machine), the faults
 // exact.

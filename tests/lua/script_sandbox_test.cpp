@@ -18,14 +18,14 @@ TEST_CASE("sandbox: io, os, debug, package and the loaders are not there") {
     CHECK(load_error(std::string("local escape = ") + name + "\nfunction force(s) return 0 end",
                      {}, {}, "scripts/escape.lua") ==
           std::string("scripts/escape.lua:1: undefined global '") + name +
-              "' (scripts run in a sandbox without it; see scripts/README.md)");
+              "' (scripts run in a sandbox without it; see docs/reference/lua.md)");
   }
   CHECK(load_error("os.execute('echo hacked')") ==
         "t.lua:1: undefined global 'os' (scripts run in a sandbox without it; see "
-        "scripts/README.md)");
+        "docs/reference/lua.md)");
   CHECK(load_error("local f = io.open('/etc/passwd')") ==
         "t.lua:1: undefined global 'io' (scripts run in a sandbox without it; see "
-        "scripts/README.md)");
+        "docs/reference/lua.md)");
   // Raw access does not find them either.
   CHECK(load_error("assert(rawget(_G, 'load') == nil and rawget(_G, 'require') == nil)\n"
                    "function force(s) return 0 end") == "");

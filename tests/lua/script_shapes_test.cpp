@@ -1,4 +1,4 @@
-// A 2-D script's optional `shapes` (scripts/README.md, "Scripts in 2-D"): boxes and
+// A 2-D script's optional `shapes` (docs/reference/lua.md, "Scripts in 2-D"): boxes and
 // circles in SI or unit strings, read at load into ScriptProgram::shapes; every bad entry
 // is a load error naming it (shapes[i].key); a 1-D scene refuses a script that declares
 // shapes, after its own dimension check.

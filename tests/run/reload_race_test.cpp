@@ -1,6 +1,6 @@
 // The live status drains script log messages from its own thread while hot reload swaps
 // the script instances on the loop and destroys replaced ones on the reload thread. Run
-// under ThreadSanitizer (see the README, Tests) this is the reproducer of the race where
+// under ThreadSanitizer (see docs/explanation/testing.md) this is the reproducer of the race where
 // the status thread read the script list the loop swapped; here it also checks that no
 // version's messages are lost.
 #include <doctest/doctest.h>

@@ -1,5 +1,5 @@
 // The live view's stiffness ranges in 2-D: the stable stiffness of a linkage varies with
-// the pose (README "Validation in 2-D": on the Haplink the bound falls from about 134 N/m
+// the pose (docs/reference/validate.md, "Validation in 2-D": on the Haplink the bound falls from about 134 N/m
 // near the base, y = 90 mm, to 42 N/m at the far corner), so each shape's stiffness slider
 // ends at the smallest per-pose bound on that shape's boundary inside the workspace, and
 // GET /api/scene names the pose. A spring acts everywhere: the workspace grid's lowest.

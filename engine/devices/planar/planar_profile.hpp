@@ -3,7 +3,7 @@
 // 2DIY. Loaded from JSON (environments/devices/*.json with "kind": "planar"); the 1-DOF
 // loader (engine/devices/profile.hpp) refuses these files and this loader refuses 1-DOF
 // ones, each naming the other. Every number is SI once parsed (angles in rad, torques in
-// N m); docs/devices-2d.md describes each shipped profile's task frame.
+// N m); docs/reference/devices-2d.md describes each shipped profile's task frame.
 //
 // The parts, per tick (engine/devices/planar/planar_model.hpp):
 //   raw reading per joint --sensor--> sensed angle --coupling--> joint angles q

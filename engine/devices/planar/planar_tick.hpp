@@ -1,7 +1,7 @@
 #pragma once
 // A planar (2-DOF) device as the scene's tick sees it: the device model functions that
 // step() calls for every device family (sense_position_m, motor_command, pose_hold) and
-// what a 2-joint device reads and takes (DeviceIo<2>). docs/n-axis.md draws the seam.
+// what a 2-joint device reads and takes (DeviceIo<2>). docs/explanation/n-axis.md draws the seam.
 #include <cmath>
 #include <cstdint>
 #include <limits>
