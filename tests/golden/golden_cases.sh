@@ -24,14 +24,17 @@ golden_planar_grid() {
   esac
 }
 
-golden_sources() {
-  for source in environments/*.json scripts/*.lua; do
+# golden_not_specs FILE...: the files that are not test specs, one a line.
+golden_not_specs() {
+  for source in "$@"; do
     case "$source" in
       *.test.json) ;;
       *) printf '%s\n' "$source" ;;
     esac
   done
 }
+
+golden_sources() { golden_not_specs environments/*.json scripts/*.lua; }
 
 # golden_generate BINARY OUTDIR: writes every case under OUTDIR. Returns 1 (after trying
 # every case) when a probe or a run exits with anything but 0 or leaves no output.
@@ -65,14 +68,7 @@ golden_generate_lab() {
 
 # The 2-DOF environments (environments/planar/*.json, not the specs): two probes and two
 # closed-loop runs each (the default sweep, and the hand moving the handle round a circle).
-golden_planar_sources() {
-  for source in environments/planar/*.json; do
-    case "$source" in
-      *.test.json) ;;
-      *) printf '%s\n' "$source" ;;
-    esac
-  done
-}
+golden_planar_sources() { golden_not_specs environments/planar/*.json; }
 
 golden_generate_planar() {
   golden_binary=$1
