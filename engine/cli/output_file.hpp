@@ -1,10 +1,8 @@
 #pragma once
-// Writing a whole output file (report, figure). A path that cannot be opened is invalid
+// Writing a whole output file (report, figure, profile). A path that cannot be opened is invalid
 // input (InputError, exit code 2); a write, flush or close that fails afterwards (a full
 // disk, /dev/full) is a failure of the command (std::runtime_error, exit code 1). Both
 // name the file.
-#include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -14,6 +12,7 @@
 #include <vector>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/file_replace.hpp"
 
 namespace hapscene {
 
@@ -22,18 +21,13 @@ inline std::string write_failed_message(const std::string& path, int error_numbe
   return path + ": write failed: " + (error_number != 0 ? std::strerror(error_number) : "unknown error");
 }
 
+// Replaced whole (engine/base/file_replace.hpp): a reader never sees half a report, and a
+// link planted next to it is not written through; /dev/null or /dev/stdout is written
+// through as it is.
 inline void write_output_file(const std::string& path, const std::string& text) {
-  std::FILE* file = std::fopen(path.c_str(), "wb");
-  if (file == nullptr) throw InputError(path + ": cannot write file");
-  errno = 0;
-  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
-  const int write_errno = errno;
-  const bool flushed = written && std::fflush(file) == 0;
-  const int flush_errno = errno;
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !flushed || !closed) {
-    throw std::runtime_error(write_failed_message(path, !written ? write_errno : !flushed ? flush_errno : errno));
-  }
+  const FileWriteOutcome outcome = replace_file(path, text, SpecialPath::write_through);
+  if (outcome.failed == FileWriteStep::open) throw InputError(path + ": cannot write file");
+  if (!outcome.ok()) throw std::runtime_error(write_failed_message(path, outcome.error_number));
 }
 
 // Checks a command's output files before it does any work: each must lie in an existing

@@ -200,11 +200,11 @@ bool script_faulted(const WatchedRun<N>& run) {
   return false;
 }
 
-// Ends `hapscene run` with 1 when `failed` (else 0). A reload load that never finished may
-// still hold a thread: then the process ends at once, without running static destructors
-// under it, after flushing its output.
+// Ends `hapscene run` with 1 when `failed` (else 0). A reload load, or a live view's load
+// or validate run, that never finished may still hold a thread: then the process ends at
+// once, without running static destructors under it, after flushing its output.
 inline int end_run(bool failed) {
-  if (ReloadWatcher::abandoned_loads() > 0) {
+  if (ReloadWatcher::abandoned_loads() > 0 || abandoned_live_view_jobs() > 0) {
     const bool output_ok = report_stdout_failure();
     std::fflush(stderr);
     std::_Exit(failed || !output_ok ? kExitFailure : kExitOk);

@@ -13,7 +13,8 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
-#include <fstream>
+#include <functional>
+#include <optional>
 #include <mutex>
 #include <random>
 #include <system_error>
@@ -23,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/file_replace.hpp"
 #include "engine/base/json_source.hpp"
 #include "engine/harness/planar_report.hpp"
 #include "engine/harness/planar_shape_list.hpp"
@@ -30,6 +32,7 @@
 #include "engine/harness/report.hpp"
 #include "engine/harness/validate.hpp"
 #include "engine/load/environment.hpp"
+#include "engine/serve/connection_gate.hpp"
 #include "engine/serve/parameters.hpp"
 #include "engine/serve/stream_tap.hpp"
 #include "engine/serve/ui_assets.hpp"
@@ -44,6 +47,55 @@ constexpr std::size_t kMaxEnvironmentBytes = std::size_t{1} << 20;
 // The ring between the loop and the pump: 16384 samples (16 s at 1 kHz); the pump empties
 // it 50 times a second.
 constexpr std::size_t kTapCapacity = 1u << 14;
+// The largest request body taken, however it is sent (a parameter change is ~100 bytes).
+constexpr std::size_t kMaxRequestBodyBytes = std::size_t{1} << 16;
+
+std::atomic<std::uint64_t> g_abandoned_jobs{0};
+
+// The state a job's thread shares with the handler waiting for it (either may go first).
+template <class T>
+struct JobState {
+  std::mutex mutex;
+  std::condition_variable done_wake;
+  bool done{};
+  std::optional<T> result;
+  std::exception_ptr error;
+};
+
+// Runs `work` (a load, a validate: seconds, maybe) on a thread of its own and waits for
+// it until it is done or `stopping` is set; then it is abandoned (nullopt): its thread
+// finishes alone on the copies it captured, and the process ends with std::_Exit
+// (abandoned_live_view_jobs()). So no handler keeps the view from stopping. `work`
+// must capture only copies. Rethrows what `work` throws.
+template <class T, class Work>
+std::optional<T> run_job(Work work, const std::atomic<bool>& stopping) {
+  if (stopping.load()) return std::nullopt;
+  auto state = std::make_shared<JobState<T>>();
+  std::thread([state, work = std::move(work)]() mutable {
+    std::optional<T> result;
+    std::exception_ptr error;
+    try {
+      result.emplace(work());
+    } catch (...) {
+      error = std::current_exception();
+    }
+    std::lock_guard lock(state->mutex);
+    state->result = std::move(result);
+    state->error = error;
+    state->done = true;
+    state->done_wake.notify_all();
+  }).detach();
+  std::unique_lock lock(state->mutex);
+  while (!state->done) {
+    if (stopping.load()) {
+      ++g_abandoned_jobs;
+      return std::nullopt;
+    }
+    state->done_wake.wait_for(lock, std::chrono::milliseconds(20));
+  }
+  if (state->error) std::rethrow_exception(state->error);
+  return std::move(state->result);
+}
 
 // 128 random bits as hex, from the system's random source.
 std::string new_token() {
@@ -92,6 +144,29 @@ void error_response(httplib::Response& res, int status, const std::string& messa
   res.set_content(json{{"error", message}}.dump(), "application/json");
 }
 
+// Reads a request's body into `body`, at most kMaxRequestBodyBytes however it is sent
+// (Content-Length, chunked, or until the connection ends): false, with the response
+// set (413 or 400) and the connection to be closed, when it is larger or cannot be read.
+bool read_body(httplib::Response& res, const httplib::ContentReader& reader, std::string* body) {
+  bool too_large = false;
+  const bool read = reader([&](const char* data, std::size_t length) {
+    if (body->size() + length > kMaxRequestBodyBytes) {
+      too_large = true;
+      return false;
+    }
+    body->append(data, length);
+    return true;
+  });
+  if (read && !too_large) return true;
+  GatedServer::close_after_response();
+  if (too_large) {
+    error_response(res, 413, "request body: larger than " + std::to_string(kMaxRequestBodyBytes) + " bytes");
+  } else {
+    error_response(res, 400, "request body: could not be read whole");
+  }
+  return false;
+}
+
 // A client of /api/stream: its events waiting to be written, and what it missed.
 struct StreamClient {
   std::deque<std::string> queue;
@@ -101,9 +176,92 @@ struct StreamClient {
 
 }  // namespace
 
+std::uint64_t abandoned_live_view_jobs() noexcept { return g_abandoned_jobs.load(); }
+
 std::uint64_t live_stride(double rate_hz) {
   return static_cast<std::uint64_t>(std::max(1.0, std::ceil(rate_hz / kLiveMaxTicksPerSecond)));
 }
+
+// A version of the environment as the page sees it: its parameters and GET /api/scene's
+// body (without the run's state).
+struct VersionDescription {
+  std::vector<LiveParameter> parameters;
+  json scene_json;
+};
+
+// Loads a version of the environment from text, as a reload loads the file.
+template <int N>
+std::unique_ptr<LoadedSceneOf<N>> load_version(const std::string& text, const std::string& path,
+                                               const std::string& base_dir) {
+  if constexpr (N == 1) {
+    return make_loaded_scene<1>(load_environment_text(text, path, base_dir));
+  } else {
+    return make_loaded_scene<2>(load_planar_environment_text(text, path, base_dir));
+  }
+}
+
+// The description of `text` compiled as `scene`; `stride`: the stream's.
+template <int N>
+VersionDescription describe_version(const SceneOf<N>& scene, const std::string& text, const std::string& path,
+                                    std::uint64_t stride) {
+  const json document = json::parse(text);
+  VersionDescription out;
+  out.parameters = live_parameters<N>(document, scene);
+  json device{{"name", scene.device.name},
+              {"max_force_N", scene.safety.max_force_N},
+              {"slew_limit_N_per_s", scene.safety.slew_limit_N_per_s},
+              {"soft_start_s", scene.safety.soft_start_s},
+              {"workspace_min_m", axes_json(scene.safety.workspace_min_m)},
+              {"workspace_max_m", axes_json(scene.safety.workspace_max_m)}};
+  json effects = json::array();
+  if (document.contains("effects") && document["effects"].is_array()) {
+    for (std::size_t i = 0; i < document["effects"].size(); ++i) {
+      const json& effect = document["effects"][i];
+      json item{{"effect", i}};
+      item["type"] = effect.is_object() && effect.contains("type") ? effect["type"] : json(nullptr);
+      item["enabled"] = !(effect.is_object() && effect.contains("enabled") && effect["enabled"] == false);
+      if (effect.is_object() && effect.contains("file")) item["file"] = effect["file"];
+      effects.push_back(item);
+    }
+  }
+  json shapes = json::array();
+  if constexpr (N > 1) {
+    for (const PlanarShapeGeometry& shape : planar_shape_list(scene)) {
+      json s{{"kind", planar_shape_kind_name(shape.kind)}, {"solid_inside", shape.solid_inside}};
+      if (shape.kind == PlanarShapeKind::wall) {
+        s["point_m"] = axes_json(shape.point_m);
+        s["normal"] = axes_json(shape.normal);
+      } else if (shape.kind == PlanarShapeKind::circle) {
+        s["center_m"] = axes_json(shape.center_m);
+        s["radius_m"] = shape.radius_m;
+      } else {
+        json points = json::array();
+        for (const Vec2& p : shape.points_m) points.push_back(axes_json(p));
+        s["points_m"] = points;
+      }
+      shapes.push_back(s);
+    }
+  }
+  json params = json::array();
+  for (const LiveParameter& p : out.parameters) params.push_back(parameter_to_json(p));
+  out.scene_json = json{{"name", scene.name},
+                        {"file", path},
+                        {"axes", N},
+                        {"rate_hz", scene.rate_hz},
+                        {"device", device},
+                        {"stream", {{"events_per_s", kLiveEventsPerSecond}, {"stride", stride}}},
+                        {"effects", effects},
+                        {"parameters", params},
+                        {"shapes", shapes}};
+  return out;
+}
+
+// A version loaded and described (on a job's thread).
+template <int N>
+struct PreparedVersion {
+  std::unique_ptr<LoadedSceneOf<N>> loaded;
+  VersionDescription description;
+};
 
 template <int N>
 struct LiveViewOf<N>::Impl {
@@ -119,9 +277,9 @@ struct LiveViewOf<N>::Impl {
     text = read_text_file(path, kMaxEnvironmentBytes);
     file_text = text;
     file_stamp = stamp_of(path);
-    describe(scene, text);
+    take(describe_version<N>(scene, text, path, tap.stride()));
     token = new_token();
-    server.set_payload_max_length(1u << 16);
+    server.set_payload_max_length(kMaxRequestBodyBytes);
     bound_port = address.port == 0 ? server.bind_to_any_port(address.host) : (server.bind_to_port(address.host, address.port) ? address.port : -1);
     if (bound_port < 0) {
       throw InputError("--ui " + address.host + ":" + std::to_string(address.port) + ": cannot listen there (" +
@@ -129,66 +287,22 @@ struct LiveViewOf<N>::Impl {
     }
   }
 
-  // Loads a version of the environment from text, as a reload loads the file.
-  std::unique_ptr<LoadedSceneOf<N>> load_text(const std::string& candidate) const {
-    if constexpr (N == 1) {
-      return make_loaded_scene<1>(load_environment_text(candidate, path, base_dir));
-    } else {
-      return make_loaded_scene<2>(load_planar_environment_text(candidate, path, base_dir));
-    }
+  void take(VersionDescription description) {
+    parameters = std::move(description.parameters);
+    scene_json = std::move(description.scene_json);
   }
 
-  // The scene's description and parameters for `version_text` (with doc_mutex held, or
-  // before serving).
-  void describe(const Scene& scene, const std::string& version_text) {
-    parameters = live_parameters<N>(json::parse(version_text), scene);
-    json device{{"name", scene.device.name},
-                {"max_force_N", scene.safety.max_force_N},
-                {"slew_limit_N_per_s", scene.safety.slew_limit_N_per_s},
-                {"soft_start_s", scene.safety.soft_start_s},
-                {"workspace_min_m", axes_json(scene.safety.workspace_min_m)},
-                {"workspace_max_m", axes_json(scene.safety.workspace_max_m)}};
-    json effects = json::array();
-    const json document = json::parse(version_text);
-    if (document.contains("effects") && document["effects"].is_array()) {
-      for (std::size_t i = 0; i < document["effects"].size(); ++i) {
-        const json& effect = document["effects"][i];
-        json item{{"effect", i}};
-        item["type"] = effect.is_object() && effect.contains("type") ? effect["type"] : json(nullptr);
-        item["enabled"] = !(effect.is_object() && effect.contains("enabled") && effect["enabled"] == false);
-        if (effect.is_object() && effect.contains("file")) item["file"] = effect["file"];
-        effects.push_back(item);
-      }
-    }
-    json shapes = json::array();
-    if constexpr (N > 1) {
-      for (const PlanarShapeGeometry& shape : planar_shape_list(scene)) {
-        json s{{"kind", planar_shape_kind_name(shape.kind)}, {"solid_inside", shape.solid_inside}};
-        if (shape.kind == PlanarShapeKind::wall) {
-          s["point_m"] = axes_json(shape.point_m);
-          s["normal"] = axes_json(shape.normal);
-        } else if (shape.kind == PlanarShapeKind::circle) {
-          s["center_m"] = axes_json(shape.center_m);
-          s["radius_m"] = shape.radius_m;
-        } else {
-          json points = json::array();
-          for (const Vec2& p : shape.points_m) points.push_back(axes_json(p));
-          s["points_m"] = points;
-        }
-        shapes.push_back(s);
-      }
-    }
-    json params = json::array();
-    for (const LiveParameter& p : parameters) params.push_back(parameter_to_json(p));
-    scene_json = json{{"name", scene.name},
-                      {"file", path},
-                      {"axes", N},
-                      {"rate_hz", scene.rate_hz},
-                      {"device", device},
-                      {"stream", {{"events_per_s", kLiveEventsPerSecond}, {"stride", tap.stride()}}},
-                      {"effects", effects},
-                      {"parameters", params},
-                      {"shapes", shapes}};
+  // Loads and describes `candidate` on a job's thread (nullopt: the view stopped first).
+  // Throws what the loader throws.
+  std::optional<PreparedVersion<N>> prepare(const std::string& candidate) {
+    return run_job<PreparedVersion<N>>(
+        [candidate, file = path, dir = base_dir, stride = tap.stride()] {
+          PreparedVersion<N> out;
+          out.loaded = load_version<N>(candidate, file, dir);
+          out.description = describe_version<N>(out.loaded->scene, candidate, file, stride);
+          return out;
+        },
+        stopping);
   }
 
   // The file changed on disk since it was last read or written (an editor saved it; the
@@ -199,8 +313,9 @@ struct LiveViewOf<N>::Impl {
     file_stamp = stamp;
     try {
       const std::string fresh = read_text_file(path, kMaxEnvironmentBytes);
-      std::unique_ptr<LoadedSceneOf<N>> loaded = load_text(fresh);
-      describe(loaded->scene, fresh);
+      std::optional<PreparedVersion<N>> prepared = prepare(fresh);
+      if (!prepared) return;
+      take(std::move(prepared->description));
       text = fresh;
       file_text = fresh;
     } catch (const std::exception&) {
@@ -218,10 +333,10 @@ struct LiveViewOf<N>::Impl {
   }
 
   // POST /api/params.
-  void change(const httplib::Request& req, httplib::Response& res) {
+  void change(const std::string& request_body, httplib::Response& res) {
     json body;
     try {
-      body = json::parse(req.body);
+      body = json::parse(request_body);
     } catch (const json::exception&) {
       error_response(res, 400, "request: expected a JSON object {\"effect\": I, \"parameter\": NAME, \"value\": V}");
       return;
@@ -236,18 +351,18 @@ struct LiveViewOf<N>::Impl {
     try {
       const std::string candidate = with_parameter(text, parameters, body["effect"].get<std::size_t>(),
                                                    body["parameter"].get<std::string>(), body["value"]);
-      std::unique_ptr<LoadedSceneOf<N>> loaded = load_text(candidate);
+      std::optional<PreparedVersion<N>> prepared = prepare(candidate);
+      if (!prepared) {
+        error_response(res, 503, "the run is ending");
+        return;
+      }
       // Described before it is handed over (the loop owns it from then on).
-      const std::vector<LiveParameter> before = parameters;
-      const json scene_before = scene_json;
-      describe(loaded->scene, candidate);
-      const std::string refusal = watcher->offer_version(std::move(loaded));
+      const std::string refusal = watcher->offer_version(std::move(prepared->loaded));
       if (!refusal.empty()) {
-        parameters = before;
-        scene_json = scene_before;
         error_response(res, 400, refusal);
         return;
       }
+      take(std::move(prepared->description));
       text = candidate;
       ++changes;
       res.set_content(scene_with_state().dump(), "application/json");
@@ -258,26 +373,18 @@ struct LiveViewOf<N>::Impl {
     }
   }
 
-  // POST /api/save: the current values into the file, through the watcher so that it
-  // does not reload what it wrote.
+  // POST /api/save: the current values into the file, replacing it whole
+  // (engine/base/file_replace.hpp: never through a link planted next to it), through the
+  // watcher so that it does not reload what it wrote.
   void save(httplib::Response& res) {
     std::lock_guard lock(doc_mutex);
     refresh_from_file();
     const std::string problem = watcher->write_watched([&]() -> std::string {
-      const std::string temporary = path + ".hapscene-save";
-      {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out) return path + ": cannot write " + temporary;
-      }
-      std::error_code error;
-      std::filesystem::rename(temporary, path, error);
-      if (error) {
-        std::filesystem::remove(temporary, error);
-        return path + ": cannot replace the file (" + error.message() + ")";
-      }
-      return {};
+      const FileWriteOutcome outcome = replace_file(path, text, SpecialPath::refuse);
+      if (outcome.ok()) return {};
+      const std::string reason = std::strerror(outcome.error_number);
+      if (outcome.failed == FileWriteStep::open) return path + ": cannot write a new file next to it (" + reason + ")";
+      return path + ": cannot replace the file (" + reason + ")";
     });
     if (!problem.empty()) {
       error_response(res, 500, problem);
@@ -288,12 +395,12 @@ struct LiveViewOf<N>::Impl {
     res.set_content(json{{"saved", path}, {"bytes", text.size()}}.dump(), "application/json");
   }
 
-  // POST /api/validate: the harness on the current values, on this thread at a lower
+  // POST /api/validate: the harness on the current values, on a job's thread at a lower
   // priority than the run (off the loop; one at a time).
   void validate(httplib::Response& res) {
     std::unique_lock busy(validate_mutex, std::try_to_lock);
     if (!busy.owns_lock()) {
-      error_response(res, 409, "a validate run is already going");
+      error_response(res, 409, "a validate run is already running");
       return;
     }
     std::string version;
@@ -301,35 +408,51 @@ struct LiveViewOf<N>::Impl {
       std::lock_guard lock(doc_mutex);
       version = text;
     }
-    setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
     try {
-      json out;
-      if constexpr (N == 1) {
-        const Environment environment = compile_environment(version, path, base_dir);
-        HarnessOptions options;
-        options.thresholds = environment.validate;
-        const ValidationReport report = validate_scene(environment.scene, {}, options);
-        out = {{"pass", report.pass}, {"table", format_report_table(report)}, {"report", report_to_json(report)}};
-      } else {
-        const PlanarEnvironment environment = compile_planar_environment(version, path, base_dir);
-        HarnessOptions options;
-        options.thresholds = environment.validate;
-        PlanarValidationReport report = validate_planar_scene(environment.scene, {}, options);
-        for (PlanarScenarioResult& s : report.scenarios) {
-          s.records.clear();
-          s.proxies_m.clear();
-        }
-        out = {{"pass", report.pass}, {"table", format_planar_report_table(report)}, {"report", planar_report_to_json(report)}};
+      std::optional<json> out = run_job<json>(
+          [version, file = path, dir = base_dir] {
+            setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
+            json result;
+            if constexpr (N == 1) {
+              const Environment environment = compile_environment(version, file, dir);
+              HarnessOptions options;
+              options.thresholds = environment.validate;
+              const ValidationReport report = validate_scene(environment.scene, {}, options);
+              result = {{"pass", report.pass}, {"table", format_report_table(report)}, {"report", report_to_json(report)}};
+            } else {
+              const PlanarEnvironment environment = compile_planar_environment(version, file, dir);
+              HarnessOptions options;
+              options.thresholds = environment.validate;
+              PlanarValidationReport report = validate_planar_scene(environment.scene, {}, options);
+              for (PlanarScenarioResult& s : report.scenarios) {
+                s.records.clear();
+                s.proxies_m.clear();
+              }
+              result = {{"pass", report.pass},
+                        {"table", format_planar_report_table(report)},
+                        {"report", planar_report_to_json(report)}};
+            }
+            return result;
+          },
+          stopping);
+      if (!out) {
+        error_response(res, 503, "the run is ending");
+        return;
       }
-      res.set_content(out.dump(), "application/json");
+      res.set_content(out->dump(), "application/json");
     } catch (const std::exception& error) {
       error_response(res, 400, error.what());
     }
-    setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 0);
   }
 
   // GET /api/stream: the client's events as they come; a keep-alive comment when none.
   void stream(httplib::Response& res) {
+    // Streams have threads of their own, as many as the gate allows.
+    if (!GatedServer::become_stream()) {
+      error_response(res, 503, "too many streams open (at most " + std::to_string(ConnectionLimits{}.streams_total) +
+                                   ", " + std::to_string(ConnectionLimits{}.streams_per_peer) + " per address)");
+      return;
+    }
     auto client = std::make_shared<StreamClient>();
     {
       std::lock_guard lock(clients_mutex);
@@ -558,8 +681,9 @@ struct LiveViewOf<N>::Impl {
   UiAddress address;
   std::string path;
   std::string base_dir;
-  httplib::Server server;
+  GatedServer server;
   int bound_port{-1};
+  std::atomic<bool> listen_ended{false};
   std::string token;
   StreamTapOf<N> tap;
   double period_s{};
@@ -625,11 +749,27 @@ void LiveViewOf<N>::stop() {
     if (empty) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+  // Nothing waits for a client from here on: handlers see `stopping` (a load or validate
+  // still running is abandoned), every connection is shut, and the accept loop ends.
   s.stopping.store(true);
   s.clients_cv.notify_all();
   if (s.pump_thread.joinable()) s.pump_thread.join();
-  s.server.stop();
-  if (s.server_thread.joinable()) s.server_thread.join();
+  // The streams end their responses themselves (the last chunk written) unless a client
+  // does not read: at most 300 ms.
+  for (int i = 0; i < 30; ++i) {
+    {
+      std::lock_guard lock(s.clients_mutex);
+      if (s.clients.empty()) break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  s.server.close_connections();
+  if (s.server_thread.joinable()) {
+    // httplib's stop() does nothing before its accept loop has begun.
+    while (!s.server.is_running() && !s.listen_ended.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    s.server.stop();
+    s.server_thread.join();
+  }
 }
 
 template <int N>
@@ -640,29 +780,79 @@ void LiveViewOf<N>::start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, con
   s.tap.set_device(device);
   if (device != nullptr) s.link_names = device->link_names();
   httplib::Server& server = s.server;
-  // Every request needs the token, checked before routing.
+  // Checked before routing and before any body is read: the token, then the endpoint
+  // (anything else is answered with its body unread, and the connection closed), then
+  // a declared length over the bound.
   server.set_pre_routing_handler([&s](const httplib::Request& req, httplib::Response& res) {
     std::string given = req.get_param_value("token");
     const std::string authorization = req.get_header_value("Authorization");
     if (given.empty() && authorization.rfind("Bearer ", 0) == 0) given = authorization.substr(7);
     res.set_header("Cache-Control", "no-store");
-    if (same_token(given, s.token)) return httplib::Server::HandlerResponse::Unhandled;
-    error_response(res, 403, "forbidden: the token is missing or wrong (open the URL `hapscene run --ui` printed)");
-    return httplib::Server::HandlerResponse::Handled;
+    const auto refuse = [&](int status, const std::string& message) {
+      GatedServer::close_after_response();
+      error_response(res, status, message);
+      return httplib::Server::HandlerResponse::Handled;
+    };
+    if (!same_token(given, s.token)) {
+      return refuse(403, "forbidden: the token is missing or wrong (open the URL `hapscene run --ui` printed)");
+    }
+    const bool get = req.path == "/" || req.path == "/api/scene" || req.path == "/api/stream";
+    const bool post = req.path == "/api/params" || req.path == "/api/save" || req.path == "/api/validate";
+    if (!get && !post) return refuse(404, "not found: " + req.path);
+    if (req.method != (get ? "GET" : "POST")) return refuse(405, req.method + " " + req.path + ": expected " + (get ? "GET" : "POST"));
+    const bool has_body = req.has_header("Content-Length") || req.has_header("Transfer-Encoding");
+    if (get && has_body) GatedServer::close_after_response();  // a body a GET never reads
+    if (req.has_header("Content-Length")) {
+      const std::string length = req.get_header_value("Content-Length");
+      if (length.size() > 18 || std::strtoull(length.c_str(), nullptr, 10) > kMaxRequestBodyBytes) {
+        return refuse(413, "request body: larger than " + std::to_string(kMaxRequestBodyBytes) + " bytes");
+      }
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
   });
   server.Get("/", [](const httplib::Request&, httplib::Response& res) {
+    GatedServer::request_arrived();
     res.set_content(live_page_html(), "text/html; charset=utf-8");
   });
   server.Get("/api/scene", [&s](const httplib::Request&, httplib::Response& res) {
+    GatedServer::request_arrived();
     std::lock_guard lock(s.doc_mutex);
     s.refresh_from_file();
     res.set_content(s.scene_with_state().dump(), "application/json");
   });
-  server.Get("/api/stream", [&s](const httplib::Request&, httplib::Response& res) { s.stream(res); });
-  server.Post("/api/params", [&s](const httplib::Request& req, httplib::Response& res) { s.change(req, res); });
-  server.Post("/api/save", [&s](const httplib::Request&, httplib::Response& res) { s.save(res); });
-  server.Post("/api/validate", [&s](const httplib::Request&, httplib::Response& res) { s.validate(res); });
-  s.server_thread = std::thread([&s] { s.server.listen_after_bind(); });
+  server.Get("/api/stream", [&s](const httplib::Request&, httplib::Response& res) {
+    GatedServer::request_arrived();
+    s.stream(res);
+  });
+  // The posts read their bodies themselves, bounded (read_body).
+  server.Post("/api/params", [&s](const httplib::Request&, httplib::Response& res, const httplib::ContentReader& reader) {
+    std::string body;
+    if (!read_body(res, reader, &body)) return;
+    GatedServer::request_arrived();
+    s.change(body, res);
+  });
+  server.Post("/api/save", [&s](const httplib::Request&, httplib::Response& res, const httplib::ContentReader& reader) {
+    std::string body;
+    if (!read_body(res, reader, &body)) return;
+    GatedServer::request_arrived();
+    s.save(res);
+  });
+  server.Post("/api/validate", [&s](const httplib::Request&, httplib::Response& res, const httplib::ContentReader& reader) {
+    std::string body;
+    if (!read_body(res, reader, &body)) return;
+    GatedServer::request_arrived();
+    s.validate(res);
+  });
+  // httplib's own answers (a malformed request: 400) carry a JSON error too.
+  server.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request&, httplib::Response& res) {
+    if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+    error_response(res, res.status, "request refused (HTTP " + std::to_string(res.status) + ")");
+    return httplib::Server::HandlerResponse::Handled;
+  }));
+  s.server_thread = std::thread([&s] {
+    s.server.listen_after_bind();
+    s.listen_ended.store(true);
+  });
   s.pump_thread = std::thread([&s] { s.pump(); });
 }
 

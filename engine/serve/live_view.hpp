@@ -14,7 +14,11 @@
 //   POST /api/params    {"effect": I, "parameter": NAME, "value": V}: 200 taken, 400 refused
 //   POST /api/save      writes the values back to the environment file
 //   POST /api/validate  runs the harness on the current values; the verdict table
-// (docs/reference/live-view-api.md gives the formats.)
+// (docs/reference/live-view-api.md gives the formats.) Clients are bounded (engine/serve/connection_gate.hpp):
+// per address and in all, the time a request may take to arrive, streams apart from the
+// page's requests, request bodies at 64 KiB however they are sent (413); loads and
+// validate runs go on threads of their own that stop() abandons, so stop() never waits
+// for a client.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -36,6 +40,11 @@ inline constexpr double kLiveMaxTicksPerSecond = 2000.0;
 // Events a client may fall behind before its oldest are dropped (and counted).
 inline constexpr std::size_t kLiveClientQueue = 64;
 
+// Loads and validate runs the live views of this process abandoned when they stopped
+// (their threads may still run: the process should then end with std::_Exit after
+// flushing its output).
+std::uint64_t abandoned_live_view_jobs() noexcept;
+
 // The stride of the stream for a scene of `rate_hz`.
 std::uint64_t live_stride(double rate_hz);
 
@@ -56,7 +65,8 @@ class LiveViewOf {
   void start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, const DeviceStatus* device = nullptr);
 
   // Ends the streams (after their last event, "event: end", when the run has finished)
-  // and stops serving; after it, nothing uses the watcher any more. Idempotent.
+  // and stops serving, within half a second whatever the clients do; after it, nothing
+  // uses the watcher any more. Idempotent.
   void stop();
 
   // The observer to add to the run (before it starts).

@@ -110,9 +110,38 @@ Limits<N> limits_of(const SceneOf<N>& scene) {
   return limits;
 }
 
+// The pose bounds a shape's stiffness range is judged on (each costs an inverse
+// kinematics and 72 directions): at most this many, whatever the number of edges.
+constexpr std::size_t kMaxBoundaryPoints = 512;
+
+// Points evenly spaced along a closed outline, `count` of them, by arc length.
+std::vector<Vec2> along_outline(const std::vector<Vec2>& corners, std::size_t count) {
+  std::vector<Vec2> out;
+  double perimeter_m = 0.0;
+  for (std::size_t i = 0; i < corners.size(); ++i) perimeter_m += norm(corners[(i + 1) % corners.size()] - corners[i]);
+  if (!(perimeter_m > 0.0) || count == 0) return corners.empty() ? out : std::vector<Vec2>{corners.front()};
+  const double step_m = perimeter_m / static_cast<double>(count);
+  double next_m = 0.0;    // arc length of the next point
+  double start_m = 0.0;   // arc length at the current edge's start
+  for (std::size_t i = 0; i < corners.size() && out.size() < count; ++i) {
+    const Vec2 a = corners[i];
+    const Vec2 b = corners[(i + 1) % corners.size()];
+    const double length_m = norm(b - a);
+    while (next_m < start_m + length_m && out.size() < count) {
+      out.push_back(a + (b - a) * ((next_m - start_m) / length_m));
+      next_m += step_m;
+    }
+    start_m += length_m;
+  }
+  return out;
+}
+
+}  // namespace
+
 // Points of a 2-D shape's boundary, where its stiffness acts (a wall's line across the
-// workspace box; a box's or polygon's edges; a circle's rim), about every 2 mm.
-std::vector<Vec2> boundary_points(const PlanarShapeGeometry& shape, const PlanarScene& scene) {
+// workspace box; a box's or polygon's edges; a circle's rim), about every 2 mm; at most
+// kMaxBoundaryPoints (a polygon of many short edges: evenly along its outline).
+std::vector<Vec2> stiffness_bound_points(const PlanarShapeGeometry& shape, const PlanarScene& scene) {
   constexpr double kStep_m = 0.002;
   constexpr int kMaxPerEdge = 128;
   std::vector<Vec2> out;
@@ -149,11 +178,17 @@ std::vector<Vec2> boundary_points(const PlanarShapeGeometry& shape, const Planar
     }
     case PlanarShapeKind::box:
     case PlanarShapeKind::polygon:
-      for (std::size_t i = 0; i < shape.points_m.size(); ++i) along(shape.points_m[i], shape.points_m[(i + 1) % shape.points_m.size()]);
+      // Each edge about every 2 mm, ends included; too many points: evenly along the outline.
+      if (shape.points_m.size() <= kMaxBoundaryPoints / 2) {
+        for (std::size_t i = 0; i < shape.points_m.size(); ++i) along(shape.points_m[i], shape.points_m[(i + 1) % shape.points_m.size()]);
+      }
+      if (out.size() > kMaxBoundaryPoints || out.empty()) out = along_outline(shape.points_m, kMaxBoundaryPoints);
       break;
   }
   return out;
 }
+
+namespace {
 
 // The smallest per-pose stiffness bound over `points` (false when none is a pose force is
 // rendered at).
@@ -176,7 +211,7 @@ void set_pose_bounded_stiffness(const PlanarScene& scene, const PlanarShapeGeome
   bool found = false;
   std::string where;
   if (shape != nullptr) {
-    found = lowest_bound(scene, boundary_points(*shape, scene), &pose);
+    found = lowest_bound(scene, stiffness_bound_points(*shape, scene), &pose);
     where = "on the shape's boundary";
   }
   if (!found) {

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/base/units.hpp"
+#include "engine/harness/planar_shape_list.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace hapscene {
@@ -46,6 +47,11 @@ std::vector<LiveParameter> live_parameters(const nlohmann::json& document, const
 // itself is acceptable is the loader's to say.
 std::string with_parameter(std::string_view text, const std::vector<LiveParameter>& parameters, std::size_t effect,
                            const std::string& parameter, const nlohmann::json& value);
+
+// The poses a 2-D shape's stiffness range is judged on: its boundary inside the
+// workspace about every 2 mm, at most 512 points whatever its number of edges (a
+// 10,000-edge polygon is described in milliseconds, not seconds).
+std::vector<Vec2> stiffness_bound_points(const PlanarShapeGeometry& shape, const PlanarScene& scene);
 
 // The parameter as JSON for GET /api/scene.
 nlohmann::json parameter_to_json(const LiveParameter& parameter);

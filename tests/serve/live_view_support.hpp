@@ -3,6 +3,10 @@
 // the reload watcher and the live view as `hapscene run --ui` sets them up, and an HTTP
 // client (cpp-httplib's) to talk to it.
 #include <httplib.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -60,6 +64,51 @@ inline std::vector<SseEvent> parse_sse(const std::string& body, std::string* res
   if (rest != nullptr) *rest = body.substr(start);
   return events;
 }
+
+// A plain TCP connection to the live view, for clients httplib's would not be: slow,
+// half-sent, oversized. Never throws; a closed or failed connection reads as closed.
+struct RawConnection {
+  int fd{-1};
+  explicit RawConnection(int port) {
+    fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(static_cast<std::uint16_t>(port));
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
+      ::close(fd);
+      fd = -1;
+    }
+  }
+  ~RawConnection() {
+    if (fd >= 0) ::close(fd);
+  }
+  RawConnection(const RawConnection&) = delete;
+  RawConnection& operator=(const RawConnection&) = delete;
+  // False once the connection is closed or failed.
+  bool send(const std::string& bytes) const {
+    return fd >= 0 && ::send(fd, bytes.data(), bytes.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(bytes.size());
+  }
+  // What arrives within `wait_ms` (appended to `into`); false when the server closed it.
+  bool receive(std::string* into, int wait_ms) const {
+    if (fd < 0) return false;
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, wait_ms) <= 0) return true;
+    char buffer[65536];
+    const ssize_t got = ::recv(fd, buffer, sizeof buffer, 0);
+    if (got <= 0) return false;
+    into->append(buffer, static_cast<std::size_t>(got));
+    return true;
+  }
+  // Everything until the server closes the connection (at most `wait_ms` in all).
+  std::string read_to_close(int wait_ms) const {
+    std::string out;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms);
+    while (std::chrono::steady_clock::now() < until && receive(&out, 50)) {
+    }
+    return out;
+  }
+};
 
 // A run of the environment `file` (N axes) for `duration_s` in real time with its live view.
 template <int N>
