@@ -52,11 +52,27 @@ TEST_CASE("cli: validate refuses invalid input with exit code 2") {
         "error: hapscene validate: --report /nonexistent/dir/r.json: no folder /nonexistent/dir\n");
 }
 
+// The one test that runs every shipped spec (1-D and 2-D, environments and scripts), as
+// users and CI run them: without arguments, from the repository's folder.
 TEST_CASE("cli: test runs every spec in the repository, or the ones given") {
+  std::size_t shipped = 0;
+  for (const char* folder : {"environments", "scripts"}) {
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(HAPSCENE_SOURCE_DIR "/" + std::string(folder))) {
+      if (entry.path().filename().string().ends_with(".test.json")) ++shipped;
+    }
+  }
+  CHECK(shipped >= 40);
   const auto all = run_cli("test");
+  CAPTURE(all.err);
   CHECK(all.exit_code == 0);
-  CHECK(all.out.find("PASS environments/wall.test.json") != std::string::npos);
-  CHECK(all.out.find("all pass") != std::string::npos);
+  for (const char* spec : {"environments/wall.test.json", "environments/planar/haplink_maze.test.json",
+                           "environments/planar/haply2diy_v3_box_outside.test.json", "scripts/planar/maze.test.json",
+                           "scripts/planar/mass_spring.test.json"}) {
+    CAPTURE(spec);
+    CHECK(all.out.find(std::string("PASS ") + spec) != std::string::npos);
+  }
+  CHECK(all.out.find(std::to_string(shipped) + " specs, ") != std::string::npos);
+  CHECK(all.out.find(": all pass\n") != std::string::npos);
   const auto negative = run_cli("test tests/harness/specs/unstable_wall.test.json");
   CHECK(negative.exit_code == 0);
 

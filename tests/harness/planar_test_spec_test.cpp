@@ -31,23 +31,6 @@ std::string spec_error(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("planar spec: every shipped 2-D environment and script meets its spec") {
-  const std::vector<std::string> specs =
-      find_test_specs({test::source_path("environments/planar"), test::source_path("scripts/planar")});
-  CHECK(specs.size() >= 24);
-  for (const std::string& spec : specs) {
-    CAPTURE(spec);
-    const SpecResult result = run_test_spec(spec);
-    for (const SpecOutcome& o : result.outcomes) {
-      CAPTURE(o.what);
-      CAPTURE(o.message);
-      CHECK(o.pass);
-    }
-    CHECK(result.pass);
-    CHECK(result.outcomes.size() >= 3);
-  }
-}
-
 TEST_CASE("planar spec: met and unmet expectations say what was expected and found") {
   const test::ScratchFolder folder("planar_spec_unmet");
   folder.write("box.json", kBoxEnvironment);

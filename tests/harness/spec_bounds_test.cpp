@@ -5,7 +5,9 @@
 // stops validate and test early with a failed "pace" check.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <string>
 
 #include "engine/harness/figures.hpp"
@@ -225,25 +227,47 @@ TEST_CASE("pace: the force field and the force-displacement curve of a slow scri
 
 namespace {
 
-// Within every limit: about 90000 instructions a call under the default budget of 100000,
-// about 0.3 ms of CPU on an idle machine (under the 1 ms period: it keeps the loop's
-// pace). But the checks call it thousands of times, and their scans allow a tenth of the
-// period a call.
-const char* kBusyScript =
-    "needs = {velocity = false, time = false}\n"
-    "function force(s)\n"
-    "  local a = 0\n"
-    "  for i = 1, 45000 do a = a + i end\n"
-    "  return -100 * s.x\n"
-    "end\n";
-// The same on the Haplink: two values.
-const char* kBusyPlanarScript =
-    "needs = {velocity = false, time = false}\n"
-    "function force(s)\n"
-    "  local a = 0\n"
-    "  for i = 1, 45000 do a = a + i end\n"
-    "  return -100 * (s.x + 0.015), -100 * (s.y - 0.13)\n"
-    "end\n";
+// A script that keeps the loop's pace but is too slow for the checks' scans: its call
+// takes about 0.35 ms of CPU (under the 1 ms period, over the tenth of it the scans allow a
+// call, as they call it thousands of times). The loop's length is measured on this build
+// and machine (a sanitizer build runs Lua three times slower), and the environment raises
+// the instruction budget so that a slow machine's count fits.
+std::string busy_script(long iterations, int axes) {
+  return "needs = {velocity = false, time = false}\n"
+         "function force(s)\n"
+         "  local a = 0\n"
+         "  for i = 1, " + std::to_string(iterations) + " do a = a + i end\n" +
+         (axes == 1 ? std::string("  return -100 * s.x\n") : std::string("  return -100 * (s.x + 0.015), -100 * (s.y - 0.13)\n")) +
+         "end\n";
+}
+
+double thread_cpu_s() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+const char* kBusyLimits = R"("limits": {"instructions_per_call": 50000000})";
+
+// The loop length that takes about 0.35 ms a call here.
+long busy_iterations(const test::ScratchFolder& folder) {
+  constexpr long kTrial = 20000;
+  folder.write("trial.lua", busy_script(kTrial, 1));
+  const std::string environment = folder.write("trial.json", std::string(R"({"name": "trial", "effects": [{"type": "script", "file": "trial.lua", )") +
+                                                                 kBusyLimits + "}]}").string();
+  const Scene scene = load_environment_file(environment);
+  ScriptList instances = make_script_instances(scene);
+  EffectInput at_rest;
+  at_rest.x_m = 0.01;
+  at_rest.dt_s = scene.period_s;
+  double best_s = 1e9;
+  for (int round = 0; round < 5; ++round) {
+    const double start_s = thread_cpu_s();
+    for (int call = 0; call < 10; ++call) sum_effects_N(scene, at_rest, instances);
+    best_s = std::min(best_s, (thread_cpu_s() - start_s) / 10);
+  }
+  return std::max(1000L, static_cast<long>(kTrial * 0.35e-3 / best_s));
+}
 
 bool names_scan_pace(const std::string& message, const std::string& script) {
   return message.starts_with("too slow for the 1000 Hz loop: " + script + ": force() took ") &&
@@ -254,10 +278,11 @@ bool names_scan_pace(const std::string& message, const std::string& script) {
 
 TEST_CASE("scan pace: a script within every limit but too slow for the checks' scans stops them, named") {
   const test::ScratchFolder folder("busy_scan");
-  const std::string script = folder.write("busy.lua", kBusyScript).string();
-  const Scene scene = load_environment_file(script);
-  // Inside every limit: a call does not fault (on an idle machine it also keeps the
-  // loop's pace, at about 0.3 ms).
+  const std::string script = folder.write("busy.lua", busy_script(busy_iterations(folder), 1)).string();
+  const Scene scene = load_environment_file(
+      folder.write("busy.json", std::string(R"({"name": "busy", "effects": [{"type": "script", "file": "busy.lua", )") + kBusyLimits + "}]}")
+          .string());
+  // Inside every limit: a call does not fault and keeps the loop's pace.
   ScriptList one = make_script_instances(scene);
   EffectInput at_rest;
   at_rest.x_m = 0.01;
@@ -275,6 +300,7 @@ TEST_CASE("scan pace: a script within every limit but too slow for the checks' s
   } catch (const ScriptsTooSlow& slow) {
     CHECK(slow.check().name == "pace");
     CHECK(slow.check().value > 0.1 * scene.period_s);
+    CAPTURE(std::string(slow.what()));
     CHECK(names_scan_pace(slow.what(), script));
     MESSAGE(std::string(slow.what()));
   }
@@ -285,6 +311,7 @@ TEST_CASE("scan pace: a script within every limit but too slow for the checks' s
   CHECK(report.scenarios.empty());
   REQUIRE(report.scene_checks.size() == 1);
   CHECK(report.scene_checks[0].name == "pace");
+  CAPTURE(report.scene_checks[0].detail);
   CHECK(names_scan_pace(report.scene_checks[0].detail, script));
 
   // plot: the curve is not drawn.
@@ -293,21 +320,23 @@ TEST_CASE("scan pace: a script within every limit but too slow for the checks' s
   CHECK(panel.title.find(": not drawn, too slow for the 1000 Hz loop: " + script) != std::string::npos);
 
   // test: the spec fails with the message alone, whatever it asks.
-  const auto spec = folder.write("busy.test.json", R"({"environment": "busy.lua",
+  const auto spec = folder.write("busy.test.json", R"({"environment": "busy.json",
       "forces": [{"x": "10 mm", "force": "-1 N", "tolerance": "1e-9 N"}],
       "zero_outside": ["-50 mm", "45 mm"], "passes_validate": true})");
   const SpecResult result = run_test_spec(spec.string());
   CHECK_FALSE(result.pass);
   REQUIRE(result.outcomes.size() == 1);
   CHECK(result.outcomes[0].what == "/environment");
+  CAPTURE(result.outcomes[0].message);
   CHECK(names_scan_pace(result.outcomes[0].message, script));
 }
 
 TEST_CASE("scan pace: in 2-D too, test, validate and probe stop with the script named") {
   const test::ScratchFolder folder("busy_scan_2d");
-  const std::string script = folder.write("busy.lua", kBusyPlanarScript).string();
+  const std::string script = folder.write("busy.lua", busy_script(busy_iterations(folder), 2)).string();
   const std::string environment =
-      folder.write("busy.json", R"({"name": "busy", "device": "haplink", "effects": [{"type": "script", "file": "busy.lua"}]})")
+      folder.write("busy.json", std::string(R"({"name": "busy", "device": "haplink", "effects": [{"type": "script", "file": "busy.lua", )") +
+                                    kBusyLimits + "}]}")
           .string();
   const PlanarScene scene = load_planar_environment_file(environment);
 
@@ -318,6 +347,7 @@ TEST_CASE("scan pace: in 2-D too, test, validate and probe stop with the script 
   CHECK_FALSE(report.pass);
   CHECK(report.scenarios.empty());
   REQUIRE(report.scene_checks.size() == 1);
+  CAPTURE(report.scene_checks[0].detail);
   CHECK(names_scan_pace(report.scene_checks[0].detail, script));
 
   const auto spec = folder.write("busy.test.json", R"({"environment": "busy.json",
@@ -327,5 +357,6 @@ TEST_CASE("scan pace: in 2-D too, test, validate and probe stop with the script 
   CHECK_FALSE(result.pass);
   REQUIRE(result.outcomes.size() == 1);
   CHECK(result.outcomes[0].what == "/environment");
+  CAPTURE(result.outcomes[0].message);
   CHECK(names_scan_pace(result.outcomes[0].message, script));
 }

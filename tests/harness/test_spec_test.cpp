@@ -25,17 +25,6 @@ std::string write_spec(const std::string& name, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("spec: every shipped environment meets its spec") {
-  const std::vector<std::string> specs = find_test_specs({test::source_path("environments")});
-  CHECK(specs.size() >= 5);
-  for (const std::string& spec : specs) {
-    CAPTURE(spec);
-    const SpecResult result = run_test_spec(spec);
-    CHECK(result.pass);
-    CHECK(!result.outcomes.empty());
-  }
-}
-
 TEST_CASE("spec: unmet expectations fail with what was expected and found") {
   const std::string path = write_spec("wall.test.json", R"({
     "forces": [{"x": "15 mm", "force": "-3 N", "tolerance": "0.1 N"}],
