@@ -38,24 +38,24 @@ const char* kSpring = R"({
 // time between two reads.
 struct SlowClients {
   std::vector<std::unique_ptr<test::RawConnection>> connections;
-  std::vector<int> bytes_sent;
+  std::vector<std::atomic<int>> bytes_sent;  // read by the test while the trickle writes
   std::atomic<bool> done{false};
   std::thread trickle;
 
-  SlowClients(int port, int count) {
+  SlowClients(int port, int count) : bytes_sent(static_cast<std::size_t>(count)) {
     for (int i = 0; i < count; ++i) {
       connections.push_back(std::make_unique<test::RawConnection>(port));
       connections.back()->send("GET / HTTP/1.1\r\nHost: x\r\n");
-      bytes_sent.push_back(0);
     }
     trickle = std::thread([this] {
       while (!done.load()) {
         for (std::size_t i = 0; i < connections.size(); ++i) {
-          if (bytes_sent[i] < 0) continue;
+          const int sent = bytes_sent[i].load();
+          if (sent < 0) continue;
           if (connections[i]->send("X")) {
-            ++bytes_sent[i];
+            bytes_sent[i].store(sent + 1);
           } else {
-            bytes_sent[i] = -1 - bytes_sent[i];  // closed by the server after -n - 1 bytes
+            bytes_sent[i].store(-1 - sent);  // closed by the server after -n - 1 bytes
           }
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(200));
@@ -110,13 +110,13 @@ TEST_CASE("live view: a request must arrive within 2 s: a client sending a byte 
   // load average of 15); without the bound none ever is.
   for (int i = 0; i < 60; ++i) {
     bool all_closed = true;
-    for (int sent : slow.bytes_sent) all_closed = all_closed && sent < 0;
+    for (const auto& sent : slow.bytes_sent) all_closed = all_closed && sent.load() < 0;
     if (all_closed) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   slow.stop();
-  for (int sent : slow.bytes_sent) {
-    CHECK(sent < 0);  // closed by the server
+  for (const auto& sent : slow.bytes_sent) {
+    CHECK(sent.load() < 0);  // closed by the server
   }
 }
 
