@@ -112,7 +112,7 @@ double ObjectReader::quantity_or(std::string_view key, Quantity quantity, double
 
 double ObjectReader::quantity(std::string_view key, Quantity quantity, Bound bound) {
   const nlohmann::json* value = get(key);
-  if (value == nullptr) fail("", "missing required key \"" + std::string(key) + "\"");
+  if (value == nullptr) fail_missing(key);
   return to_quantity(key, *value, quantity, bound);
 }
 
@@ -124,7 +124,7 @@ double ObjectReader::quantity_or(std::string_view key, Quantity quantity, double
 
 std::pair<double, double> ObjectReader::range(std::string_view key, Quantity quantity) {
   const nlohmann::json* value = get(key);
-  if (value == nullptr) fail("", "missing required key \"" + std::string(key) + "\"");
+  if (value == nullptr) fail_missing(key);
   if (!value->is_array() || value->size() != 2) {
     fail(key, "expected [low, high] as an array of two " + std::string(quantity_name(quantity)) +
                   " values, got " + json_type_name(*value));
@@ -150,7 +150,7 @@ std::pair<double, double> ObjectReader::range(std::string_view key, Quantity qua
 
 long long ObjectReader::integer(std::string_view key, long long min, long long max) {
   const nlohmann::json* value = get(key);
-  if (value == nullptr) fail("", "missing required key \"" + std::string(key) + "\"");
+  if (value == nullptr) fail_missing(key);
   const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
   // Echo the number as written: an unsigned above 2^63 - 1 must not read back as negative.
   if (value->is_number_unsigned()) {
@@ -191,7 +191,7 @@ long long ObjectReader::integer_or(std::string_view key, long long min, long lon
 
 std::string ObjectReader::string(std::string_view key) {
   const nlohmann::json* value = get(key);
-  if (value == nullptr) fail("", "missing required key \"" + std::string(key) + "\"");
+  if (value == nullptr) fail_missing(key);
   if (!value->is_string()) fail(key, "expected a string, got " + json_type_name(*value));
   return value->get<std::string>();
 }
@@ -217,6 +217,19 @@ std::string ObjectReader::choice(std::string_view key,
   const std::string suggestion = nearest_name(value, options);
   if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
   fail(key, message);
+}
+
+void ObjectReader::fail_missing(std::string_view key) const {
+  // Only near misses (a key the reader has not asked for yet may be another expected one:
+  // "max" is not a misspelled "min"): one edit in a name of 4 or 5 bytes, two from 6 on.
+  const std::size_t near_edits = key.size() >= 6 ? 2 : (key.size() >= 4 ? 1 : 0);
+  for (const auto& [written, value] : object_.items()) {
+    if (std::find(read_keys_.begin(), read_keys_.end(), written) != read_keys_.end()) continue;
+    if (near_edits > 0 && edit_distance(written, key) <= near_edits) {
+      fail(written, "unknown key \"" + written + "\" (did you mean \"" + std::string(key) + "\"?)");
+    }
+  }
+  fail("", "missing required key \"" + std::string(key) + "\"");
 }
 
 void ObjectReader::finish() const {

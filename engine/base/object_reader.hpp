@@ -64,6 +64,10 @@ class ObjectReader {
 
   // Throws InputError located at `key` (or at this object when key is empty).
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+  // Throws for a required `key` that is absent: at a key of the object that looks like a
+  // misspelling of it, `unknown key "stifness" (did you mean "stiffness"?)`; else
+  // `missing required key "stiffness"` at this object.
+  [[noreturn]] void fail_missing(std::string_view key) const;
 
   const std::string& file() const { return file_; }
   const std::string& pointer() const { return pointer_; }

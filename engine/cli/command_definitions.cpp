@@ -191,7 +191,7 @@ constexpr OptionDefinition kPlotOptions[] = {
     {"scenario", 's', "NAME",
      "the scenario drawn: sweep, press, release, hold, shake or free; 2-DOF: sweep, press, line or circle",
      "sweep", nullptr, nullptr, kPlotScenarioValues, C::values},
-    {"output", 'o', "FILE.svg", "the figure", "the environment's name .svg", nullptr, nullptr, "", C::output},
+    {"output", 'o', "FILE.svg", "the figure", "the environment file's name with .svg, here", nullptr, nullptr, "", C::output},
     {"hand-stiffness", 0, "K", "the virtual hand's grip stiffness", "200 N/m", &option::hand_stiffness},
     {"hand-damping", 0, "B", "the virtual hand's damping", "2 N*s/m", &option::hand_damping},
     {"hand-mass", 0, "M", "the virtual hand's mass", "20 g", &option::hand_mass},

@@ -11,6 +11,8 @@
 // --width PX the figure's width (default 900). --noise and --start are 1-DOF options.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <string>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
@@ -29,6 +31,13 @@
 
 namespace hapscene {
 namespace {
+
+// The figure's default path: the environment file's name with .svg, in the working folder
+// (wall.json: wall.svg), as users expect; never the "name" inside the file, which may hold
+// spaces or a '/'.
+std::string default_figure_path(const std::string& environment_file) {
+  return std::filesystem::path(environment_file).stem().string() + ".svg";
+}
 
 // Options read as text before the scene's axes are known.
 struct PlotTexts {
@@ -83,7 +92,7 @@ int plot_planar(const Arguments& arguments, const std::string& file, const PlotT
           ? std::string("proxy of the ") + planar_shape_kind_name(shapes[static_cast<std::size_t>(scenario.proxy_index)].kind)
           : std::string();
   const std::string svg = planar_figure_svg(scene, figure, run.records, what, proxy_label);
-  const std::string path = out_path.value_or(scene.name + ".svg");
+  const std::string path = out_path.value_or(default_figure_path(file));
   write_output_file(path, svg);
   print_out("wrote %s\n", printable(path).c_str());
   flush_out();
@@ -135,8 +144,7 @@ int plot_command(std::vector<std::string> args) {
   for (const auto& fault : result.metrics.script_faults) {
     faults.add(fault.message, fault.where + " of the " + result.scenario.name + " run", INFINITY);
   }
-  // Default output: the environment's name with .svg in the working directory.
-  const std::string path = out_path.value_or(scene.name + ".svg");
+  const std::string path = out_path.value_or(default_figure_path(files[0]));
   write_output_file(path, svg);
   print_out("wrote %s\n", printable(path).c_str());
   flush_out();

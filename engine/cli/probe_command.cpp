@@ -9,6 +9,7 @@
 // For a 2-DOF environment (its device a planar profile): `hapscene probe ENV --x
 // START:STOP:STEP --y START:STOP:STEP [--v VX,VY]`, one row per grid point (x outer, y
 // inner), each shape's proxy at the nearest point of its boundary (open loop).
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -50,6 +51,28 @@ ProbeRange parse_range(const Arguments& arguments, const std::string& name, cons
   range.stop_m = parse_option_quantity(text.substr(first + 1, second - first - 1), option::probe_position,
                                        what + " STOP");
   range.step_m = parse_option_quantity(text.substr(second + 1), option::probe_step, what + " STEP");
+  // Parts with and without a unit in one range: "0:10:1mm" means 0 to 10 m in steps of
+  // 1 mm (10 001 points), never what was meant. A bare 0 is the same in every unit.
+  const std::string parts[] = {text.substr(0, first), text.substr(first + 1, second - first - 1),
+                               text.substr(second + 1)};
+  const auto bare_number = [](const std::string& part, double* value) {
+    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), *value);
+    return ec == std::errc() && end == part.data() + part.size();
+  };
+  bool any_unit = false;
+  std::string bare;
+  for (const std::string& part : parts) {
+    double value = 0.0;
+    if (!bare_number(part, &value)) {
+      any_unit = true;
+    } else if (value != 0.0 && bare.empty()) {
+      bare = part;
+    }
+  }
+  if (any_unit && !bare.empty()) {
+    arguments.fail(option + ": \"" + bare + "\" has no unit while another part of \"" + text +
+                   "\" has one: give every part its unit (as in 0mm:10mm:1mm), or none for metres");
+  }
   if (range.step_m == 0.0) arguments.fail(option + ": STEP must not be 0");
   // A step far below the sensor's resolution is a typo; it would also overflow START / STEP.
   if (std::fabs(range.step_m) < option::kMinProbeStep_m) {
@@ -67,13 +90,31 @@ ProbeRange parse_range(const Arguments& arguments, const std::string& name, cons
   return range;
 }
 
-// The positions of a range: x = (start / step + i) * step lands on round values (0.01,
-// not 0.009999999999999998) whenever start is a whole number of steps.
+// The positions of a range, each the double nearest its decimal value (0.018, not
+// 6 x 0.003 = 0.018000000000000002): when START and STEP are whole numbers of 10^-d m for
+// some d <= 12, x = (n_start + i n_step) / 10^d, whole numbers divided once, which rounds
+// correctly; otherwise x = (start / step + i) * step, round whenever START is a whole
+// number of steps.
 std::vector<double> range_positions_m(const ProbeRange& range) {
-  const double start_in_steps = range.start_m / range.step_m;
   std::vector<double> x_m(static_cast<std::size_t>(range.points));
+  const auto whole = [](double value, double* out) {
+    *out = std::round(value);
+    return std::fabs(value - *out) <= 1e-9 * std::fabs(*out) && std::fabs(*out) < 1e15;
+  };
+  double scale = 1.0;
+  for (int digits = 0; digits <= 12; ++digits, scale *= 10.0) {
+    double step_units = 0.0;
+    double start_units = 0.0;
+    if (!whole(range.step_m * scale, &step_units) || step_units == 0.0) continue;
+    if (range.start_m != 0.0 && !whole(range.start_m * scale, &start_units)) continue;
+    for (std::size_t i = 0; i < x_m.size(); ++i) {
+      x_m[i] = (start_units + static_cast<double>(i) * step_units) / scale + 0.0;  // no "-0"
+    }
+    return x_m;
+  }
+  const double start_in_steps = range.start_m / range.step_m;
   for (std::size_t i = 0; i < x_m.size(); ++i) {
-    x_m[i] = (start_in_steps + static_cast<double>(i)) * range.step_m + 0.0;  // no "-0"
+    x_m[i] = (start_in_steps + static_cast<double>(i)) * range.step_m + 0.0;
   }
   return x_m;
 }

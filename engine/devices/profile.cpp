@@ -105,7 +105,7 @@ PlantModel parse_plant(ObjectReader& reader) {
 template <typename Parse>
 auto parse_part(ObjectReader& parent, std::string_view key, Parse parse) {
   const nlohmann::json* value = parent.get(key);
-  if (value == nullptr) parent.fail("", "missing required key \"" + std::string(key) + "\"");
+  if (value == nullptr) parent.fail_missing(key);
   ObjectReader reader(*value, parent.pointer_to(key), parent.file());
   return parse(reader);
 }

@@ -188,7 +188,7 @@ void compile_velocity(ObjectReader& reader, SceneOf<N>* scene) {
 // The "effects" array: present, an array, within the count limit.
 const nlohmann::json& effects_array(ObjectReader& reader) {
   const nlohmann::json* effects = reader.get("effects");
-  if (effects == nullptr) reader.fail("", "missing required key \"effects\"");
+  if (effects == nullptr) reader.fail_missing("effects");
   if (!effects->is_array()) {
     reader.fail("effects", "expected an array of effects, got " + json_type_name(*effects));
   }
@@ -396,15 +396,18 @@ PlanarEnvironment load_planar_environment(const std::string& path) {
 Environment load_environment(const std::string& path) {
   const std::filesystem::path file(path);
   const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
+  return print_warnings(compile_environment(environment_text_of(path), path, base_dir));
+}
+
+std::string environment_text_of(const std::string& path) {
+  const std::filesystem::path file(path);
+  if (file.extension() != ".lua") return read_text_file(path, kMaxJsonFileBytes);
   // A .lua file is a one-effect environment with the script's default parameters.
-  if (file.extension() == ".lua") {
-    check_readable_file(path);  // never opened here: a named pipe would block
-    const nlohmann::json script = nlohmann::json::object({{"type", "script"}, {"file", file.filename().string()}});
-    const nlohmann::json root = nlohmann::json::object(
-        {{"name", file.stem().string()}, {"effects", nlohmann::json::array({script})}});
-    return print_warnings(compile(root, path, base_dir));
-  }
-  return print_warnings(compile_environment(read_text_file(path, kMaxJsonFileBytes), path, base_dir));
+  check_readable_file(path);  // never opened here: a named pipe would block
+  const nlohmann::json script = nlohmann::json::object({{"type", "script"}, {"file", file.filename().string()}});
+  const nlohmann::json root =
+      nlohmann::json::object({{"name", file.stem().string()}, {"effects", nlohmann::json::array({script})}});
+  return root.dump(2) + "\n";
 }
 
 Scene load_environment_file(const std::string& path) { return load_environment(path).scene; }

@@ -33,6 +33,11 @@ Scene load_environment_file(const std::string& path);
 Scene load_environment_text(std::string_view json_text, const std::string& display_name,
                             const std::string& base_dir = ".");
 
+// The environment JSON text a file stands for: a JSON file's own text, or for a script
+// (.lua) the one-effect environment that runs it with its default parameters (named after
+// the file), as load_environment loads it. Throws InputError when it cannot be read.
+std::string environment_text_of(const std::string& path);
+
 // The number of axes of the scene an environment file makes: 2 when its "device" is a
 // planar profile, else 1. Throws InputError when the file cannot be read or parsed.
 int environment_axes(const std::string& path);

@@ -254,6 +254,7 @@ void ReloadWatcherOf<N>::accept(std::unique_ptr<LoadedScene> next) {
   limits_.safety = next->scene.safety;
   watch_files_of(next->scene, load_start_files_);
   waiting_ = std::move(next);
+  file_versions_.fetch_add(1);
   if (exchange_->offer(waiting_)) {
     report_("reloaded " + environment_path_ + ": cross-fading to the new version");
   }

@@ -88,6 +88,11 @@ class ReloadWatcherOf {
   // process should then end with std::_Exit after flushing its output).
   static std::uint64_t abandoned_loads() noexcept { return abandoned_reload_loads(); }
 
+  // Versions compiled from the files and offered to the loop (reloads): whoever shows the
+  // scene (the live view) reads it again when this changes, so that it never describes a
+  // version the loop no longer runs. Any thread.
+  std::uint64_t file_versions() const noexcept { return file_versions_.load(); }
+
   // Scripts of replaced versions that had been disabled by a fault (each was reported).
   std::uint64_t replaced_script_faults() const noexcept { return replaced_script_faults_.load(); }
 
@@ -130,6 +135,7 @@ class ReloadWatcherOf {
   std::shared_ptr<Job> job_;               // the load in flight, if any
   std::thread job_thread_;
   std::atomic<std::uint64_t> replaced_script_faults_{0};
+  std::atomic<std::uint64_t> file_versions_{0};
   std::chrono::steady_clock::time_point job_started_;
   int abandoned_here_{0};
   bool stopped_watching_{false};

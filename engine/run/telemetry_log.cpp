@@ -5,6 +5,10 @@
 #include <chrono>
 #include <cstring>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "engine/base/errors.hpp"
 
 namespace hapscene {
@@ -51,10 +55,38 @@ std::string telemetry_csv_line(const TelemetrySampleOf<N>& s) {
   return line;
 }
 
+namespace {
+
+// The log's file, created or emptied, never through a symbolic link planted at its path
+// (O_NOFOLLOW) and never a pipe or a folder (opened without waiting for a reader, then
+// checked): a regular file, or a device such as /dev/null.
+std::FILE* open_log_file(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int error = errno;
+    if (error == ELOOP) throw InputError(path + ": is a symbolic link; the log is not written through one");
+    if (error == ENXIO) throw InputError(path + ": not a regular file; the log is written to files only");  // a pipe
+    throw InputError(path + ": cannot write file (" + std::strerror(error) + ")");
+  }
+  struct stat status {};
+  if (::fstat(fd, &status) != 0 || !(S_ISREG(status.st_mode) || S_ISCHR(status.st_mode))) {
+    ::close(fd);
+    throw InputError(path + ": not a regular file; the log is written to files only");
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  std::FILE* file = ::fdopen(fd, "wb");
+  if (file == nullptr) {
+    ::close(fd);
+    throw InputError(path + ": cannot write file");
+  }
+  return file;
+}
+
+}  // namespace
+
 template <int N>
 TelemetryLogOf<N>::TelemetryLogOf(const std::string& path, std::size_t capacity) : ring_(capacity), path_(path) {
-  file_ = std::fopen(path.c_str(), "wb");
-  if (file_ == nullptr) throw InputError(path + ": cannot write file");
+  file_ = open_log_file(path);
   errno = 0;
   if (std::fputs(csv_header(N), file_) < 0 || std::fputc('\n', file_) == EOF) note_write_error(errno);
   writer_ = std::thread([this] { drain_loop(); });

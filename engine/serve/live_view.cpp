@@ -43,7 +43,6 @@ namespace {
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-constexpr std::size_t kMaxEnvironmentBytes = std::size_t{1} << 20;
 // The ring between the loop and the pump: 16384 samples (16 s at 1 kHz); the pump empties
 // it 50 times a second.
 constexpr std::size_t kTapCapacity = 1u << 14;
@@ -147,7 +146,10 @@ void error_response(httplib::Response& res, int status, const std::string& messa
 // Reads a request's body into `body`, at most kMaxRequestBodyBytes however it is sent
 // (Content-Length, chunked, or until the connection ends): false, with the response
 // set (413 or 400) and the connection to be closed, when it is larger or cannot be read.
-bool read_body(httplib::Response& res, const httplib::ContentReader& reader, std::string* body) {
+// A request with neither a length nor chunks (`curl -X POST`) has an empty body.
+bool read_body(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader,
+               std::string* body) {
+  if (!req.has_header("Content-Length") && !req.has_header("Transfer-Encoding")) return true;
   bool too_large = false;
   const bool read = reader([&](const char* data, std::size_t length) {
     if (body->size() + length > kMaxRequestBodyBytes) {
@@ -274,7 +276,7 @@ struct LiveViewOf<N>::Impl {
         period_s(scene.period_s) {
     base_dir = std::filesystem::path(path).parent_path().string();
     if (base_dir.empty()) base_dir = ".";
-    text = read_text_file(path, kMaxEnvironmentBytes);
+    text = environment_text_of(path);
     file_text = text;
     file_stamp = stamp_of(path);
     take(describe_version<N>(scene, text, path, tap.stride()));
@@ -306,13 +308,17 @@ struct LiveViewOf<N>::Impl {
   }
 
   // The file changed on disk since it was last read or written (an editor saved it; the
-  // watcher reloads it): its text becomes the current values. With doc_mutex held.
+  // watcher reloads it), or the watcher took a new version from the files (a script's
+  // defaults edited): the file's text becomes the current values, described as the loop
+  // now runs them. With doc_mutex held; every endpoint calls it first.
   void refresh_from_file() {
     const auto stamp = stamp_of(path);
-    if (stamp == file_stamp) return;
+    const std::uint64_t versions = watcher != nullptr ? watcher->file_versions() : 0;
+    if (stamp == file_stamp && versions == seen_file_versions) return;
     file_stamp = stamp;
+    seen_file_versions = versions;
     try {
-      const std::string fresh = read_text_file(path, kMaxEnvironmentBytes);
+      const std::string fresh = environment_text_of(path);
       std::optional<PreparedVersion<N>> prepared = prepare(fresh);
       if (!prepared) return;
       take(std::move(prepared->description));
@@ -379,6 +385,13 @@ struct LiveViewOf<N>::Impl {
   void save(httplib::Response& res) {
     std::lock_guard lock(doc_mutex);
     refresh_from_file();
+    if (std::filesystem::path(path).extension() == ".lua") {
+      error_response(res, 409,
+                     path + ": a script run as an environment of its own has no environment file to save values "
+                            "into (its changed values last for this run); to keep them, run an environment file "
+                            "that names the script and gives them as \"params\" (hapscene new script NAME)");
+      return;
+    }
     const std::string problem = watcher->write_watched([&]() -> std::string {
       const FileWriteOutcome outcome = replace_file(path, text, SpecialPath::refuse);
       if (outcome.ok()) return {};
@@ -406,6 +419,7 @@ struct LiveViewOf<N>::Impl {
     std::string version;
     {
       std::lock_guard lock(doc_mutex);
+      refresh_from_file();  // the version the loop runs, after any reload
       version = text;
     }
     try {
@@ -694,6 +708,7 @@ struct LiveViewOf<N>::Impl {
   std::string text;      // the current values: what save writes
   std::string file_text; // the file as last read or written
   std::filesystem::file_time_type file_stamp{};
+  std::uint64_t seen_file_versions{};  // the watcher's file_versions() when last read
   std::vector<LiveParameter> parameters;
   json scene_json;
   std::uint64_t changes{};
@@ -825,21 +840,21 @@ void LiveViewOf<N>::start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, con
     s.stream(res);
   });
   // The posts read their bodies themselves, bounded (read_body).
-  server.Post("/api/params", [&s](const httplib::Request&, httplib::Response& res, const httplib::ContentReader& reader) {
+  server.Post("/api/params", [&s](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {
     std::string body;
-    if (!read_body(res, reader, &body)) return;
+    if (!read_body(req, res, reader, &body)) return;
     GatedServer::request_arrived();
     s.change(body, res);
   });
-  server.Post("/api/save", [&s](const httplib::Request&, httplib::Response& res, const httplib::ContentReader& reader) {
+  server.Post("/api/save", [&s](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {
     std::string body;
-    if (!read_body(res, reader, &body)) return;
+    if (!read_body(req, res, reader, &body)) return;
     GatedServer::request_arrived();
     s.save(res);
   });
-  server.Post("/api/validate", [&s](const httplib::Request&, httplib::Response& res, const httplib::ContentReader& reader) {
+  server.Post("/api/validate", [&s](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {
     std::string body;
-    if (!read_body(res, reader, &body)) return;
+    if (!read_body(req, res, reader, &body)) return;
     GatedServer::request_arrived();
     s.validate(res);
   });

@@ -12,7 +12,8 @@
 
 using namespace hapscene::test;
 
-TEST_CASE("bench --accuracy: 2-D rows for both kinematics families, every case, finite") {
+TEST_CASE("bench --accuracy: 2-D rows for both kinematics families, every case, finite" *
+          doctest::test_suite("sweeps")) {
   // The 2-D rows alone (--axes 2); the 1-D ones come first without it.
   const CliOutcome bench = run_cli("bench --accuracy --axes 2 --rate 1000");
   REQUIRE(bench.exit_code == 0);

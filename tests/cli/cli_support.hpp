@@ -31,14 +31,14 @@ inline std::size_t occurrences(const std::string& text, const std::string& what)
   return n;
 }
 
-// Runs `hapscene ARGS` from the source directory.
-inline CliOutcome run_cli(const std::string& args) {
+// Runs `hapscene ARGS` from the folder `working_dir`.
+inline CliOutcome run_cli_in(const std::string& working_dir, const std::string& args) {
   static int counter = 0;
   const auto dir = std::filesystem::temp_directory_path();
   const std::string tag = std::to_string(getpid()) + "_h" + std::to_string(counter++);
   const auto out_path = dir / ("hapscene_out_" + tag);
   const auto err_path = dir / ("hapscene_err_" + tag);
-  const std::string command = "cd '" HAPSCENE_SOURCE_DIR "' && '" HAPSCENE_BINARY "' " + args + " >'" +
+  const std::string command = "cd '" + working_dir + "' && '" HAPSCENE_BINARY "' " + args + " >'" +
                               out_path.string() + "' 2>'" + err_path.string() + "' </dev/null";
   const int status = std::system(command.c_str());
   CliOutcome outcome{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp_file(out_path), slurp_file(err_path)};
@@ -46,5 +46,8 @@ inline CliOutcome run_cli(const std::string& args) {
   std::filesystem::remove(err_path);
   return outcome;
 }
+
+// Runs `hapscene ARGS` from the source directory.
+inline CliOutcome run_cli(const std::string& args) { return run_cli_in(HAPSCENE_SOURCE_DIR, args); }
 
 }  // namespace hapscene::test

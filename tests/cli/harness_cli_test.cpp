@@ -54,7 +54,7 @@ TEST_CASE("cli: validate refuses invalid input with exit code 2") {
 
 // The one test that runs every shipped spec (1-D and 2-D, environments and scripts), as
 // users and CI run them: without arguments, from the repository's folder.
-TEST_CASE("cli: test runs every spec in the repository, or the ones given") {
+TEST_CASE("cli: test runs every spec in the repository, or the ones given" * doctest::test_suite("sweeps")) {
   std::size_t shipped = 0;
   for (const char* folder : {"environments", "scripts"}) {
     for (const auto& entry : std::filesystem::recursive_directory_iterator(HAPSCENE_SOURCE_DIR "/" + std::string(folder))) {

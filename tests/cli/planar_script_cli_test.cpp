@@ -83,7 +83,7 @@ TEST_CASE("planar script run: a script that faults is switched off, reported, an
 TEST_CASE("planar script CLI: a script of the other dimension is a load error, exit 2") {
   ScratchFolder scratch("planar_script_dimension");
   const auto env = scratch.write("env.json", planar_env("function force(s) return -100 * s.x end"));
-  const CliOutcome probe = run_cli("probe '" + env.string() + "' --x 0:0:1mm --y 0.12:0.12:1mm");
+  const CliOutcome probe = run_cli("probe '" + env.string() + "' --x 0:0:1mm --y 120mm:120mm:1mm");
   CHECK(probe.exit_code == 2);
   CHECK(probe.err.find("force(s) returned one number, expected two, fx, fy (N): this is a 2-D scene, and a 1-D "
                        "script returns one") != std::string::npos);

@@ -122,5 +122,5 @@ TEST_CASE("profile: bad profiles fail with the file and the place") {
         "x.json: /plant/end_stops/1: expected a length (m), got a force (\"6 N\")");
   CHECK(error_with("\"flip_threshold_counts\": 700", "\"flip_threshold_counts\": 922") ==
         "x.json: /sensor/flip_threshold_counts: must be in [1, 921], got 922");
-  CHECK(error_with("\"mass\": 0.04", "\"mas\": 0.04") == "x.json: /plant: missing required key \"mass\"");
+  CHECK(error_with("\"mass\": 0.04", "\"mas\": 0.04") == "x.json: /plant/mas: unknown key \"mas\" (did you mean \"mass\"?)");
 }

@@ -116,7 +116,8 @@ TEST_CASE("planar validate: the hand's own travel never goes through a solid") {
   }
 }
 
-TEST_CASE("planar validate: the shipped lab scenes at their stiffness, and far above it") {
+TEST_CASE("planar validate: the shipped lab scenes at their stiffness, and far above it" *
+          doctest::test_suite("sweeps")) {
   HarnessOptions options;
   for (const char* name : {"haplink_box_inside", "haplink_box_outside", "haplink_circle_inside", "haplink_circle_outside",
                            "haply2diy_v3_box_inside", "haply2diy_v3_box_outside", "haply2diy_v3_circle_inside",

@@ -123,8 +123,19 @@ TEST_CASE("environment: wrong types, missing keys, unknown keys and types") {
         "test.json: /effects/0/stifness: unknown key \"stifness\" (did you mean \"stiffness\"?)");
   CHECK(load_error(R"({"effects": [{"type": "wall", "position": 0, "stiffness": 5, "solid": "abve"}]})") ==
         "test.json: /effects/0/solid: \"abve\" is not one of \"above\", \"below\" (did you mean \"above\"?)");
+  // A required key written wrong is named as the misspelling it is, wherever it is read.
   CHECK(load_error(R"({"effect": []})") ==
-        "test.json: missing required key \"effects\"");
+        "test.json: /effect: unknown key \"effect\" (did you mean \"effects\"?)");
+  CHECK(load_error(R"({"effects": [{"type": "spring", "stifness": 5}]})") ==
+        "test.json: /effects/0/stifness: unknown key \"stifness\" (did you mean \"stiffness\"?)");
+  CHECK(load_error(R"({"effects": [{"type": "wall", "positon": "10 mm", "stiffness": 5}]})") ==
+        "test.json: /effects/0/positon: unknown key \"positon\" (did you mean \"position\"?)");
+  CHECK(load_error(R"({"effects": [{"typ": "spring", "stiffness": 5}]})") ==
+        "test.json: /effects/0/typ: unknown key \"typ\" (did you mean \"type\"?)");
+  // No guess for a key far from every expected one.
+  CHECK(load_error(R"({"effects": [{"type": "spring", "stiffness": 5, "zebra": 1}]})") ==
+        "test.json: /effects/0/zebra: unknown key \"zebra\"");
+  CHECK(load_error(R"({"name": "x"})") == "test.json: missing required key \"effects\"");
   CHECK(load_error(R"({"efects": [], "effects": []})") ==
         "test.json: /efects: unknown key \"efects\" (did you mean \"effects\"?)");
   CHECK(load_error(R"({"effects": {}})") ==

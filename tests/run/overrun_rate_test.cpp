@@ -31,7 +31,7 @@ TEST_CASE("overrun limits: unchanged up to 1 kHz, scaled to the same time above 
   CHECK(overrun_limits_at(options, 100'000.0).window_deadlines == kMaxOverrunWindow);
 }
 
-TEST_CASE("run at 10 kHz: overruns that go on still fault" * doctest::test_suite("threaded")) {
+TEST_CASE("run at 10 kHz: overruns that go on still fault" * doctest::test_suite("timing")) {
   // Every tick takes 2 ms at a 0.1 ms period: 20 misses per tick, a streak of 100 after
   // five ticks.
   const Scene scene = scene_from(R"({"rate_hz": 10000, "effects": []})");

@@ -46,7 +46,7 @@ RunSummary run_through_a_stall(const Scene& scene) {
 
 }  // namespace
 
-TEST_CASE("run: an isolated stall of the system warns without a fault" * doctest::test_suite("threaded")) {
+TEST_CASE("run: an isolated stall of the system warns without a fault" * doctest::test_suite("timing")) {
   const Scene scene = test::scene_from(R"({"effects": [{"type": "spring", "stiffness": 200}]})");
   // The stop lands while the loop sleeps or spins, nearly always; a try where it lands in
   // the tick's own work (about 1 in 300) is the loop's overrun and may fault: try again.

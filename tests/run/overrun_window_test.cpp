@@ -15,7 +15,7 @@ using namespace hapscene;
 using hapscene::test::scene_from;
 
 TEST_CASE("run: every third tick overrunning by two periods is a fault of frequent overruns" *
-          doctest::test_suite("threaded")) {
+          doctest::test_suite("timing")) {
   // Each slow tick misses 2 deadlines, then two ticks keep time: never 10 in a row, yet the
   // device gets 3 commands in 5 periods. Default numbers: > 100 misses in 1000 deadlines.
   const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 500}]})");
@@ -33,7 +33,7 @@ TEST_CASE("run: every third tick overrunning by two periods is a fault of freque
 }
 
 TEST_CASE("run: misses spread thinner than the window's limit never fault, however many in all" *
-          doctest::test_suite("threaded")) {
+          doctest::test_suite("timing")) {
   // One miss every 15 ticks: about 13 in any 200 deadlines (limit 20), 40 in the run (more
   // than 20): the window slides, old misses leave it.
   const Scene scene = scene_from(R"({"effects": []})");
@@ -51,7 +51,7 @@ TEST_CASE("run: misses spread thinner than the window's limit never fault, howev
   CHECK(summary.ticks > 500);
 }
 
-TEST_CASE("run: a streak still faults as a streak, not as frequent overruns" * doctest::test_suite("threaded")) {
+TEST_CASE("run: a streak still faults as a streak, not as frequent overruns" * doctest::test_suite("timing")) {
   const Scene scene = scene_from(R"({"effects": []})");
   test::SlowDevice device(scene, [](std::uint64_t tick) { return tick == 20; },
                                 std::chrono::milliseconds(30));

@@ -7,10 +7,15 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <thread>
 #include <vector>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "engine/base/errors.hpp"
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/run/observer_list.hpp"
 #include "engine/run/telemetry_log.hpp"
@@ -145,4 +150,39 @@ TEST_CASE("telemetry log: the CSV of a simulated run equals the traced ticks exa
   }
   CHECK(row == 1000);
   std::filesystem::remove(path);
+}
+
+TEST_CASE("telemetry log: never written through a link planted at its path, nor into a pipe" *
+          doctest::test_suite("threaded")) {
+  const auto dir = std::filesystem::temp_directory_path() / ("hapscene_log_link_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto victim = dir / "victim.txt";
+  std::ofstream(victim) << "precious\n";
+  std::filesystem::create_symlink(victim, dir / "run.csv");
+  try {
+    TelemetryLog log((dir / "run.csv").string());
+    FAIL("the log opened through a link");
+  } catch (const InputError& error) {
+    CHECK(std::string(error.what()) == (dir / "run.csv").string() + ": is a symbolic link; the log is not written through one");
+  }
+  std::ifstream in(victim);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(text == "precious\n");
+  // A named pipe with no reader: refused at once, not waited on.
+  REQUIRE(::mkfifo((dir / "pipe.csv").c_str(), 0600) == 0);
+  CHECK_THROWS_WITH_AS(TelemetryLog((dir / "pipe.csv").string()),
+                       ((dir / "pipe.csv").string() + ": not a regular file; the log is written to files only").c_str(),
+                       InputError);
+  // A regular file is emptied and written.
+  std::ofstream(dir / "old.csv") << "old rows\n";
+  {
+    TelemetryLog log((dir / "old.csv").string());
+    log.finish();
+  }
+  std::ifstream old(dir / "old.csv");
+  std::string header;
+  std::getline(old, header);
+  CHECK(header.starts_with("t_s,"));
+  std::filesystem::remove_all(dir);
 }

@@ -39,7 +39,7 @@ constexpr std::size_t kMaxPolygonPoints = 1024;
 template <typename Parse>
 auto parse_part(ObjectReader& parent, std::string_view key, Parse parse) {
   const nlohmann::json* value = parent.get(key);
-  if (value == nullptr) parent.fail("", "missing required key \"" + std::string(key) + "\"");
+  if (value == nullptr) parent.fail_missing(key);
   ObjectReader reader(*value, parent.pointer_to(key), parent.file());
   return parse(reader);
 }
@@ -47,7 +47,7 @@ auto parse_part(ObjectReader& parent, std::string_view key, Parse parse) {
 // The array at `key` with exactly `count` entries (count 0: any size within [3, max]).
 const nlohmann::json& array_at(ObjectReader& reader, std::string_view key, std::size_t count, std::string_view what) {
   const nlohmann::json* value = reader.get(key);
-  if (value == nullptr) reader.fail("", "missing required key \"" + std::string(key) + "\"");
+  if (value == nullptr) reader.fail_missing(key);
   if (!value->is_array() || (count != 0 && value->size() != count)) {
     reader.fail(key, "expected " + std::string(what) + ", got " +
                          (value->is_array() ? "an array of " + std::to_string(value->size()) : json_type_name(*value)));
@@ -71,7 +71,7 @@ Vec2 vector_from(const ObjectReader& reader, const std::string& pointer, const n
 
 Vec2 vector_at(ObjectReader& reader, std::string_view key, Quantity quantity, Range range) {
   const nlohmann::json* value = reader.get(key);
-  if (value == nullptr) reader.fail("", "missing required key \"" + std::string(key) + "\"");
+  if (value == nullptr) reader.fail_missing(key);
   return vector_from(reader, reader.pointer_to(key), *value, quantity, range);
 }
 

@@ -46,7 +46,7 @@ Vec2 vector_at(const ObjectReader& parent, const nlohmann::json& value,
 
 Vec2 read_vector(ObjectReader& reader, std::string_view key, Quantity quantity, Range component) {
   const nlohmann::json* value = reader.get(key);
-  if (value == nullptr) reader.fail("", "missing required key \"" + std::string(key) + "\"");
+  if (value == nullptr) reader.fail_missing(key);
   return vector_at(reader, *value, reader.pointer_to(key), quantity, component);
 }
 
@@ -67,7 +67,7 @@ Vec2 read_direction(ObjectReader& reader, std::string_view key) {
 std::vector<Vec2> read_points(ObjectReader& reader, std::string_view key, Range component,
                               std::size_t min_count, std::size_t max_count) {
   const nlohmann::json* value = reader.get(key);
-  if (value == nullptr) reader.fail("", "missing required key \"" + std::string(key) + "\"");
+  if (value == nullptr) reader.fail_missing(key);
   if (!value->is_array()) {
     reader.fail(key, "expected an array of points [[x, y], ...], got " + json_type_name(*value));
   }

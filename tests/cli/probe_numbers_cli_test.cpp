@@ -1,0 +1,58 @@
+// What `hapscene probe` prints for positions and what it takes as a range: each position
+// is the double nearest the decimal value asked for, so the CSV reads 0.018, not
+// 0.018000000000000002; a range whose parts mix a unit and bare numbers is refused. And
+// plot's default figure name: the environment file's, not the "name" inside it.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include "tests/cli/cli_support.hpp"
+#include "tests/scratch_folder.hpp"
+
+using hapscene::test::run_cli;
+
+TEST_CASE("probe: positions are the decimals asked for, and print as such") {
+  const auto outcome = run_cli("probe environments/spring.json --x 0:30mm:3mm");
+  REQUIRE(outcome.exit_code == 0);
+  std::istringstream rows(outcome.out);
+  std::string row;
+  std::getline(rows, row);
+  CHECK(row == "x_m,v_m_per_s,force_N,output_N");
+  int i = 0;
+  while (std::getline(rows, row)) {
+    const std::string x = row.substr(0, row.find(','));
+    CAPTURE(row);
+    CHECK(std::stod(x) == std::stod(std::to_string(3 * i) + "e-3"));  // the nearest double
+    CHECK(x.size() <= 5);                                             // "0.018", no noise
+    ++i;
+  }
+  CHECK(i == 11);
+  // Negative and fractional steps too.
+  const auto down = run_cli("probe environments/spring.json --x 1.5mm:-1.5mm:-0.3mm");
+  REQUIRE(down.exit_code == 0);
+  CHECK(down.out.find("\n9e-04,") != std::string::npos);  // std::to_chars: the shortest form
+  CHECK(down.out.find("\n-0.0012,") != std::string::npos);
+  CHECK(down.out.find("00000") == std::string::npos);
+}
+
+TEST_CASE("probe: a range mixing bare numbers and a unit is refused, exit 2") {
+  const auto mixed = run_cli("probe environments/spring.json --x 0:10:1mm");
+  CHECK(mixed.exit_code == 2);
+  CHECK(mixed.err.find("--x: \"10\" has no unit while another part of \"0:10:1mm\" has one") != std::string::npos);
+  CHECK(mixed.out.empty());
+  // A bare 0 is 0 in every unit; all bare is metres.
+  CHECK(run_cli("probe environments/spring.json --x 0:10mm:1mm").exit_code == 0);
+  CHECK(run_cli("probe environments/spring.json --x 0:0.01:0.001").exit_code == 0);
+}
+
+TEST_CASE("plot: without --output the figure is named after the environment's file, in the working folder") {
+  const hapscene::test::ScratchFolder folder("plot_default_name");
+  folder.write("my wall.json", R"({"name": "../escaped name", "effects": [{"type": "wall", "position": "10 mm", "stiffness": "300 N/m", "solid": "above"}]})");
+  const auto outcome = hapscene::test::run_cli_in(folder.dir.string(), "plot 'my wall.json'");
+  CHECK(outcome.exit_code == 0);
+  CHECK(outcome.out == "wrote my wall.svg\n");
+  CHECK(std::filesystem::exists(folder.dir / "my wall.svg"));
+  CHECK_FALSE(std::filesystem::exists(folder.dir.parent_path() / "escaped name.svg"));
+}
