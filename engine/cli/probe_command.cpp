@@ -56,7 +56,8 @@ ProbeRange parse_range(const Arguments& arguments, const std::string& name, cons
   const std::string parts[] = {text.substr(0, first), text.substr(first + 1, second - first - 1),
                                text.substr(second + 1)};
   const auto bare_number = [](const std::string& part, double* value) {
-    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), *value);
+    const char* begin = part.data() + (part.starts_with('+') ? 1 : 0);
+    const auto [end, ec] = std::from_chars(begin, part.data() + part.size(), *value);
     return ec == std::errc() && end == part.data() + part.size();
   };
   bool any_unit = false;
