@@ -839,25 +839,19 @@ void LiveViewOf<N>::start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, con
     GatedServer::request_arrived();
     s.stream(res);
   });
-  // The posts read their bodies themselves, bounded (read_body).
-  server.Post("/api/params", [&s](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {
-    std::string body;
-    if (!read_body(req, res, reader, &body)) return;
-    GatedServer::request_arrived();
-    s.change(body, res);
-  });
-  server.Post("/api/save", [&s](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {
-    std::string body;
-    if (!read_body(req, res, reader, &body)) return;
-    GatedServer::request_arrived();
-    s.save(res);
-  });
-  server.Post("/api/validate", [&s](const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {
-    std::string body;
-    if (!read_body(req, res, reader, &body)) return;
-    GatedServer::request_arrived();
-    s.validate(res);
-  });
+  // The posts read their bodies themselves, bounded (read_body), then act.
+  const auto post = [&server](const char* path, std::function<void(const std::string&, httplib::Response&)> act) {
+    server.Post(path, [act = std::move(act)](const httplib::Request& req, httplib::Response& res,
+                                             const httplib::ContentReader& reader) {
+      std::string body;
+      if (!read_body(req, res, reader, &body)) return;
+      GatedServer::request_arrived();
+      act(body, res);
+    });
+  };
+  post("/api/params", [&s](const std::string& body, httplib::Response& res) { s.change(body, res); });
+  post("/api/save", [&s](const std::string&, httplib::Response& res) { s.save(res); });
+  post("/api/validate", [&s](const std::string&, httplib::Response& res) { s.validate(res); });
   // httplib's own answers (a malformed request: 400) carry a JSON error too.
   server.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request&, httplib::Response& res) {
     if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
