@@ -17,6 +17,7 @@
     plotted: null,    // the newest tick drawn, and when
     changes: 0, refused: 0, lastError: null, droppedEvents: 0,
     faults: [],       // the script faults shown, each once (their messages)
+    end: null,        // the "end" event's data: {reason, fault, message}
     links: [],        // the device's links, as the newest event gave them
   };
 
@@ -277,11 +278,22 @@
     const source = new EventSource(api('/api/stream'));
     source.onopen = () => { $('connection').textContent = 'live'; $('connection').className = 'badge live'; };
     source.onmessage = onTicks;
-    source.addEventListener('end', () => {
+    // The run's last event: how it ended; a fault that ended it is shown with the script faults.
+    source.addEventListener('end', (message) => {
       view.ended = true;
       source.close();
-      $('connection').textContent = 'run ended';
+      let end = {};
+      try { end = JSON.parse(message.data); } catch (error) { end = {}; }
+      view.end = end;
+      $('connection').textContent = end.fault ? 'run stopped: fault' : 'run ended';
       $('connection').className = 'badge ended';
+      if (end.message) addLog('run ended: ' + end.message);
+      if (end.fault) {
+        const div = document.createElement('div');
+        div.className = 'error run-fault';
+        div.textContent = end.message;
+        $('faults').appendChild(div);
+      }
     });
     source.onerror = () => {
       if (view.ended) return;

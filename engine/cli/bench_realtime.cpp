@@ -57,8 +57,8 @@ Percentiles time_ticks(const Scene& scene, const std::vector<std::int32_t>& coun
   TickWarmer warmer(scene);
   std::int64_t deadline_ns = monotonic_now_ns() + period_ns;
   for (const std::int32_t raw : counts) {
-    if (pacing == Pacing::cold) wait_until(deadline_ns, [] {});
-    if (pacing == Pacing::warm) wait_until(deadline_ns, [&] { warmer.warm(scene, state); });
+    if (pacing == Pacing::cold) wait_until(monotonic_loop_clock(), deadline_ns, [] {});
+    if (pacing == Pacing::warm) wait_until(monotonic_loop_clock(), deadline_ns, [&] { warmer.warm(scene, state); });
     warmer.note_reading(raw);
     const std::int64_t begin_ns = monotonic_now_ns();
     step(scene, raw, &state);

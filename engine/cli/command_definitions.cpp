@@ -58,6 +58,10 @@ constexpr OptionDefinition kRunOptions[] = {
     {"seed", 0, "N", "the sensor noise's seed", "1", nullptr, &option::seed},
     {"quiet", 'q', "", "no live status line"},
     {"no-reload", 0, "", "do not reload the environment when its files change"},
+    {"overruns", 0, "stop|report",
+     "real time: deadline misses past the limits stop the run with zero force (a fault), or are reported and "
+     "the run goes on",
+     "stop; sim: report (its world waits for the loop)", nullptr, nullptr, "stop report", C::values},
     {"log", 'l', "FILE.csv", "per-tick telemetry (one environment)", "", nullptr, nullptr, "", C::output},
     {"plot", 'p', "FILE.svg", "the run's figure (one environment)", "", nullptr, nullptr, "", C::output},
     // Its value is optional (`--ui`, `--ui 8080`, `--ui HOST:PORT`): run_command takes it

@@ -61,6 +61,15 @@ RunSettings parse_settings(Arguments& arguments) {
   settings.simulation.noise_seed = arguments.take(option::seed).value_or(settings.simulation.noise_seed);
   settings.quiet = arguments.take_flag("quiet");
   settings.reload = !arguments.take_flag("no-reload");
+  if (const auto overruns = arguments.take_value("overruns")) {
+    if (*overruns == "stop") {
+      settings.options.overruns = OverrunResponse::stop;
+    } else if (*overruns == "report") {
+      settings.options.overruns = OverrunResponse::report;
+    } else {
+      arguments.fail("--overruns: unknown response \"" + printable(*overruns) + "\" (use stop or report)");
+    }
+  }
   settings.log_path = arguments.take_value("log");
   settings.plot_path = arguments.take_value("plot");
   return settings;

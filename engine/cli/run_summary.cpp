@@ -72,7 +72,7 @@ void print_scripts(const RunSummaryOf<N>& summary, const ScriptFaultPlaces<N>* p
 
 // Real time: the wake-up lateness, its bands, the scheduling obtained and overruns.
 template <int N>
-void print_timing(const RunSettings&, const RunSummaryOf<N>& summary) {
+void print_timing(const RunSettings& settings, const RunSummaryOf<N>& summary) {
   print_out("  wake-up jitter   p50 %.2f us  p99 %.2f us  max %.2f us\n", us(summary.wake_late_ns.percentile_ns(0.50)),
             us(summary.wake_late_ns.percentile_ns(0.99)), us(summary.wake_late_ns.max_ns()));
   // The jitter histogram: ticks per band of lateness.
@@ -90,7 +90,14 @@ void print_timing(const RunSettings&, const RunSummaryOf<N>& summary) {
   print_out("  jitter bands     %s\n", bands.c_str());
   print_out("  scheduling       %s\n", summary.realtime_note.c_str());
   if (!summary.realtime_hint.empty()) print_out("  to allow it      %s\n", summary.realtime_hint.c_str());
-  if (summary.overrun_warnings > 0 || summary.overrun_fault) {  // (a window fault may come without a warning)
+  // What deadline misses past the limits do, and why (--overruns, or the device).
+  const bool chosen = settings.options.overruns != OverrunResponse::by_device;
+  const char* why = chosen ? (summary.overruns_stop ? " (--overruns stop)" : " (--overruns report)")
+                    : summary.overruns_stop
+                        ? " (a late command leaves a motor pushing)"
+                        : " (a simulated device: its world waits for the loop; --overruns stop rehearses a motor's)";
+  print_out("  on overruns      %s%s\n", summary.overruns_stop ? "stop with zero force" : "report and run on", why);
+  if (summary.overrun_warnings > 0 || summary.overrun_fault_kind != OverrunFault::none) {  // (a window crossing may come without a warning)
     // (The simulation's share only where there was one: a simulated board's.)
     const std::string simulation =
         summary.simulation_misses > 0 ? ", " + std::to_string(summary.simulation_misses) +
@@ -102,15 +109,17 @@ void print_timing(const RunSettings&, const RunSummaryOf<N>& summary) {
               summary.most_misses_in_window, summary.overrun_limits.window_deadlines, count(summary.stall_misses),
               simulation.c_str());
   }
+  // Which limit was passed, and what it did.
+  const char* label = summary.overrun_fault ? "FAULT           " : "past the limit  ";
+  const char* outcome = summary.overrun_fault ? "zero force commanded, run stopped"
+                                              : "reported only, the run went on";
   if (summary.overrun_fault_kind == OverrunFault::streak) {
-    print_out("  FAULT            sustained overrun at %.3f s (%u deadline misses in a row): "
-              "zero force commanded, run stopped\n",
-              summary.overrun_fault_s, summary.overrun_limits.fault_ticks);
+    print_out("  %s sustained overrun at %.3f s (%u deadline misses in a row): %s\n", label,
+              summary.overrun_fault_s, summary.overrun_limits.fault_ticks, outcome);
   } else if (summary.overrun_fault_kind == OverrunFault::window) {
-    print_out("  FAULT            frequent overruns at %.3f s (%u deadline misses within the last %u "
-              "deadlines, more than %u): zero force commanded, run stopped\n",
-              summary.overrun_fault_s, summary.most_misses_in_window, summary.overrun_limits.window_deadlines,
-              summary.overrun_limits.window_misses);
+    print_out("  %s frequent overruns at %.3f s (%u deadline misses within the last %u deadlines, more than %u): %s\n",
+              label, summary.overrun_fault_s, summary.most_misses_in_window, summary.overrun_limits.window_deadlines,
+              summary.overrun_limits.window_misses, outcome);
   }
 }
 

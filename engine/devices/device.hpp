@@ -85,6 +85,11 @@ class DeviceStatus {
   // True when the device is gone for good (a simulated board's process died): the loop
   // commands zero force and the run ends; fault_seen() is true and report() says why.
   virtual bool lost() const noexcept { return false; }
+  // Whether a missed deadline can hurt: a motor keeps pushing its last command while the
+  // loop is late (a firmware-in-the-loop board rehearses exactly that). A simulated
+  // device's world waits for the loop, so a late tick changes nothing but the wall clock:
+  // its real-time runs report overruns instead of stopping on them (RunOptions::overruns).
+  virtual bool deadlines_matter() const noexcept { return true; }
   // Lines for the run summary (link health, latency, board timing); called outside the
   // loop. Empty for devices with nothing to add.
   virtual std::string report() const { return {}; }

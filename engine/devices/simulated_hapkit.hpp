@@ -22,6 +22,7 @@ class SimulatedHapkit final : public Device, public SimulationTruth {
   void advance(double dt_s) noexcept override;
 
   const SimulationTruth* truth() const noexcept override { return this; }
+  bool deadlines_matter() const noexcept override { return false; }
 
   // The true plant state, for observers and tests (the host only sees counts).
   double x_m() const noexcept override { return plant_.x_m(); }

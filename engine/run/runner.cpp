@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <ctime>
 
-#include "engine/base/clock.hpp"
+#include "engine/run/loop_clock.hpp"
 #include "engine/run/realtime.hpp"
 #include "engine/run/warm_tick.hpp"
 #include "engine/scene/step.hpp"
@@ -82,6 +82,9 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   const auto total_ticks = static_cast<std::uint64_t>(std::llround(options.duration_s * scene.rate_hz));
   const auto period_ns = static_cast<std::int64_t>(std::llround(scene.period_s * 1e9));
   const bool real_time = options.pacing == Pacing::real_time;
+  LoopClock& clock = options.clock != nullptr ? *options.clock : monotonic_loop_clock();
+  summary.overruns_stop = options.overruns == OverrunResponse::stop ||
+                          (options.overruns == OverrunResponse::by_device && device.deadlines_matter());
 
   // Wake-ups exactly when asked: the default 50 us timer slack would eat the spin margin.
   // Real-time scheduling and locked memory when permitted, for the length of a real-time
@@ -97,7 +100,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   TickWarmerOf<N> warmer(initial_scene);  // the dry tick in the spin before each deadline
 
   if (observer != nullptr) observer->on_start(state);
-  const std::int64_t start_ns = monotonic_now_ns();
+  const std::int64_t start_ns = clock.now_ns();
   std::int64_t deadline_ns = start_ns;
   std::int64_t last_begin_ns = start_ns;  // start of the latest tick, for the loop rate
   std::int64_t woke_ns = start_ns;        // real time: when the loop woke for the latest tick
@@ -108,15 +111,15 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     }
     // Pace: wait for this tick's absolute deadline.
     if (real_time) {
-      wait_until(deadline_ns, [&] { warmer.warm(hot_swap.scene(), state); });
-      woke_ns = monotonic_now_ns();
+      wait_until(clock, deadline_ns, [&] { warmer.warm(hot_swap.scene(), state); });
+      woke_ns = clock.now_ns();
       const auto late_ns = static_cast<std::uint64_t>(woke_ns - deadline_ns);
       summary.wake_late_ns.record(late_ns);
       if (options.monitor != nullptr) options.monitor->note_wake_late(late_ns);
     }
 
     // Read the device, compute, write the device.
-    const std::int64_t begin_ns = monotonic_now_ns();
+    const std::int64_t begin_ns = clock.now_ns();
     last_begin_ns = begin_ns;
     const CrossfadeOf<N>* fade = hot_swap.before_tick(&state);
     const typename DeviceOf<N>::Reading reading = device.read();
@@ -124,7 +127,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     state.safety.position_hold = position_hold(device.position_status());
     step(hot_swap.scene(), reading, &state, fade);
     device.write(state.command);
-    const std::int64_t end_ns = monotonic_now_ns();
+    const std::int64_t end_ns = clock.now_ns();
     warmer.note_reading(reading);  // what the next warm replays
     summary.compute_ns.record(static_cast<std::uint64_t>(end_ns - begin_ns));
     if (options.monitor != nullptr) options.monitor->note_compute(static_cast<std::uint64_t>(end_ns - begin_ns));
@@ -137,19 +140,19 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     // Device time passes. A simulated device computes it here (a simulated board's
     // process runs its firmware for the period while the loop waits): the simulated
     // world's time, which a real device spends in the world, not the loop's own work.
-    const std::int64_t advance_begin_ns = real_time ? monotonic_now_ns() : 0;
+    const std::int64_t advance_begin_ns = real_time ? clock.now_ns() : 0;
     device.advance(scene.period_s);
-    const std::int64_t advance_ns = real_time ? monotonic_now_ns() - advance_begin_ns : 0;
+    const std::int64_t advance_ns = real_time ? clock.now_ns() - advance_begin_ns : 0;
     if (device.lost()) {  // nothing left to drive: zero force below, and stop
       summary.device_lost = true;
       break;
     }
 
     deadline_ns += period_ns;
-    if (real_time && monotonic_now_ns() > deadline_ns) {
+    if (real_time && clock.now_ns() > deadline_ns) {
       // Overran into the next tick: count every deadline passed without a command (a stall
       // of 50 periods is 50 misses, not one) and realign rather than burst to catch up.
-      const std::int64_t now_ns = monotonic_now_ns();
+      const std::int64_t now_ns = clock.now_ns();
       const std::int64_t behind_ns = now_ns - deadline_ns;
       const std::int64_t missed = behind_ns / period_ns + 1;
       summary.deadline_misses += static_cast<std::uint64_t>(missed);
@@ -184,12 +187,20 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
       miss_window.push(static_cast<std::uint64_t>(missed), /*missed=*/true);
       summary.most_misses_in_window = std::max(summary.most_misses_in_window, miss_window.misses());
       if (options.monitor != nullptr) options.monitor->note_misses(summary.deadline_misses, summary.overrun_warnings);
+      // Past a limit: a fault (zero force, stop) or, where a late command hurts nothing,
+      // the first crossing reported and the run going on.
       const bool streak_fault = overrun_streak >= limits.fault_ticks;
-      if (streak_fault || miss_window.misses() > limits.window_misses) {
-        summary.overrun_fault = true;
+      if ((streak_fault || miss_window.misses() > limits.window_misses) &&
+          summary.overrun_fault_kind == OverrunFault::none) {
         summary.overrun_fault_kind = streak_fault ? OverrunFault::streak : OverrunFault::window;
         summary.overrun_fault_s = state.t_s;
-        break;
+        if (options.monitor != nullptr) {
+          options.monitor->note_overrun(summary.overrun_fault_kind, state.t_s, summary.overruns_stop);
+        }
+        if (summary.overruns_stop) {
+          summary.overrun_fault = true;
+          break;
+        }
       }
     } else {
       miss_streak = 0;
@@ -200,6 +211,12 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
 
   // The run is over (or faulted): the motor gets zero force.
   device.write(typename DeviceOf<N>::Command{});
+  if (options.monitor != nullptr) {
+    options.monitor->note_end(summary.overrun_fault   ? RunEnd::overrun_fault
+                              : summary.device_lost   ? RunEnd::device_lost
+                              : state.tick < total_ticks ? RunEnd::stop_requested
+                                                         : RunEnd::duration);
+  }
 
   if (observer != nullptr) observer->on_finish(state);
 
@@ -230,7 +247,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   summary.ticks = state.tick;
   summary.safety = state.safety.counters;
   summary.device_time_s = static_cast<double>(state.tick) * scene.period_s;
-  summary.wall_time_s = static_cast<double>(monotonic_now_ns() - start_ns) * 1e-9;
+  summary.wall_time_s = static_cast<double>(clock.now_ns() - start_ns) * 1e-9;
   // The rate the ticks achieved: intervals between the first and the last tick's start.
   const double ticks_span_s = static_cast<double>(last_begin_ns - start_ns) * 1e-9;
   summary.achieved_rate_hz = real_time && summary.ticks > 1 && ticks_span_s > 0.0

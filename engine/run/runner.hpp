@@ -16,6 +16,7 @@
 #include "engine/base/latency_histogram.hpp"
 #include "engine/devices/device.hpp"
 #include "engine/run/hot_swap.hpp"
+#include "engine/run/loop_clock.hpp"
 #include "engine/run/loop_monitor.hpp"
 #include "engine/run/tick_observer.hpp"
 #include "engine/scene/scene.hpp"
@@ -24,6 +25,13 @@
 namespace hapscene {
 
 enum class Pacing { simulated_time, real_time };
+
+// What a real-time run does when its deadline misses pass the overrun limits below.
+enum class OverrunResponse : std::uint8_t {
+  by_device,  // stop where a late command can hurt (Device::deadlines_matter), report elsewhere
+  stop,       // command zero force and end the run: a fault
+  report,     // count and report the crossing; the run goes on
+};
 
 struct RunOptions {
   double duration_s{2.0};
@@ -57,8 +65,13 @@ struct RunOptions {
   // stall of a few milliseconds, which a desktop or a VM has now and then, faults a
   // 10 kHz run no sooner than a 1 kHz one (10 ms without a command in a row, or over
   // 100 ms of misses within a second, still do). At 1 kHz and below they are unchanged.
+  // What passing those limits does (by default: stop on a device with a motor, report on
+  // a simulated one, whose world waits for the loop).
+  OverrunResponse overruns{OverrunResponse::by_device};
   // When set, the loop's timing is published here as it runs (the live view reads it).
   LoopMonitor* monitor{nullptr};
+  // The clock a real-time run keeps (null: the machine's monotonic clock).
+  LoopClock* clock{nullptr};
 };
 
 // The overrun limits in force for a run at `rate_hz` (see RunOptions).
@@ -97,12 +110,6 @@ void set_reload_exchange(RunOptions* options, SceneExchangeOf<N>* exchange) noex
 // allocation in the loop).
 inline constexpr std::uint32_t kMaxOverrunWindow = 16384;
 
-// Why the loop stopped on overruns.
-enum class OverrunFault : std::uint8_t {
-  none,
-  streak,  // overrun_fault_ticks deadline misses in a row, made by the loop's own work
-  window,  // more than overrun_window_misses misses within overrun_window_deadlines
-};
 
 // What happened to one script effect during a run.
 struct ScriptReport {
@@ -136,9 +143,10 @@ struct RunSummaryOf {
   std::uint32_t longest_miss_streak{};  // most deadline misses in a row
   std::uint64_t overrun_warnings{};     // times a streak reached overrun_warn_ticks
   double first_overrun_warning_s{-1.0}; // device time of the first warning (-1: none)
+  bool overruns_stop{};                 // passing the limits stops the run (RunOptions::overruns, resolved)
   bool overrun_fault{};                 // the run ended on sustained or frequent overruns
-  OverrunFault overrun_fault_kind{OverrunFault::none};  // which criterion ended it
-  double overrun_fault_s{};             // device time of the fault
+  OverrunFault overrun_fault_kind{OverrunFault::none};  // which criterion was passed first (ended the run, when overruns_stop)
+  double overrun_fault_s{};             // device time it was passed
   std::uint32_t most_misses_in_window{};  // most misses within any overrun window seen
   OverrunLimits overrun_limits;           // the limits in force (RunOptions scaled to the rate)
   bool device_lost{};                   // the run ended because the device was lost (Device::lost)

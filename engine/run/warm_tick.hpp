@@ -11,7 +11,6 @@
 // the input it just had; any other is left out.
 //
 // Nothing here allocates, throws, locks or does I/O; nothing a tick reads is written.
-#include <time.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -20,7 +19,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "engine/base/clock.hpp"
+#include "engine/run/loop_clock.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/scene/step.hpp"
 #include "engine/scene/tick_state.hpp"
@@ -142,21 +141,13 @@ using TickWarmer = TickWarmerOf<1>;
 // warming, fit in it.
 inline constexpr std::int64_t kSpin_ns = 50'000;
 
-// Sleeps until kSpin_ns before `deadline_ns` on the absolute monotonic clock, calls
-// `warm` once, then spins to the deadline.
+// Sleeps on `clock` until kSpin_ns before `deadline_ns`, calls `warm` once, then spins to
+// the deadline.
 template <typename Warm>
-void wait_until(std::int64_t deadline_ns, Warm&& warm) noexcept {
-  const std::int64_t sleep_until_ns = deadline_ns - kSpin_ns;
-  if (monotonic_now_ns() < sleep_until_ns) {
-    timespec until{};
-    until.tv_sec = static_cast<time_t>(sleep_until_ns / 1'000'000'000);
-    until.tv_nsec = static_cast<long>(sleep_until_ns % 1'000'000'000);
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, nullptr) != 0) {
-    }
-  }
+void wait_until(LoopClock& clock, std::int64_t deadline_ns, Warm&& warm) noexcept {
+  clock.sleep_until(deadline_ns - kSpin_ns);
   warm();
-  while (monotonic_now_ns() < deadline_ns) {
-  }
+  clock.spin_until(deadline_ns);
 }
 
 }  // namespace hapscene

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
+#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <filesystem>
@@ -118,6 +119,37 @@ bool same_token(const std::string& given, const std::string& token) {
 
 json axes_json(double value) { return value; }
 json axes_json(const Vec2& value) { return json::array({value[0], value[1]}); }
+
+// The first overrun limit passed, in the terminal's words ("" when none was).
+std::string overrun_text(const LoopMonitor& monitor) {
+  if (monitor.overrun_kind() == OverrunFault::none) return {};
+  const bool streak = monitor.overrun_kind() == OverrunFault::streak;
+  char text[256];
+  std::snprintf(text, sizeof text, "%s at %.3f s (%s): %s", streak ? "sustained overrun" : "frequent overruns",
+                monitor.overrun_t_s(),
+                streak ? "deadline misses in a row, made by the loop's own work"
+                       : "too many deadline misses within the window",
+                monitor.overrun_stopped()
+                    ? "zero force commanded, run stopped"
+                    : "reported only, the run went on (a simulated device's world waits for the loop)");
+  return text;
+}
+
+// The "end" event's data: how the run ended, and for a stop on overruns or a lost device
+// the terminal's words ({"reason", "fault", "message"}).
+json run_end_json(const LoopMonitor& monitor) {
+  const std::string overrun = overrun_text(monitor);
+  switch (monitor.end()) {
+    case RunEnd::running: return {{"reason", "running"}, {"fault", false}, {"message", overrun}};
+    case RunEnd::duration: return {{"reason", "duration"}, {"fault", false}, {"message", "ran its whole duration"}};
+    case RunEnd::stop_requested: return {{"reason", "stopped"}, {"fault", false}, {"message", "stopped on request"}};
+    case RunEnd::overrun_fault: return {{"reason", "overrun_fault"}, {"fault", true}, {"message", "FAULT: " + overrun}};
+    case RunEnd::device_lost:
+      return {{"reason", "device_lost"}, {"fault", true},
+              {"message", "FAULT: the device was lost: zero force, run stopped (the terminal's summary says why)"}};
+  }
+  return {{"reason", "running"}, {"fault", false}, {"message", overrun}};
+}
 
 // The stream's name of a script fault's kind.
 const char* script_fault_kind_name(ScriptFault kind) {
@@ -666,6 +698,11 @@ struct LiveViewOf<N>::Impl {
       // run's last event ("event: end") nothing more is sent.
       std::lock_guard lock(clients_mutex);
       if (ended.load()) continue;
+      // An overrun limit passed that did not stop the run (a simulated device): said once.
+      if (monitor != nullptr && monitor->overrun_kind() != OverrunFault::none && !overrun_logged) {
+        overrun_logged = true;
+        if (!monitor->overrun_stopped()) pending_log.push_back(overrun_text(*monitor));
+      }
       event["log"] = json(pending_log);
       pending_log.clear();
       for (const json& new_fault : new_faults) {
@@ -675,6 +712,8 @@ struct LiveViewOf<N>::Impl {
       std::string body = event.dump();
       body.pop_back();  // the closing brace: each client's count follows
       const bool finishing = tap.finished() && !any && !ended;
+      // How the run ended, with the terminal's words for a fault (docs/reference/live-view-api.md).
+      const std::string end_data = finishing && monitor != nullptr ? run_end_json(*monitor).dump() : "{}";
       for (const auto& client : clients) {
         if (client->queue.size() >= kLiveClientQueue) {
           client->queue.pop_front();
@@ -683,7 +722,7 @@ struct LiveViewOf<N>::Impl {
         }
         std::string event_text = "id: " + std::to_string(seq.load()) + "\ndata: " + body + ",\"dropped_events\":" +
                            std::to_string(client->dropped) + "}\n\n";
-        if (finishing) event_text += "event: end\ndata: {}\n\n";
+        if (finishing) event_text += "event: end\ndata: " + end_data + "\n\n";
         client->queue.push_back(std::move(event_text));
       }
       if (finishing) ended.store(true);
@@ -734,6 +773,7 @@ struct LiveViewOf<N>::Impl {
   std::mutex validate_mutex;
   std::atomic<bool> stopping{false};
   std::atomic<bool> ended{false};  // the "end" event was queued
+  bool overrun_logged{false};      // pump thread: a passed overrun limit went to the log
   std::thread server_thread;
   std::thread pump_thread;
 };

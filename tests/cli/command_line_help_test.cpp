@@ -261,7 +261,7 @@ TEST_CASE("command line: every option in the help is one its command reads") {
   const std::string out = folder.dir.string() + "/out";
   const std::map<std::string, std::string> values = {
       {"device", "sim"}, {"baud", "9600"}, {"duration", "1s"}, {"hand", "hold"}, {"hand-stiffness", "100"},
-      {"hand-damping", "1"}, {"hand-mass", "0.02"}, {"hold", "0"}, {"release", "1s"}, {"start", "0"},
+      {"hand-damping", "1"}, {"hand-mass", "0.02"}, {"overruns", "stop"}, {"hold", "0"}, {"release", "1s"}, {"start", "0"},
       {"noise", "0"}, {"seed", "1"}, {"log", out + ".csv"}, {"plot", out + ".svg"}, {"report", out + ".json"},
       {"output", out + ".svg"}, {"svg", out + ".svg"}, {"x", "0:1mm:1mm"}, {"y", "0:1mm:1mm"}, {"v", "0"},
       {"t", "0"}, {"scenario", "hold"}, {"grid", "10"}, {"width", "500"}, {"seconds", "0.1"}, {"passes", "1"},

@@ -192,55 +192,72 @@ TEST_CASE("latency histogram: percentiles within 3 %, exact max") {
   CHECK(histogram.percentile_ns(1.0) == 10000);
 }
 
-TEST_CASE("run: sustained overruns warn, then fault to zero force and stop" * doctest::test_suite("timing")) {
+// The overrun cases run on a SteppedClock: each slow tick takes exactly the time asked,
+// so the misses, warnings and faults below are exact on any machine.
+TEST_CASE("run: sustained overruns warn, then fault to zero force and stop") {
+  // From tick 20 on each tick takes 1.6 periods: one miss a tick, a streak growing by one.
   const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 500}]})");
-  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick >= 20; });  // slow from tick 20 on
-  RunOptions options{.duration_s = 0.2, .pacing = Pacing::real_time};
+  test::SteppedClock clock;
+  test::SlowDevice device(scene, clock, [](std::uint64_t tick) { return tick >= 20; });
+  RunOptions options{.duration_s = 0.2, .pacing = Pacing::real_time, .clock = &clock};
   const RunSummary summary = run_scene(scene, device, options, nullptr);
   CHECK(summary.overrun_fault);
+  CHECK(summary.overruns_stop);
+  CHECK(summary.overrun_fault_kind == OverrunFault::streak);
   CHECK(summary.overrun_warnings == 1);
-  CHECK(summary.first_overrun_warning_s < summary.overrun_fault_s);
-  CHECK(summary.longest_miss_streak >= 10);
-  CHECK(summary.ticks < 40);  // stopped, not run to 200 ticks
+  CHECK(summary.first_overrun_warning_s == doctest::Approx(0.022));  // the third miss in a row
+  CHECK(summary.overrun_fault_s == doctest::Approx(0.029));          // the tenth
+  CHECK(summary.longest_miss_streak == 10);
+  CHECK(summary.deadline_misses == 10);
+  CHECK(summary.ticks == 30);  // stopped, not run to 200 ticks
   CHECK(device.last.duty == 0.0);
   CHECK_FALSE(summary.realtime_note.empty());
 }
 
-TEST_CASE("run: a short burst of overruns warns without a fault" * doctest::test_suite("timing")) {
+TEST_CASE("run: a short burst of overruns warns without a fault") {
   const Scene scene = scene_from(R"({"effects": []})");
-  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick >= 10 && tick < 14; });
-  RunOptions options{.duration_s = 0.06, .pacing = Pacing::real_time};
+  test::SteppedClock clock;
+  test::SlowDevice device(scene, clock, [](std::uint64_t tick) { return tick >= 10 && tick < 14; });
+  RunOptions options{.duration_s = 0.06, .pacing = Pacing::real_time, .clock = &clock};
   const RunSummary summary = run_scene(scene, device, options, nullptr);
   CHECK_FALSE(summary.overrun_fault);
+  CHECK(summary.overrun_fault_kind == OverrunFault::none);
   CHECK(summary.overrun_warnings == 1);
-  CHECK(summary.longest_miss_streak >= 3);
-  CHECK(summary.ticks > 40);  // ran on; realigned schedules skip the missed deadlines
+  CHECK(summary.longest_miss_streak == 4);
+  CHECK(summary.deadline_misses == 4);
+  CHECK(summary.ticks == 60);  // ran on; realigned schedules skip the missed deadlines
 }
 
-TEST_CASE("run: one stall of many periods is that many misses in a row: a fault, zero force" * doctest::test_suite("timing")) {
+TEST_CASE("run: one stall of many periods is that many misses in a row: a fault, zero force") {
   // A tick that takes 30 periods (a script slow but within its budget, a blocked device)
   // leaves the motor without a command for 30 deadlines: a sustained overrun.
   const Scene scene = scene_from(R"({"effects": [{"type": "spring", "stiffness": 500}]})");
-  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick == 20; }, std::chrono::milliseconds(30));
-  RunOptions options{.duration_s = 0.2, .pacing = Pacing::real_time};
+  test::SteppedClock clock;
+  test::SlowDevice device(scene, clock, [](std::uint64_t tick) { return tick == 20; }, std::chrono::milliseconds(30));
+  RunOptions options{.duration_s = 0.2, .pacing = Pacing::real_time, .clock = &clock};
   const RunSummary summary = run_scene(scene, device, options, nullptr);
   CHECK(summary.overrun_fault);
-  CHECK(summary.deadline_misses >= 29);
-  CHECK(summary.longest_miss_streak >= 29);
-  CHECK(summary.ticks < 40);
+  CHECK(summary.overrun_fault_kind == OverrunFault::streak);
+  CHECK(summary.deadline_misses == 30);
+  CHECK(summary.longest_miss_streak == 30);
+  CHECK(summary.stall_misses == 0);
+  CHECK(summary.ticks == 21);
   CHECK(device.last.duty == 0.0);
 }
 
-TEST_CASE("run: single overruns neither warn nor fault" * doctest::test_suite("timing")) {
+TEST_CASE("run: single overruns neither warn nor fault") {
   const Scene scene = scene_from(R"({"effects": []})");
-  // 1.2 ms: each slow tick misses its deadline, and the loop is back on time 0.8 ms later,
-  // so only a stall of the machine longer than that could make a streak of 3.
-  test::SlowDevice device(scene, [](std::uint64_t tick) { return tick % 10 == 5; }, std::chrono::microseconds(1200));
-  RunOptions options{.duration_s = 0.05, .pacing = Pacing::real_time};
+  // 1.2 ms: each slow tick misses its deadline, and the loop is back on time 0.8 ms later.
+  test::SteppedClock clock;
+  test::SlowDevice device(scene, clock, [](std::uint64_t tick) { return tick % 10 == 5; },
+                          std::chrono::microseconds(1200));
+  RunOptions options{.duration_s = 0.05, .pacing = Pacing::real_time, .clock = &clock};
   const RunSummary summary = run_scene(scene, device, options, nullptr);
-  CHECK(summary.deadline_misses >= 4);
+  CHECK(summary.deadline_misses == 5);
+  CHECK(summary.longest_miss_streak == 1);
   CHECK(summary.overrun_warnings == 0);
   CHECK_FALSE(summary.overrun_fault);
+  CHECK(summary.ticks == 50);
 }
 
 TEST_CASE("latency histogram: counts below an edge") {

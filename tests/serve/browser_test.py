@@ -160,6 +160,24 @@ def end_run(process):
     return out, err
 
 
+class RunOutputOnFailure:
+    """`with RunOutputOnFailure(process):` ends the run on leaving, and when a check failed
+    prints what the run said (its summary tells why it ended)."""
+
+    def __init__(self, process):
+        self.process = process
+        self.out = self.err = ""
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, value, traceback):
+        self.out, self.err = end_run(self.process)
+        if kind is not None:
+            print("the run printed:\n" + self.out + self.err, file=sys.stderr)
+        return False
+
+
 def check_one_dof(browser, hapscene, scratch, screenshots):
     environment = os.path.join(scratch, "spring.json")
     shutil.copy(os.path.join(SOURCE_DIR, "environments", "spring.json"), environment)
@@ -243,7 +261,7 @@ def check_script_fault(browser, hapscene, scratch):
         json.dump({"name": "boom", "effects": [{"type": "spring", "stiffness": "100 N/m"},
                                                {"type": "script", "file": "boom.lua"}]}, out)
     process, url = start_run(hapscene, environment, [])
-    try:
+    with RunOutputOnFailure(process):
         browser.open(url)
         shown = wait_for("the page to show the script's fault", lambda: browser.evaluate(
             "Array.from(document.querySelectorAll('#faults .fault')).map((e) => e.textContent).join('\\n')"), timeout_s=60)
@@ -256,8 +274,48 @@ def check_script_fault(browser, hapscene, scratch):
         scripts = browser.evaluate("document.getElementById('st-scripts').textContent")
         assert scripts == "disabled now: 1, faults in the run: 1", scripts
         print("the page shows the script fault once: " + shown)
-    finally:
-        end_run(process)
+
+
+def stall(process, seconds):
+    """Stops the run's process for `seconds` (a stall of the system, as a busy machine makes)."""
+    process.send_signal(signal.SIGSTOP)
+    time.sleep(seconds)
+    process.send_signal(signal.SIGCONT)
+
+
+def check_overruns(browser, hapscene, scratch):
+    """Deadline misses past the limits: a simulated run reports them in the log and runs on;
+    asked to stop on them (--overruns stop), it ends and the page shows why, as the terminal does."""
+    environment = os.path.join(scratch, "spring-overruns.json")
+    shutil.copy(os.path.join(SOURCE_DIR, "environments", "spring.json"), environment)
+    for response in ("report", "stop"):
+        process, url = start_run(hapscene, environment, [] if response == "report" else ["--overruns", "stop"])
+        with RunOutputOnFailure(process) as run:
+            browser.open(url)
+            wait_for("the stream", lambda: browser.evaluate("window.hapsceneView && window.hapsceneView.events > 5"),
+                     timeout_s=60)
+            stall(process, 0.3)  # 300 deadlines missed: more than 100 within 1000
+            log = lambda: browser.evaluate("Array.from(document.querySelectorAll('#log li')).map((e) => e.textContent).join('\\n')")
+            if response == "report":
+                shown = wait_for("the log to tell of the limit passed",
+                                 lambda: "frequent overruns" in log() and log(), timeout_s=30)
+                assert "reported only, the run went on" in shown, shown
+                events = browser.evaluate("window.hapsceneView.events")
+                wait_for("the run to go on", lambda: browser.evaluate("window.hapsceneView.events") > events + 20, timeout_s=30)
+                assert not browser.evaluate("window.hapsceneView.ended")
+                print("a simulated run passed the overrun limits and went on: " + shown.splitlines()[-1])
+            else:
+                wait_for("the run to end", lambda: browser.evaluate("window.hapsceneView.ended"), timeout_s=30)
+                end = browser.evaluate("window.hapsceneView.end")
+                assert end["reason"] == "overrun_fault" and end["fault"], end
+                shown = browser.evaluate("document.querySelector('#faults .run-fault').textContent")
+                assert shown.startswith("FAULT: frequent overruns at ") and "zero force commanded, run stopped" in shown, shown
+                connection = browser.evaluate("document.getElementById('connection').textContent")
+                assert connection == "run stopped: fault", connection
+                print("the page shows the fault that ended the run: " + shown)
+        # The terminal says the same.
+        said = "FAULT            frequent overruns" if response == "stop" else "past the limit   frequent overruns"
+        assert said in run.out, run.out
 
 
 def timing_lines(summary):
@@ -315,6 +373,7 @@ def main():
             check_one_dof(browser, args.hapscene, scratch, args.screenshots)
             check_planar(browser, args.hapscene, scratch, args.screenshots)
             check_script_fault(browser, args.hapscene, scratch)
+            check_overruns(browser, args.hapscene, scratch)
         except AssertionError:
             print("the page: " + page_state(browser), file=sys.stderr)
             raise

@@ -34,6 +34,7 @@ class SimulatedPlanar final : public DeviceOf<2>, public SimulationTruthOf<2> {
   void write(const PlanarMotorCommand& command) noexcept override;
   void advance(double dt_s) noexcept override { plant_.advance(dt_s); }
   const SimulationTruthOf<2>* truth() const noexcept override { return this; }
+  bool deadlines_matter() const noexcept override { return false; }
 
   Vec2 x_m() const noexcept override { return plant_.handle_m(); }
   Vec2 v_m_per_s() const noexcept override { return plant_.handle_velocity_m_per_s(); }
