@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -167,6 +168,10 @@ py::dict probe_capstan(const LoadedScene& s, const Array& x, double v_m_per_s, d
       output_N.resize(x_m.size());
       for (std::size_t i = 0; i < x_m.size(); ++i) output_N[i] = open_loop.output_N(x_m[i], scan.force_N[i]);
       force_N = std::move(scan.force_N);
+      // Where a script faulted: NaN, not the 0 N a disabled script answers (as the CSV's empty fields).
+      for (std::size_t i = 0; i < scan.script_faulted.size(); ++i) {
+        if (scan.script_faulted[i]) force_N[i] = output_N[i] = std::numeric_limits<double>::quiet_NaN();
+      }
       behaviour = std::move(scan.behaviour);
       faults = open_loop.faults();
     });
@@ -196,8 +201,11 @@ py::dict probe_planar(const LoadedScene& s, const Array& x, const Array& y, cons
       for (std::size_t i = 0; i < points.size(); ++i) {
         const Vec2& force_N = scan.force_N[i];
         const Vec2 output_N = open_loop.output_N(points[i], force_N);
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        const bool faulted = !scan.script_faulted.empty() && scan.script_faulted[i];
         const double row[8] = {points[i][0], points[i][1], v_m_per_s[0], v_m_per_s[1],
-                               force_N[0],   force_N[1],   output_N[0],  output_N[1]};
+                               faulted ? nan : force_N[0], faulted ? nan : force_N[1],
+                               faulted ? nan : output_N[0], faulted ? nan : output_N[1]};
         for (int c = 0; c < 8; ++c) columns[c][i] = row[c];
       }
       behaviour = scan.behaviour;

@@ -3,7 +3,8 @@
 // output_N is what the device would be commanded after the static safety rules
 // (non-finite -> 0, outside the workspace -> 0, clamp to the force limit). Every point
 // is computed from fresh, reset script instances at run time T (default 0), so points
-// do not depend on each other or on their order. Script faults go to stderr, each once
+// do not depend on each other or on their order. A row where a script faulted has empty
+// force fields (docs/reference/commands.md). Script faults go to stderr, each once
 // ("scripts/x.lua:3: message (first at x ...)"), after the CSV; then the exit code is 1.
 //
 // For a 2-DOF environment (its device a planar profile): `hapscene probe ENV --x
@@ -127,6 +128,13 @@ std::string shortest(double value) {
   return ec == std::errc() ? std::string(buffer, end) : std::string("nan");
 }
 
+// Whether a script faulted at point i: its row's force fields are left empty, so that no
+// table shows the 0 N a disabled script answers as if it were the scene's force.
+template <int N>
+bool faulted_at(const OpenLoopScanOf<N>& scan, std::size_t i) {
+  return !scan.script_faulted.empty() && scan.script_faulted[i];
+}
+
 // --v VX,VY for a planar environment.
 Vec2 parse_planar_velocity(const Arguments& arguments, const std::string& text) {
   const std::size_t comma = text.find(',');
@@ -167,8 +175,11 @@ int probe_planar(const Arguments& arguments, const std::string& file, const std:
     const Vec2& force_N = scan.force_N[i];
     const Vec2 output_N = open_loop.output_N(points[i], force_N);
     out += shortest(points[i][0]) + "," + shortest(points[i][1]) + "," + shortest(v_m_per_s[0]) + "," +
-           shortest(v_m_per_s[1]) + "," + shortest(force_N[0]) + "," + shortest(force_N[1]) + "," +
-           shortest(output_N[0]) + "," + shortest(output_N[1]) + "\n";
+           shortest(v_m_per_s[1]) + "," +
+           (faulted_at(scan, i) ? std::string(",,,")
+                                : shortest(force_N[0]) + "," + shortest(force_N[1]) + "," + shortest(output_N[0]) +
+                                      "," + shortest(output_N[1])) +
+           "\n";
   }
   write_out(out);
   flush_out();
@@ -209,8 +220,10 @@ int probe_command(std::vector<std::string> args) {
   std::string out = "x_m,v_m_per_s,force_N,output_N\n";
   for (std::size_t i = 0; i < x_m.size(); ++i) {
     const double force_N = scan.force_N[i];
-    out += shortest(x_m[i]) + "," + shortest(v_m_per_s) + "," + shortest(force_N) + "," +
-           shortest(open_loop.output_N(x_m[i], force_N)) + "\n";
+    out += shortest(x_m[i]) + "," + shortest(v_m_per_s) + "," +
+           (faulted_at(scan, i) ? std::string(",")
+                                : shortest(force_N) + "," + shortest(open_loop.output_N(x_m[i], force_N))) +
+           "\n";
   }
   write_out(out);
   flush_out();

@@ -154,7 +154,7 @@ OpenLoopOf<N>::OpenLoopOf(const SceneOf<N>& scene, double t_s)
 
 template <int N>
 Axes<N> OpenLoopOf<N>::fresh_force_N(const Axes<N>& x_m, const Axes<N>& v_m_per_s, double t_s, bool record,
-                                     double order_key) {
+                                     double order_key, bool* faulted) {
   EffectInputOf<N> input;
   input.x_m = x_m;
   input.v_m_per_s = v_m_per_s;
@@ -167,6 +167,9 @@ Axes<N> OpenLoopOf<N>::fresh_force_N(const Axes<N>& x_m, const Axes<N>& v_m_per_
   const Axes<N> force_N = sum_effects_N(scene_, input, scripts);
   charge_calls(scene_, &pace_, thread_cpu_time_s() - start_s, 1);
   if (record) faults_.collect(scripts, describe_point(x_m, v_m_per_s, t_s), order_key);
+  if (faulted != nullptr) {
+    *faulted = std::any_of(scripts.begin(), scripts.end(), [](const auto& script) { return script->disabled(); });
+  }
   return force_N;
 }
 
@@ -355,8 +358,14 @@ OpenLoopScanOf<N> OpenLoopOf<N>::scan(const std::vector<Axes<N>>& x_m, const Axe
   if (faulted || values_if_not_static) {
     budget_.require(n);
     result.force_N.resize(n);
+    result.script_faulted.assign(n, false);
     for (std::size_t i = 0; i < n; ++i) {
-      result.force_N[i] = fresh_force_N(x_m[i], v_m_per_s, t_s_, true, point_order_key(x_m[i], i));
+      bool faulted_here = false;
+      result.force_N[i] = fresh_force_N(x_m[i], v_m_per_s, t_s_, true, point_order_key(x_m[i], i), &faulted_here);
+      result.script_faulted[i] = faulted_here;
+    }
+    if (std::none_of(result.script_faulted.begin(), result.script_faulted.end(), [](bool f) { return f; })) {
+      result.script_faulted.clear();
     }
   }
   return result;

@@ -73,6 +73,9 @@ struct ScriptBehaviour {
 template <int N>
 struct OpenLoopScanOf {
   std::vector<Axes<N>> force_N;  // per point, what the effects ask for (may be non-finite)
+  // Per point, whether a script faulted there (its force then counts as 0 N: not what the
+  // script meant). Empty when none did.
+  std::vector<bool> script_faulted;
   ScriptBehaviour behaviour;
 };
 using OpenLoopScan = OpenLoopScanOf<1>;
@@ -122,7 +125,9 @@ class OpenLoopOf {
   const ScriptFaultLog& faults() const { return faults_; }
 
  private:
-  Axes<N> fresh_force_N(const Axes<N>& x_m, const Axes<N>& v_m_per_s, double t_s, bool record, double order_key);
+  // (`faulted`, when given: whether a script faulted at this point.)
+  Axes<N> fresh_force_N(const Axes<N>& x_m, const Axes<N>& v_m_per_s, double t_s, bool record, double order_key,
+                        bool* faulted = nullptr);
   // New, reset instances of the scene's scripts, charged to the creation budget (throws
   // InputError before a creation that would exceed it).
   ScriptList create_instances();

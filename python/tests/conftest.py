@@ -46,10 +46,11 @@ def csv_text(columns, names):
 
 
 def read_csv(text):
-    """header, {column: float64 array} of a CLI CSV."""
+    """header, {column: float64 array} of a CLI CSV (an empty field, where a script faulted: NaN)."""
     rows = list(csv.reader(io.StringIO(text)))
     header = rows[0]
-    data = np.array([[float(v) for v in row] for row in rows[1:]], dtype=np.float64).reshape(-1, len(header))
+    data = np.array([[float(v) if v else math.nan for v in row] for row in rows[1:]],
+                    dtype=np.float64).reshape(-1, len(header))
     return header, {name: data[:, i] for i, name in enumerate(header)}
 
 

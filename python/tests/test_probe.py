@@ -84,3 +84,7 @@ def test_script_faults_are_warnings(tmp_path):
         got = scene.probe(expected["x_m"])
     assert_bits_equal(got["force_N"], expected["force_N"], "force_N")
     assert [str(w.message) for w in warned] == cli.stderr.splitlines()
+    # Where the script faulted: NaN (the CSV's empty fields), never the 0 N it answered.
+    faulted = expected["x_m"] > 0.01
+    assert faulted.any() and np.isnan(got["force_N"][faulted]).all() and np.isnan(got["output_N"][faulted]).all()
+    assert not np.isnan(got["force_N"][~faulted]).any()

@@ -29,14 +29,15 @@ TEST_CASE("cli: probe writes the CSV, prints a script fault once with file:line 
   const std::string script = folder.write("faulting.lua", kFaulting);
   const auto outcome = run_cli("probe " + script + " --x 0:20mm:5mm");
   CHECK(outcome.exit_code == 1);
+  // Where the script faulted the force fields are empty: no silent 0 N.
   CHECK(outcome.out == "x_m,v_m_per_s,force_N,output_N\n0,0,0,0\n0.005,0,-0.5,-0.5\n0.01,0,-1,-1\n"
-                       "0.015,0,0,0\n0.02,0,0,0\n");
+                       "0.015,0,,\n0.02,0,,\n");
   CHECK(outcome.err == script + ":3: undefined global 'k' (first at x 15.00 mm, v 0 m/s, t 0 s)\n");
   CHECK(hapscene::test::occurrences(outcome.err, "undefined global") == 1);
   // Backwards: the same rows, reversed, and the same message.
   const auto backwards = run_cli("probe " + script + " --x 20mm:0:-5mm");
   CHECK(backwards.exit_code == 1);
-  CHECK(backwards.out == "x_m,v_m_per_s,force_N,output_N\n0.02,0,0,0\n0.015,0,0,0\n0.01,0,-1,-1\n"
+  CHECK(backwards.out == "x_m,v_m_per_s,force_N,output_N\n0.02,0,,\n0.015,0,,\n0.01,0,-1,-1\n"
                          "0.005,0,-0.5,-0.5\n0,0,0,0\n");
   CHECK(backwards.err == outcome.err);
 }

@@ -56,3 +56,29 @@ TEST_CASE("plot: without --output the figure is named after the environment's fi
   CHECK(std::filesystem::exists(folder.dir / "my wall.svg"));
   CHECK_FALSE(std::filesystem::exists(folder.dir.parent_path() / "escaped name.svg"));
 }
+
+TEST_CASE("probe: a row where a script faulted has empty force fields, never a silent 0 N") {
+  // The script faults beyond 5 mm; the spring beside it still pulls everywhere.
+  const hapscene::test::ScratchFolder folder("probe_fault_rows");
+  folder.write("edge.lua", "function force(s)\n  if s.x > 0.005 then error('past the edge') end\n  return 0\nend\n");
+  folder.write("edge.json", R"({"effects": [{"type": "spring", "stiffness": "100 N/m"}, {"type": "script", "file": "edge.lua"}]})");
+  const auto outcome = hapscene::test::run_cli_in(folder.dir.string(), "probe edge.json --x 0:10mm:2.5mm");
+  CHECK(outcome.exit_code == 1);
+  CHECK(outcome.out ==
+        "x_m,v_m_per_s,force_N,output_N\n"
+        "0,0,0,0\n"
+        "0.0025,0,-0.25,-0.25\n"
+        "0.005,0,-0.5,-0.5\n"
+        "0.0075,0,,\n"
+        "0.01,0,,\n");
+  CHECK(outcome.err.find("edge.lua:2: past the edge") != std::string::npos);
+  // 2-D: the same, for both axes' columns.
+  folder.write("edge2.lua", "function force(s)\n  if s.x > 0.005 then error('past the edge') end\n  return 0, 0\nend\n");
+  folder.write("edge2.json", R"({"device": "haplink", "effects": [{"type": "script", "file": "edge2.lua"}]})");
+  const auto planar = hapscene::test::run_cli_in(folder.dir.string(), "probe edge2.json --x 0:10mm:10mm --y 100mm:100mm:1mm");
+  CHECK(planar.exit_code == 1);
+  CHECK(planar.out ==
+        "x_m,y_m,vx_m_per_s,vy_m_per_s,force_x_N,force_y_N,output_x_N,output_y_N\n"
+        "0,0.1,0,0,0,0,0,0\n"
+        "0.01,0.1,0,0,,,,\n");
+}

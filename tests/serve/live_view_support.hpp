@@ -152,10 +152,7 @@ struct LiveRun {
     // The firmware on simavr runs about 3x slower than real time on a loaded 2-core
     // machine: every tick is late, which would end the run on the overrun fault within
     // 10 ms. The link's counters are what the hil tests look at, so the run goes on late.
-    if (device_spec.starts_with("hil")) {
-      options.overrun_warn_ticks = options.overrun_fault_ticks = UINT32_MAX;
-      options.overrun_window_misses = options.overrun_window_deadlines;
-    }
+    if (device_spec.starts_with("hil")) options.overruns = OverrunResponse::report;
     set_reload_exchange<N>(&options, &exchange);
     loop = std::thread([this, options] { summary = run_scene(scene, *device, options, view->tap()); });
   }
