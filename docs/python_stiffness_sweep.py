@@ -1,8 +1,8 @@
 """Sweep a wall's stiffness, validate each value, plot the passivity ratio.
 
-A script a notebook can paste (docs/tutorials/python.md). For each stiffness it writes the lab
-wall (environments/wall.json) with that stiffness to a temporary file, runs
-hapscene.validate on it (the `hapscene validate` scenarios, in simulated time), and
+A script a notebook can paste (docs/tutorials/python.md). For each stiffness it loads the lab
+wall (environments/wall.json) with that stiffness from a dict (hapscene.loads: no
+temporary files), runs hapscene.validate on it (the `hapscene validate` scenarios, in simulated time), and
 plots the passivity ratio (energy the loop created / energy dissipated) of the sweep,
 press and release scenarios against the stiffness, with the check's threshold and the
 passivity bound the report gives for the device and rate. A red cross marks a
@@ -14,7 +14,6 @@ Run it from the source tree; it writes docs/python_stiffness_sweep.svg by defaul
 """
 import json
 import sys
-import tempfile
 from pathlib import Path
 
 import matplotlib
@@ -41,26 +40,24 @@ def passivity(scenario):
 
 ratio = {name: [] for name in scenarios}
 verdict = {name: [] for name in scenarios}
-with tempfile.TemporaryDirectory() as folder:
-    for k in stiffnesses_N_per_m:
-        environment = json.loads(json.dumps(base))
-        environment["effects"][0]["stiffness"] = float(k)
-        path = Path(folder) / "wall.json"
-        path.write_text(json.dumps(environment))
-        report = hapscene.validate(path, scenarios=scenarios)
-        bound_N_per_m = report["scene"]["passivity_bound_N_per_m"]
-        threshold = next(c for c in report["scenarios"][0]["checks"] if c["name"] == "passivity")["threshold"]
-        for scenario in report["scenarios"]:
-            r, v = passivity(scenario)
-            ratio[scenario["name"]].append(r)
-            verdict[scenario["name"]].append(v)
+environment = base
+for k in stiffnesses_N_per_m:
+    environment["effects"][0]["stiffness"] = float(k)
+    report = hapscene.validate(hapscene.loads(environment, base_dir="environments", name="wall.json"),
+                               scenarios=scenarios)
+    bound_N_per_m = report["scene"]["passivity_bound_N_per_m"]
+    threshold = next(c for c in report["scenarios"][0]["checks"] if c["name"] == "passivity")["threshold"]
+    for scenario in report["scenarios"]:
+        r, v = passivity(scenario)
+        ratio[scenario["name"]].append(r)
+        verdict[scenario["name"]].append(v)
         print(f"{k:8.0f} N/m  validate {'pass' if report['pass'] else 'FAIL'}  " +
               "  ".join(f"{n} {ratio[n][-1]:.3f} ({verdict[n][-1]})" for n in scenarios))
 
 figure, axes = plt.subplots(figsize=(7.5, 4.5))
 for name in scenarios:
     axes.plot(stiffnesses_N_per_m, ratio[name], marker="o", markersize=3, label=name)
-    failed = [i for i, v in enumerate(verdict[name]) if v == "fail"]
+    failed = [i for i, v in enumerate(verdict[name]) if v == "FAIL"]
     axes.plot(stiffnesses_N_per_m[failed], np.array(ratio[name])[failed], "x", color="red", markersize=7)
 axes.axhline(threshold, color="black", linewidth=0.8, label=f"passivity check: ratio at most {threshold:g}")
 axes.axvline(bound_N_per_m, color="grey", linestyle="--", label=f"passivity bound {bound_N_per_m:.0f} N/m")

@@ -47,10 +47,11 @@ struct FlipCounter {
     // check for overflow. |jump| <= threshold as one unsigned comparison each.
     const int64_t threshold = threshold_counts;
     const uint64_t width = 2u * static_cast<uint64_t>(threshold);
-    const auto near = [&](int32_t earlier) {
+    // (0 or 1 as unsigned: the three combine with & and no branch.)
+    const auto near = [&](int32_t earlier) -> unsigned {
       return static_cast<uint64_t>(int64_t{raw_counts} - earlier + threshold) <= width;
     };
-    return near(recent_raw[0]) & near(recent_raw[1]) & near(recent_raw[2]);
+    return (near(recent_raw[0]) & near(recent_raw[1]) & near(recent_raw[2])) != 0u;
 #else
     int32_t jump0, jump1, jump2;
     const bool overflowed = __builtin_sub_overflow(raw_counts, recent_raw[0], &jump0) |

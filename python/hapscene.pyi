@@ -1,7 +1,7 @@
 # Type hints for the hapscene module (python/module.cpp). Values documented as
 # `Quantity` take a number in SI or a string with a unit ("10 mm", "2 kHz").
 import os
-from typing import Any, Iterable, Optional, Sequence, Tuple, TypedDict, Union
+from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -34,7 +34,9 @@ class Scene:
     @property
     def effects(self) -> list[dict[str, Any]]: ...
     @property
-    def parameters(self) -> dict[str, float]: ...
+    def parameters(self) -> Mapping[str, float]:
+        """Read-only: a Scene is immutable (edit the dict and hapscene.loads() it)."""
+        ...
     @property
     def load_warnings(self) -> list[str]: ...
     def probe(
@@ -57,6 +59,10 @@ class Scene:
 
 def load(path: PathLike) -> Scene:
     """Loads an environment file; raises InputError with the CLI's located message."""
+    ...
+
+def loads(source: Union[str, dict[str, Any]], *, base_dir: PathLike = ".", name: str = "<string>") -> Scene:
+    """Loads an environment from JSON text or a dict (scripts and profiles from base_dir)."""
     ...
 
 class RunSummary(TypedDict, total=False):

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -286,6 +287,39 @@ LoadedScene load_scene(const std::string& path) {
   return s;
 }
 
+LoadedScene loads_scene(const py::handle& source, const py::object& base_dir_value, const std::string& name) {
+  const std::string base_dir = path_text(base_dir_value, "hapscene.loads: base_dir");
+  std::string text;
+  if (py::isinstance<py::str>(source)) {
+    text = source.cast<std::string>();
+  } else if (py::isinstance<py::dict>(source)) {
+    // The dict as JSON (what json.dumps makes of it: a value JSON has no form for is refused).
+    try {
+      text = py::module_::import("json").attr("dumps")(source, py::arg("allow_nan") = false).cast<std::string>();
+    } catch (py::error_already_set& error) {
+      throw InputError("hapscene.loads: " + name + ": not JSON: " + std::string(py::str(error.value())));
+    }
+  } else {
+    throw InputError("hapscene.loads: expected a JSON string or a dict, got " +
+                     std::string(py::str(py::type::of(source).attr("__name__"))));
+  }
+  LoadedScene s;
+  s.path = name;
+  {
+    py::gil_scoped_release release;
+    s.axes = environment_text_axes(text, name, base_dir);
+    if (s.axes == 2) {
+      s.planar = std::make_shared<const PlanarEnvironment>(compile_planar_environment(text, name, base_dir));
+    } else {
+      s.capstan = std::make_shared<const Environment>(compile_environment(text, name, base_dir));
+    }
+  }
+  // Its load warnings on stderr, as load() and the command line print a file's.
+  const auto& warnings = s.axes == 2 ? s.planar->scene.load_warnings : s.capstan->scene.load_warnings;
+  for (const std::string& warning : warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  return s;
+}
+
 LoadedScene scene_argument(const py::handle& value, const std::string& what) {
   if (py::isinstance<LoadedScene>(value)) return value.cast<LoadedScene>();
   return load_scene(path_text(value, what));
@@ -308,10 +342,14 @@ the file again.)")
                              "The compiled effects in file order (disabled ones are left out): one dict each, "
                              "its \"type\" and its parameters in SI (names carry the units; points are (x, y)).")
       .def_property_readonly("parameters", [](const LoadedScene& s) {
-            return flat_parameters(s.axes == 1 ? effect_list(compiled<1>(s)) : effect_list(compiled<2>(s)));
+            // Read-only (a Scene is immutable): assigning raises TypeError instead of
+            // changing a copy nobody reads.
+            const py::dict flat = flat_parameters(s.axes == 1 ? effect_list(compiled<1>(s)) : effect_list(compiled<2>(s)));
+            return py::module_::import("types").attr("MappingProxyType")(flat);
           },
-          "Every numeric parameter of the effects, flat: {\"effects[0].stiffness_N_per_m\": 500.0, ...}; "
-          "script parameters as \"effects[i].params.NAME\".")
+          "Every numeric parameter of the effects, flat and read-only: {\"effects[0].stiffness_N_per_m\": 500.0, ...}; "
+          "script parameters as \"effects[i].params.NAME\". To change one, edit the environment's dict and "
+          "hapscene.loads() it.")
       .def_property_readonly("load_warnings", [](const LoadedScene& s) {
             return s.axes == 1 ? compiled<1>(s).load_warnings : compiled<2>(s).load_warnings;
           },
@@ -332,6 +370,18 @@ checked, scripts compiled. Load warnings go to stderr, as on the command line.
 
 Raises hapscene.InputError with the CLI's located message
 ("environments/x.json: /effects/0/stiffness: must be in ...").)");
+
+  m.def("loads", &loads_scene, py::arg("source"), py::kw_only(), py::arg("base_dir") = py::str("."),
+        py::arg("name") = "<string>",
+        R"(loads(source, *, base_dir=".", name="<string>") -> Scene
+
+Loads an environment from JSON text or a dict (as json.loads gives it), checked and
+compiled as load() does a file: a sweep needs no temporary files. Script files and device
+profiles named in it are found from ``base_dir``; ``name`` names it in messages
+("<string>: /effects/0/stiffness: must be in ...") and is the Scene's path.
+
+Raises hapscene.InputError with the located message, also for a dict json.dumps cannot
+write (NaN, a set).)");
 }
 
 }  // namespace hapscene::python

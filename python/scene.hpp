@@ -22,6 +22,8 @@ struct LoadedScene {
 
 // Loads `path` as the command line does (its load warnings go to stderr). Throws InputError.
 LoadedScene load_scene(const std::string& path);
+// hapscene.loads: an environment from JSON text or a dict (relative files from base_dir).
+LoadedScene loads_scene(const py::handle& source, const py::object& base_dir, const std::string& name);
 
 // A Scene object, or a path to load (for the functions that take either).
 LoadedScene scene_argument(const py::handle& value, const std::string& what);

@@ -612,7 +612,7 @@ def all_required(properties, description=None, **extra):
 
 def report_schema():
     check = all_required({"name": {"type": "string"}, "value": NUM, "threshold": NUM, "unit": {"type": "string"},
-                          "pass": BOOLEAN, "verdict": {"enum": ["pass", "fail", "not judged"]},
+                          "pass": BOOLEAN, "verdict": {"enum": ["pass", "FAIL", "not judged"]},
                           "detail": {"type": "string"}}, description="one check and its verdict")
     checks = {"type": "array", "items": {"$ref": "#/$defs/check"}}
     fault = all_required({"message": {"type": "string"}, "where": {"type": "string"}})
@@ -628,14 +628,14 @@ def report_schema():
                             description="the virtual hand's options (noise_counts null: the profile's)")
 
     def scenario(metrics_ref, extra=None):
+        # Every scenario has every key: one that does not apply (not run) has "metrics": null
+        # and no checks.
         common = {"name": {"type": "string"}, "description": {"type": "string"}, "applicable": BOOLEAN,
-                  "duration_s": NUM, **(extra or {}), "pass": BOOLEAN, "metrics": {"$ref": metrics_ref},
-                  "checks": checks}
-        base = [k for k in common if k not in ("metrics", "checks")]
-        return closed(common, required=base,
-                      **{"if": {"properties": {"applicable": {"const": True}}},
-                         "then": {"required": ["metrics", "checks"]},
-                         "else": {"not": {"anyOf": [{"required": ["metrics"]}, {"required": ["checks"]}]}}})
+                  "duration_s": NUM, **(extra or {}), "pass": BOOLEAN,
+                  "metrics": {"anyOf": [{"$ref": metrics_ref}, {"type": "null"}]}, "checks": checks}
+        return closed(common, required=list(common),
+                      **{"if": {"properties": {"applicable": {"const": False}}},
+                         "then": {"properties": {"metrics": {"type": "null"}, "checks": {"maxItems": 0}}}})
 
     metrics_1d = all_required({
         "ticks": COUNT, "max_requested_N": NUM, "max_output_N": NUM, "max_output_x_m": NUM,
@@ -687,21 +687,22 @@ def report_schema():
                                          "poses": {"type": "array", "items": {"$ref": "#/$defs/pose"}}}),
         "load_warnings": STRINGS})
     report_1d = all_required({
-        "schema": {"const": "hapscene-validate/1"}, "scene": scene_1d, "options": options(NUM), "pass": BOOLEAN,
+        "schema": {"const": "hapscene-validate/2"}, "scene": scene_1d, "options": options(NUM), "pass": BOOLEAN,
         "scene_checks": checks,
         "scenarios": {"type": "array", "items": scenario("#/$defs/metrics_1d")},
     }, description="the report of a 1-DOF scene")
     report_2d = all_required({
-        "schema": {"const": "hapscene-validate/1"}, "axes": {"const": 2}, "scene": scene_2d,
+        "schema": {"const": "hapscene-validate/2"}, "axes": {"const": 2}, "scene": scene_2d,
         "options": options({"anyOf": [PAIR, {"type": "null"}]}), "pass": BOOLEAN, "scene_checks": checks,
         "scenarios": {"type": "array", "items": scenario("#/$defs/metrics_2d", {"start_m": PAIR})},
     }, description="the report of a 2-DOF scene (\"axes\": 2)")
     body = {"type": "object",
             "if": {"properties": {"axes": {"const": 2}}, "required": ["axes"]},
             "then": {"$ref": "#/$defs/report_2d"}, "else": {"$ref": "#/$defs/report_1d"}}
-    schema = root("validate-report", "hapscene validate report (hapscene-validate/1)",
+    schema = root("validate-report", "hapscene validate report (hapscene-validate/2)",
                   "What `hapscene validate --report FILE` writes (docs/reference/validate-report.md): a 1-D report, or a 2-D "
-                  "one marked \"axes\": 2. Fields are only ever added to hapscene-validate/1, so objects here "
+                  "one marked \"axes\": 2. Fields are only ever added to hapscene-validate/2 (/1 wrote a failed check's verdict "
+                  "\"fail\" and left a scenario that did not apply without \"metrics\" and \"checks\"), so objects here "
                   "allow keys they do not list; the test json_schemas checks that they list every key hapscene "
                   "writes today.", [], body,
                   {"check": check, "pose": pose, "metrics_1d": metrics_1d, "metrics_2d": metrics_2d,

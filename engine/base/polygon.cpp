@@ -205,4 +205,26 @@ std::string simple_polygon_problem(const std::vector<Vec2>& points) {
   return {};
 }
 
+bool segment_meets_box(const Vec2& a, const Vec2& b, const Vec2& low, const Vec2& high, BoxSides sides) noexcept {
+  const bool closed = sides == BoxSides::closed;
+  double enter = 0.0;  // the part of the segment within the box so far: [enter, leave]
+  double leave = 1.0;
+  for (int axis = 0; axis < 2; ++axis) {
+    const double d = b[axis] - a[axis];
+    if (d == 0.0) {  // parallel to this axis's sides: inside their band or never
+      const bool within = closed ? a[axis] >= low[axis] && a[axis] <= high[axis]
+                                 : a[axis] > low[axis] && a[axis] < high[axis];
+      if (!within) return false;
+      continue;
+    }
+    double t0 = (low[axis] - a[axis]) / d;
+    double t1 = (high[axis] - a[axis]) / d;
+    if (t0 > t1) std::swap(t0, t1);
+    enter = std::max(enter, t0);
+    leave = std::min(leave, t1);
+    if (closed ? enter > leave : enter >= leave) return false;
+  }
+  return true;
+}
+
 }  // namespace hapscene

@@ -45,4 +45,10 @@ std::string simple_polygon_problem(const std::vector<Vec2>& points);
 // Whether the closed segments a-b and c-d share a point (crossing, touching, overlapping).
 bool segments_meet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) noexcept;
 
+// Whether segment a-b has a point in the box [low, high] (Liang-Barsky clipping): with its
+// sides (closed), or strictly inside them (open: a segment along a side, or through a
+// corner only, does not count).
+enum class BoxSides { closed, open };
+bool segment_meets_box(const Vec2& a, const Vec2& b, const Vec2& low, const Vec2& high, BoxSides sides) noexcept;
+
 }  // namespace hapscene

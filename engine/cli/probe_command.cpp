@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
@@ -23,6 +24,7 @@
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/standard_output.hpp"
+#include "engine/devices/planar/planar_profile.hpp"
 #include "engine/harness/open_loop.hpp"
 #include "engine/harness/planar_open_loop.hpp"
 #include "engine/load/environment.hpp"
@@ -36,7 +38,28 @@ struct ProbeRange {
   double stop_m{};
   double step_m{};
   long long points{};
+  std::string parts[3];  // as typed
+  bool bare{};           // no part has a unit (metres)
 };
+
+// "note: --x 0:30:1 is in metres (0 to 30 m), beyond the workspace [-0.05, 0.045] m; did
+// you mean 0mm:30mm:1mm?": for a range of plain numbers that does not fit in the device's
+// workspace along its axis, where read in mm (or cm) it would. Empty otherwise.
+std::string range_unit_note(const std::string& name, const ProbeRange& range, double low_m, double high_m) {
+  const double from_m = std::min(range.start_m, range.stop_m);
+  const double to_m = std::max(range.start_m, range.stop_m);
+  const auto fits = [&](double scale) { return from_m * scale >= low_m && to_m * scale <= high_m; };
+  if (!range.bare || fits(1.0)) return "";
+  for (const auto& [unit, scale] : {std::pair{"mm", 1e-3}, std::pair{"cm", 1e-2}}) {
+    if (!fits(scale)) continue;
+    return "note: --" + name + " " + range.parts[0] + ":" + range.parts[1] + ":" + range.parts[2] +
+           " is in metres (" + format_number(range.start_m) + " to " + format_number(range.stop_m) +
+           " m), beyond the workspace [" + format_number(low_m) + ", " + format_number(high_m) +
+           "] m; did you mean " + range.parts[0] + unit + ":" + range.parts[1] + unit + ":" + range.parts[2] + unit +
+           "?";
+  }
+  return "";
+}
 
 // --NAME START:STOP:STEP (NAME: x, or y for a planar environment).
 ProbeRange parse_range(const Arguments& arguments, const std::string& name, const std::string& text) {
@@ -71,6 +94,8 @@ ProbeRange parse_range(const Arguments& arguments, const std::string& name, cons
       bare = part;
     }
   }
+  for (int i = 0; i < 3; ++i) range.parts[i] = parts[i];
+  range.bare = !any_unit;
   if (any_unit && !bare.empty()) {
     arguments.fail(option + ": \"" + bare + "\" has no unit while another part of \"" + text +
                    "\" has one: give every part its unit (as in 0mm:10mm:1mm), or none for metres");
@@ -158,6 +183,15 @@ int probe_planar(const Arguments& arguments, const std::string& file, const std:
   }
   const Vec2 v_m_per_s = v_text ? parse_planar_velocity(arguments, *v_text) : Vec2{};
   const PlanarScene scene = load_planar_environment_file(file);
+  {
+    Vec2 low_m;
+    Vec2 high_m;
+    workspace_bounds(scene.device.limits.workspace, &low_m, &high_m);
+    for (const std::string& note : {range_unit_note("x", x_range, low_m[0], high_m[0]),
+                                    range_unit_note("y", y_range, low_m[1], high_m[1])}) {
+      if (!note.empty()) std::fprintf(stderr, "%s\n", note.c_str());
+    }
+  }
   const std::vector<double> x_m = range_positions_m(x_range);
   const std::vector<double> y_m = range_positions_m(y_range);
   // Every point as fresh, reset instances give it at run time t (as the 1-D probe's
@@ -214,6 +248,9 @@ int probe_command(std::vector<std::string> args) {
   const ProbeRange range = parse_range(arguments, "x", *x_text);
 
   const Scene scene = load_environment_file(files[0]);
+  const std::string unit_note =
+      range_unit_note("x", range, scene.device.limits.workspace_min_m, scene.device.limits.workspace_max_m);
+  if (!unit_note.empty()) std::fprintf(stderr, "%s\n", unit_note.c_str());
   const std::vector<double> x_m = range_positions_m(range);
   OpenLoop open_loop(scene, t_s);
   const OpenLoopScan scan = open_loop.scan(x_m, v_m_per_s);

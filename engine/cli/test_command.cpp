@@ -1,5 +1,6 @@
 // `hapscene test [SPEC|FOLDER...]`: runs environment test specs (a folder: every
-// *.test.json under it; default: every *.test.json under environments/ and scripts/).
+// *.test.json under it; default: every *.test.json under environments/ and scripts/, or
+// when there are none, under the current folder).
 // Prints PASS/FAIL per spec and each unmet expectation. Exit 0 when all pass, 1 when any fails, 2 when any spec (or its
 // environment) is invalid input; the other specs still run.
 #include <cstdio>
@@ -30,9 +31,12 @@ int test_command(std::vector<std::string> args) {
     if (found.empty()) arguments.fail("no *.test.json under " + given);
     specs.insert(specs.end(), found.begin(), found.end());
   }
+  // Without arguments: a repository's environments/ and scripts/, or else (a folder of
+  // one's own specs) every spec under the current folder.
   if (arguments.positionals().empty()) {
     specs = find_test_specs({"environments", "scripts"});
-    if (specs.empty()) arguments.fail("no *.test.json under environments/ or scripts/");
+    if (specs.empty()) specs = find_test_specs({"."});
+    if (specs.empty()) arguments.fail("no *.test.json under environments/, scripts/ or the current folder");
   }
 
   // Each spec its own verdict: one that cannot be loaded (the spec or its environment)

@@ -1,6 +1,6 @@
 #pragma once
 // Reports of a 2-DOF validate run: the terminal table, the --quiet line and the JSON
-// report (schema "hapscene-validate/1", with "axes": 2 and the fields 2-D adds; docs/reference/
+// report (schema "hapscene-validate/2", with "axes": 2 and the fields 2-D adds; docs/reference/
 // validate-report.md, "In 2-D"), and the figure (--plot).
 #include <string>
 

@@ -153,7 +153,7 @@ std::string format_report_summary(const ValidationReport& report) {
 
 nlohmann::json check_to_json(const CheckResult& c) {
   return {{"name", c.name}, {"value", c.value}, {"threshold", c.threshold}, {"unit", c.unit},
-          {"pass", c.pass}, {"verdict", c.judged ? (c.pass ? "pass" : "fail") : "not judged"},
+          {"pass", c.pass}, {"verdict", verdict_text(c)},  // the table's word
           {"detail", c.detail}};
 }
 

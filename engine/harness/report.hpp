@@ -9,7 +9,7 @@
 
 namespace hapscene {
 
-inline constexpr const char* kReportSchema = "hapscene-validate/1";
+inline constexpr const char* kReportSchema = "hapscene-validate/2";
 
 // The terminal table, one line per check, and a result line.
 std::string format_report_table(const ValidationReport& report);

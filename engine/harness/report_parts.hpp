@@ -97,20 +97,20 @@ nlohmann::json report_json_frame(const Report& report, nlohmann::json scene, nlo
   return out;
 }
 
-// A scenario's entry: name, description, applicable, duration_s and pass, and for one
-// that ran `metrics` and its checks.
+// A scenario's entry, the same keys for every scenario: name, description, applicable,
+// duration_s, pass, `metrics` (null for one that does not apply: it did not run) and its
+// checks (none then).
 template <class ScenarioResult>
 nlohmann::json scenario_json(const ScenarioResult& s, const nlohmann::json& metrics) {
-  nlohmann::json scenario = {{"name", s.scenario.name}, {"description", s.scenario.description},
-                             {"applicable", s.scenario.applicable}, {"duration_s", s.scenario.duration_s},
-                             {"pass", s.pass}};
-  if (s.scenario.applicable) {
-    scenario["metrics"] = metrics;
-    nlohmann::json checks = nlohmann::json::array();
-    for (const CheckResult& c : s.checks) checks.push_back(check_to_json(c));
-    scenario["checks"] = checks;
-  }
-  return scenario;
+  nlohmann::json checks = nlohmann::json::array();
+  for (const CheckResult& c : s.checks) checks.push_back(check_to_json(c));
+  return {{"name", s.scenario.name},
+          {"description", s.scenario.description},
+          {"applicable", s.scenario.applicable},
+          {"duration_s", s.scenario.duration_s},
+          {"pass", s.pass},
+          {"metrics", s.scenario.applicable ? metrics : nlohmann::json(nullptr)},
+          {"checks", s.scenario.applicable ? checks : nlohmann::json::array()}};
 }
 
 }  // namespace hapscene

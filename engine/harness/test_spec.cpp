@@ -146,10 +146,30 @@ bool names_planar_environment(const std::string& spec_path) {
 
 std::string spec_environment_path(ObjectReader& spec, const std::string& spec_path) {
   const std::filesystem::path path(spec_path);
-  std::string name = path.filename().string();
-  name = name.substr(0, name.size() - std::string(".test.json").size()) + ".json";
-  const std::string environment = spec.string_or("environment", name);
-  return (path.parent_path() / environment).lexically_normal().string();
+  std::string stem = path.filename().string();
+  stem = stem.substr(0, stem.size() - std::string(".test.json").size());
+  const auto beside = [&](const std::string& name) { return (path.parent_path() / name).lexically_normal(); };
+  const auto exists = [](const std::filesystem::path& file) {
+    std::error_code error;
+    return std::filesystem::exists(file, error);
+  };
+  // The other form of the same environment: a script (.lua) for a .json, and back.
+  const auto other_form = [](std::filesystem::path file) {
+    return file.replace_extension(file.extension() == ".lua" ? ".json" : ".lua");
+  };
+  if (!spec.has("environment")) {
+    // NAME.test.json tests NAME.json, or the script NAME.lua when that is what is there.
+    const std::filesystem::path json = beside(stem + ".json");
+    return (exists(json) || !exists(other_form(json)) ? json : other_form(json)).string();
+  }
+  const std::string environment = spec.string("environment");
+  const std::filesystem::path named = beside(environment);
+  if (!exists(named) && exists(other_form(named))) {
+    spec.fail("environment", "\"" + environment + "\" does not exist (did you mean \"" +
+                                 std::filesystem::path(environment).replace_extension(other_form(named).extension()).string() +
+                                 "\", beside it?)");
+  }
+  return named.string();
 }
 
 double quantity_in(ObjectReader& r, std::string_view key, const ValueRange& range, std::optional<double> fallback) {
@@ -360,7 +380,8 @@ std::vector<std::string> find_test_specs(const std::vector<std::string>& folders
   for (const std::string& folder : folders) {
     std::error_code error;
     if (!std::filesystem::is_directory(folder, error)) continue;
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(folder, error)) {
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(
+             folder, std::filesystem::directory_options::skip_permission_denied, error)) {
       const std::string name = entry.path().filename().string();
       if (entry.is_regular_file() && name.size() > 10 && name.ends_with(".test.json")) {
         specs.push_back(entry.path().lexically_normal().string());

@@ -138,6 +138,24 @@ std::string wall_warning(const Wall& wall, const nlohmann::json& written, const 
                        [&](const char* unit) { return "\"" + format_number(wall.position_m) + " " + unit + "\""; });
 }
 
+// A spring whose centre, written without a unit, lies outside the device's workspace: it
+// pulls the handle toward a place it cannot reach, everywhere (likely "center": 10 meant
+// as 10 mm). The warning, with the unit-slip hint when mm (or cm) put the centre inside.
+std::string spring_warning(const Spring& spring, const nlohmann::json& written, const Scene& scene) {
+  const DeviceLimits& device = scene.device.limits;
+  const auto inside = [&](double scale) {
+    const double x_m = spring.center_m * scale;
+    return x_m >= device.workspace_min_m && x_m <= device.workspace_max_m;
+  };
+  if (!written_without_unit(written, "center") || inside(1.0)) return "";
+  return "(spring): center " + format_number(spring.center_m) + " m lies outside the workspace " +
+         interval(device.workspace_min_m, device.workspace_max_m) +
+         ", so the spring pulls the handle toward a place it cannot reach" +
+         unit_slip_hint(inside, inside, [&](const char* unit) {
+           return "\"" + format_number(spring.center_m) + " " + unit + "\"";
+         });
+}
+
 // "[-0.07, 0.04] x [0.09, 0.165] m": a box of the plane.
 std::string box_text(const Vec2& low_m, const Vec2& high_m) {
   return "[" + format_number(low_m[0]) + ", " + format_number(high_m[0]) + "] x [" + format_number(low_m[1]) + ", " +
@@ -287,9 +305,28 @@ std::string planar_unit_slip_hint(const Type& e, const nlohmann::json& written, 
 // A 2-D effect with a gain that still cannot act: its solid beyond the workspace box, or
 // (a cage) the workspace wholly inside its free part, with a unit-slip hint where one
 // fits. Fields act everywhere.
+// The 2-D spring's centre: as spring_warning, against the box round the device's workspace.
+std::string planar_spring_warning(const PlanarSpring& spring, const nlohmann::json& written, const PlanarScene& scene) {
+  Vec2 low_m;
+  Vec2 high_m;
+  workspace_bounds(scene.device.limits.workspace, &low_m, &high_m);
+  const auto inside = [&](double scale) {
+    const Vec2 c_m = spring.center_m * scale;
+    return c_m[0] >= low_m[0] && c_m[0] <= high_m[0] && c_m[1] >= low_m[1] && c_m[1] <= high_m[1];
+  };
+  if (!written_without_unit(written, "center") || inside(1.0)) return "";
+  return "(spring): center " + point_text(spring.center_m) + " m lies outside the box round the workspace " +
+         box_text(low_m, high_m) + ", so the spring pulls the handle toward a place it cannot reach" +
+         unit_slip_hint(inside, inside, [&](const char* unit) {
+           return std::string("\"center\": ") + length_text(spring.center_m, unit);
+         });
+}
+
 template <typename Type>
 std::string planar_placement_warning(const Type& e, const nlohmann::json& written, const PlanarScene& scene) {
-  if constexpr (!Type::kUsesProxy) {
+  if constexpr (std::is_same_v<Type, PlanarSpring>) {
+    return planar_spring_warning(e, written, scene);
+  } else if constexpr (!Type::kUsesProxy) {
     return "";
   } else {
     if (e.can_act_within(scene.safety.workspace_min_m, scene.safety.workspace_max_m)) return "";
@@ -312,6 +349,7 @@ std::string inert_effect_warning(const Effect& effect, const nlohmann::json& wri
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   return effect_warning(effect, -kInfinity, kInfinity, [&](const auto& e) -> std::string {
     if constexpr (std::is_same_v<std::decay_t<decltype(e)>, Wall>) return wall_warning(e, written, scene);
+    if constexpr (std::is_same_v<std::decay_t<decltype(e)>, Spring>) return spring_warning(e, written, scene);
     return "";
   });
 }

@@ -13,6 +13,7 @@
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/base/physical_ranges.hpp"
+#include "engine/base/type_hint.hpp"
 #include "engine/devices/planar/planar_profile.hpp"
 #include "engine/effects/planar/planar_effect_types.hpp"
 #include "engine/effects/planar/planar_reader.hpp"
@@ -67,10 +68,7 @@ bool parse_effect(const nlohmann::json& value, const std::string& pointer, const
   const auto type = std::find_if(effect_types().begin(), effect_types().end(),
                                  [&](const EffectType& t) { return t.name == type_name; });
   if (type == effect_types().end()) {
-    std::string message = "unknown effect type \"" + type_name + "\"";
-    const std::string suggestion = nearest_name(type_name, names);
-    if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
-    reader.fail("type", message);
+    reader.fail("type", "unknown effect type \"" + type_name + "\"" + effect_type_hint(type_name, names));
   }
   bool enabled = true;
   if (const nlohmann::json* flag = reader.get("enabled")) {
@@ -364,7 +362,11 @@ int environment_axes(const std::string& path) {
   const std::filesystem::path file(path);
   if (file.extension() == ".lua") return 1;  // a script alone: the Hapkit
   const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
-  const nlohmann::json root = parse_json_text(read_text_file(path, kMaxJsonFileBytes), path);
+  return environment_text_axes(read_text_file(path, kMaxJsonFileBytes), path, base_dir);
+}
+
+int environment_text_axes(std::string_view json_text, const std::string& display_name, const std::string& base_dir) {
+  const nlohmann::json root = parse_json_text(json_text, display_name);
   return names_planar_profile(device_named(root), base_dir) ? 2 : 1;
 }
 

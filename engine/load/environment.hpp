@@ -41,6 +41,9 @@ std::string environment_text_of(const std::string& path);
 // The number of axes of the scene an environment file makes: 2 when its "device" is a
 // planar profile, else 1. Throws InputError when the file cannot be read or parsed.
 int environment_axes(const std::string& path);
+// The same for environment JSON text (relative profile paths from `base_dir`).
+int environment_text_axes(std::string_view json_text, const std::string& display_name,
+                          const std::string& base_dir = ".");
 
 // A planar (2-DOF) environment: the same format with vectors (docs/reference/environments.md, "2-D environments").
 // Throws InputError naming the file and the place.

@@ -18,7 +18,7 @@ TEST_CASE("cli: validate passes the lab wall and writes a JSON report") {
   CHECK(outcome.out.find("result: pass (60 checks, 3 not judged)") != std::string::npos);
   const nlohmann::json json = nlohmann::json::parse(slurp_file(report));
   std::filesystem::remove(report);
-  CHECK(json["schema"] == "hapscene-validate/1");
+  CHECK(json["schema"] == "hapscene-validate/2");
   CHECK(json["pass"] == true);
   CHECK(json["scene"]["passivity_bound_N_per_m"] == 800.0);
   REQUIRE(json["scenarios"].size() == 6);

@@ -103,7 +103,7 @@ TEST_CASE("planar validate cli: the JSON report and the figure" * doctest::test_
       run_cli("validate " + kBox + " --scenario release,free --start=-10mm,150mm --report '" + report + "' --plot '" + figure + "'");
   CHECK(out.exit_code == 0);
   const nlohmann::json j = nlohmann::json::parse(slurp_file(report));
-  CHECK(j["schema"] == "hapscene-validate/1");
+  CHECK(j["schema"] == "hapscene-validate/2");
   CHECK(j["axes"] == 2);
   CHECK(j["scenarios"].size() == 2);
   CHECK(j["scenarios"][1]["start_m"] == nlohmann::json::array({-0.01, 0.15}));

@@ -82,3 +82,20 @@ TEST_CASE("probe: a row where a script faulted has empty force fields, never a s
         "0,0.1,0,0,0,0,0,0\n"
         "0.01,0.1,0,0,,,,\n");
 }
+
+TEST_CASE("probe: a range of plain numbers beyond the workspace is noted, with the range in mm") {
+  // 0 to 30 m in steps of 1 m: almost surely meant in mm. Probed as asked, with a note.
+  const auto metres = run_cli("probe environments/spring.json --x 0:30:1");
+  CHECK(metres.exit_code == 0);
+  CHECK(metres.err == "note: --x 0:30:1 is in metres (0 to 30 m), beyond the workspace [-0.05, 0.045] m; did you "
+                      "mean 0mm:30mm:1mm?\n");
+  CHECK(metres.out.find("\n30,0,") != std::string::npos);
+  // Units given, or plain numbers inside the workspace: nothing to note.
+  CHECK(run_cli("probe environments/spring.json --x 0:30mm:1mm").err.empty());
+  CHECK(run_cli("probe environments/spring.json --x 0:0.03:0.001").err.empty());
+  // 2-D: each axis against the box round the workspace.
+  const auto planar = run_cli("probe environments/planar/haplink_box_inside.json --x -10:10:10 --y 120:130:10");
+  CHECK(planar.exit_code == 0);
+  CHECK(planar.err.find("note: --x -10:10:10 is in metres (-10 to 10 m), beyond the workspace") != std::string::npos);
+  CHECK(planar.err.find("did you mean 120mm:130mm:10mm?") != std::string::npos);
+}

@@ -65,8 +65,10 @@ TEST_CASE("dimension parts: the 1-D and 2-D reports write the same rows, summary
   CHECK(a["schema"] == b["schema"]);
   CHECK(a["scene_checks"] == b["scene_checks"]);
   CHECK(a["scenarios"][0]["checks"] == b["scenarios"][0]["checks"]);
+  // A scenario that does not apply has every key: no metrics (it did not run), no checks.
   CHECK(a["scenarios"][1] == nlohmann::json{{"name", "hold"}, {"description", "nothing to hold"},
-                                            {"applicable", false}, {"duration_s", 0.0}, {"pass", true}});
+                                            {"applicable", false}, {"duration_s", 0.0}, {"pass", true},
+                                            {"metrics", nullptr}, {"checks", nlohmann::json::array()}});
   CHECK(b["scenarios"][1]["start_m"] == nlohmann::json::array({0.0, 0.0}));
 }
 

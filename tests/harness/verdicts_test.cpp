@@ -73,7 +73,7 @@ TEST_CASE("verdicts: a wall that never acts fails the scene's effects check") {
   CHECK(report.scene_checks[0].detail.find("test.json: /effects/1 (wall)") == 0);
   CHECK(format_report_line(report).starts_with("FAIL test (test.json): 1 of 11 checks failed: scene/effects"));
   const nlohmann::json json = report_to_json(report);
-  CHECK(json["scene_checks"][0]["verdict"] == "fail");
+  CHECK(json["scene_checks"][0]["verdict"] == "FAIL");  // the table's word
   CHECK(json["scene"]["load_warnings"].size() == 1);
 }
 

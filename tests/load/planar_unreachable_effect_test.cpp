@@ -160,3 +160,11 @@ TEST_CASE("planar validate: an effect that never acts fails scene/effects") {
   CHECK(report.scene_checks[0].name == "effects");
   CHECK(report.scene_checks[0].detail.starts_with("test.json: /effects/0 (damper): damping 0 N*s/m"));
 }
+
+TEST_CASE("planar load: a spring centred beyond the workspace by plain numbers warns, hinting mm") {
+  CHECK(only_warning(R"({"type": "spring", "stiffness": 100, "center": [-10, 120]})") ==
+        "test.json: /effects/0 (spring): center (-10, 120) m lies outside the box round the workspace "
+        "[-0.07, 0.04] x [0.09, 0.165] m, so the spring pulls the handle toward a place it cannot reach; did you "
+        "mean \"center\": [\"-10 mm\", \"120 mm\"]?");
+  CHECK(only_warning(R"({"type": "spring", "stiffness": 100, "center": ["-10 mm", "120 mm"]})") == "0 warnings");
+}

@@ -110,3 +110,18 @@ TEST_CASE("load: validate fails its scene/effects check for an effect with zero 
   CHECK(report.scene_checks[0].name == "effects");
   CHECK(report.scene_checks[0].detail.starts_with("test.json: /effects/1 (damper): damping 0 N*s/m"));
 }
+
+TEST_CASE("load: a spring centred beyond the workspace by a plain number warns, hinting mm") {
+  // "center": 10 meant as 10 mm: as written, 10 m, where the handle never goes.
+  CHECK(only_warning(R"({"effects": [{"type": "spring", "stiffness": 100, "center": 10}]})") ==
+        "test.json: /effects/0 (spring): center 10 m lies outside the workspace [-0.05, 0.045] m, so the spring "
+        "pulls the handle toward a place it cannot reach; did you mean \"10 mm\"?");
+  CHECK(only_warning(R"({"effects": [{"type": "spring", "stiffness": 100, "center": "-3"}]})")
+            .ends_with("did you mean \"-3 mm\"?"));
+  // Far beyond even in cm: the warning without a hint.
+  CHECK(only_warning(R"({"effects": [{"type": "spring", "stiffness": 100, "center": 900}]})")
+            .ends_with("toward a place it cannot reach"));
+  // With a unit the user meant it; inside the workspace nothing to say.
+  CHECK(only_warning(R"({"effects": [{"type": "spring", "stiffness": 100, "center": "10 m"}]})") == "0 warnings");
+  CHECK(only_warning(R"({"effects": [{"type": "spring", "stiffness": 100, "center": 0.01}]})") == "0 warnings");
+}

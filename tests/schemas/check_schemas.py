@@ -240,8 +240,10 @@ with tempfile.TemporaryDirectory() as scratch:
     fresh = load(out) if out.exists() else {}
 if fresh:
     bad_reports = [
-        ("another schema name", edited(fresh, set_key(["schema"], "hapscene-validate/2"))),
+        ("another schema name", edited(fresh, set_key(["schema"], "hapscene-validate/1"))),
         ("an unknown verdict", edited(fresh, set_key(["scenarios", 0, "checks", 0, "verdict"], "maybe"))),
+        ("schema 1's lower-case verdict", edited(fresh, set_key(["scenarios", 0, "checks", 0, "verdict"], "fail"))),
+        ("a scenario without its checks", edited(fresh, drop_key(["scenarios", 0, "checks"]))),
         ("a missing pass", edited(fresh, drop_key(["pass"]))),
         ("2-D marks on a 1-D report", edited(fresh, set_key(["axes"], 2))),
     ]

@@ -250,7 +250,7 @@ TEST_CASE("live view: validate runs the harness on the current values, off the l
   CHECK(verdict["pass"] == true);
   // The table as `validate` prints it, of the values running (150 N/m), and the JSON report.
   CHECK(verdict["table"].get<std::string>().rfind("validate live spring (" + file + ")", 0) == 0);
-  CHECK(verdict["report"]["schema"] == "hapscene-validate/1");
+  CHECK(verdict["report"]["schema"] == "hapscene-validate/2");
   // The sweep's largest force is 150 N/m's (4.016 N at 26.77 mm), not the file's 100 N/m
   // (validate runs in simulated time: the same values give the same table).
   const std::string table = verdict["table"].get<std::string>();

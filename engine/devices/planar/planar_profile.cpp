@@ -356,30 +356,6 @@ void workspace_bounds(const PlanarWorkspace& workspace, Vec2* low_m, Vec2* high_
   }
 }
 
-namespace {
-
-// Whether segment a-b passes through the open box (low, high): some point of it lies
-// strictly inside (an edge along the box's side, or through a corner only, does not).
-bool segment_enters_open_box(const Vec2& a, const Vec2& b, const Vec2& low, const Vec2& high) noexcept {
-  double enter = 0.0;
-  double leave = 1.0;
-  for (int axis = 0; axis < 2; ++axis) {
-    const double d = b[axis] - a[axis];
-    if (d == 0.0) {
-      if (!(a[axis] > low[axis] && a[axis] < high[axis])) return false;
-      continue;
-    }
-    double t0 = (low[axis] - a[axis]) / d;
-    double t1 = (high[axis] - a[axis]) / d;
-    if (t0 > t1) std::swap(t0, t1);
-    enter = std::max(enter, t0);
-    leave = std::min(leave, t1);
-  }
-  return enter < leave;
-}
-
-}  // namespace
-
 std::string box_leaves_workspace(const PlanarWorkspace& workspace, const Vec2& low_m, const Vec2& high_m) {
   // A corner outside (for a box workspace, convex, that decides it).
   for (const Vec2& corner : {low_m, Vec2{{high_m[0], low_m[1]}}, high_m, Vec2{{low_m[0], high_m[1]}}}) {
@@ -393,7 +369,7 @@ std::string box_leaves_workspace(const PlanarWorkspace& workspace, const Vec2& l
   const std::size_t n = workspace.is_box ? 0 : workspace.polygon_m.size();
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = (i + 1) % n;
-    if (segment_enters_open_box(workspace.polygon_m[i], workspace.polygon_m[j], low_m, high_m)) {
+    if (segment_meets_box(workspace.polygon_m[i], workspace.polygon_m[j], low_m, high_m, BoxSides::open)) {
       return "edge " + std::to_string(i) + " (points " + std::to_string(i) + " to " + std::to_string(j) +
              ") of the device's polygon passes through the box";
     }

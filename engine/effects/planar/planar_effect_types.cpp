@@ -5,6 +5,7 @@
 
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
+#include "engine/base/type_hint.hpp"
 
 namespace hapscene {
 namespace {
@@ -40,10 +41,7 @@ bool parse_planar_effect(const nlohmann::json& value, const std::string& pointer
   if (type == types.end()) {
     std::vector<std::string_view> names;
     for (const PlanarEffectType& t : types) names.push_back(t.name);
-    std::string message = "unknown 2-D effect type \"" + type_name + "\"";
-    const std::string suggestion = nearest_name(type_name, names);
-    if (!suggestion.empty()) message += " (did you mean \"" + suggestion + "\"?)";
-    reader.fail("type", message);
+    reader.fail("type", "unknown 2-D effect type \"" + type_name + "\"" + effect_type_hint(type_name, names));
   }
   if (const nlohmann::json* flag = reader.get("enabled")) {
     if (!flag->is_boolean()) reader.fail("enabled", "expected a boolean, got " + json_type_name(*flag));

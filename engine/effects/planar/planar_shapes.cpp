@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "engine/base/polygon.hpp"
 #include "engine/effects/planar/planar_shapes.hpp"
 
 namespace hapscene {
@@ -199,26 +200,6 @@ bool PlanarCircle::can_act_within(const Vec2& min_m, const Vec2& max_m) const no
 
 namespace {
 
-// Whether the segment a-b meets the closed box [low, high] (Liang-Barsky clipping).
-bool segment_meets_box(const Vec2& a, const Vec2& b, const Vec2& low, const Vec2& high) noexcept {
-  double enter = 0.0;
-  double leave = 1.0;
-  for (int axis = 0; axis < 2; ++axis) {
-    const double d = b[axis] - a[axis];
-    if (d == 0.0) {
-      if (a[axis] < low[axis] || a[axis] > high[axis]) return false;
-      continue;
-    }
-    double t0 = (low[axis] - a[axis]) / d;
-    double t1 = (high[axis] - a[axis]) / d;
-    if (t0 > t1) std::swap(t0, t1);
-    enter = std::max(enter, t0);
-    leave = std::min(leave, t1);
-    if (enter > leave) return false;
-  }
-  return true;
-}
-
 // Whether p is inside the outline's polygon (crossing number).
 bool inside_outline(const PolygonOutline& outline, const Vec2& p) noexcept {
   bool inside = false;
@@ -240,7 +221,7 @@ bool PlanarPolygon::can_act_within(const Vec2& min_m, const Vec2& max_m) const n
   const int n = outline.edge_count();
   // An edge in or across the box: the polygon's inside and outside both reach the box.
   for (int i = 0; i < n; ++i) {
-    if (segment_meets_box(outline.vertex(i), outline.vertex((i + 1) % n), min_m, max_m)) return true;
+    if (segment_meets_box(outline.vertex(i), outline.vertex((i + 1) % n), min_m, max_m, BoxSides::closed)) return true;
   }
   // No edge meets the box: the box lies wholly inside the polygon or wholly outside it.
   const bool box_inside = inside_outline(outline, min_m);
