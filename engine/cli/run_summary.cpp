@@ -98,10 +98,10 @@ void print_timing(const RunSettings& settings, const RunSummaryOf<N>& summary) {
                         : " (a simulated device: its world waits for the loop; --overruns stop rehearses a motor's)";
   print_out("  on overruns      %s%s\n", summary.overruns_stop ? "stop with zero force" : "report and run on", why);
   if (summary.overrun_warnings > 0 || summary.overrun_fault_kind != OverrunFault::none) {  // (a window crossing may come without a warning)
-    // (The simulation's share only where there was one: a simulated board's.)
+    // (The simulation's share only where there was one: a simulated plant's.)
     const std::string simulation =
         summary.simulation_misses > 0 ? ", " + std::to_string(summary.simulation_misses) +
-                                            " while the simulated board computed (its process behind real time)"
+                                            " while the simulated device computed (slower than real time)"
                                       : "";
     print_out("  overruns         %llu warnings (first at %.3f s), longest streak %u misses, "
               "at most %u misses in %u deadlines, %llu misses after late wake-ups (stalls of the system)%s\n",

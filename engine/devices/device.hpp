@@ -99,10 +99,18 @@ class DeviceStatus {
   virtual void link_health(DeviceLinkHealth* out) const noexcept { out->links = 0; }
   // A name per link, in link_health()'s order ("/dev/ttyACM0", "simulated board 1").
   virtual std::vector<std::string> link_names() const { return {}; }
-  // The processes of the device's own that compute in lock-step with the loop (a simulated
-  // board's: the loop waits on them inside advance()), which the loop's real-time
+  // A real-time run starts, and ends (called on the loop's thread, outside the loop, around
+  // it). A device whose world is simulated in processes of its own (firmware-in-the-loop)
+  // runs that world on a thread of its own at the wall clock's pace in between, as real
+  // hardware runs beside its host, so that the loop's tick never waits for a simulated CPU;
+  // its advance() then does nothing. Other devices ignore both.
+  virtual void begin_real_time(double period_s) { (void)period_s; }
+  virtual void end_real_time() noexcept {}
+  // The processes and threads of the device's own that must keep pace with the loop
+  // between begin_real_time() and end_real_time() (a simulated board's process, the thread
+  // that paces it, or boards the loop waits on in lock-step), which the loop's real-time
   // scheduling covers too (RealtimeGuard). None for other devices.
-  virtual std::vector<int> lockstep_processes() const { return {}; }
+  virtual std::vector<int> realtime_peers() const { return {}; }
 };
 
 template <int N>

@@ -30,7 +30,7 @@ std::string user_name() {
 }  // namespace
 
 
-RealtimeGuard::RealtimeGuard(bool enabled, const std::vector<int>& lockstep_processes) : enabled_(enabled) {
+RealtimeGuard::RealtimeGuard(bool enabled, const std::vector<int>& peers) : enabled_(enabled) {
   constexpr int priority = kPriority;
   if (!enabled) {
     note_ = "off (simulated time)";
@@ -58,23 +58,28 @@ RealtimeGuard::RealtimeGuard(bool enabled, const std::vector<int>& lockstep_proc
   const bool lock_refused = !locked_ && (lock_error == EPERM || lock_error == ENOMEM || lock_error == EAGAIN);
   hint_ = realtime_permission_hint(fifo_refused, lock_refused, executable_path(), user_name());
 
-  // The lock-step processes: the loop's priority too, when the loop has it.
+  // The peers: the most CPU an ordinary task can have, when the loop has SCHED_FIFO. Not
+  // SCHED_FIFO themselves: a simulated board's world can take most of a core, and real-time
+  // tasks past 95% of a core's second are throttled for the rest of it (the kernel's
+  // sched_rt_runtime_us) together with a loop sharing that core: stalls of 50 ms.
   std::string followers_note;
   std::size_t followed = 0;
-  for (const int pid : fifo_ ? lockstep_processes : std::vector<int>{}) {
+  for (const int pid : fifo_ ? peers : std::vector<int>{}) {
     if (pid <= 0) continue;
-    Follower follower{pid, sched_getscheduler(pid), 0};
-    sched_param old{};
-    if (follower.old_policy < 0 || sched_getparam(pid, &old) != 0) continue;  // already gone
-    follower.old_priority = old.sched_priority;
-    if (sched_setscheduler(pid, SCHED_FIFO, &param) != 0) {
-      followers_note = std::string("; not the board process (") + std::strerror(errno) + ")";
+    errno = 0;
+    const int old_nice = getpriority(PRIO_PROCESS, static_cast<id_t>(pid));
+    if (old_nice == -1 && errno != 0) continue;  // already gone
+    if (setpriority(PRIO_PROCESS, static_cast<id_t>(pid), kPeerNice) != 0) {
+      followers_note = std::string("; not the simulated world (") + std::strerror(errno) + ")";
       continue;
     }
-    followers_.push_back(follower);
+    followers_.push_back(Follower{pid, old_nice});
     ++followed;
   }
-  if (followed > 0) followers_note = followed == 1 ? "; the board process too" : "; the board processes too";
+  if (followed > 0) {
+    followers_note = "; the simulated world at nice " + std::to_string(kPeerNice) + " (" + std::to_string(followed) +
+                     " processes and threads)";
+  }
 
   // One line either way.
   if (fifo_ && locked_) {
@@ -106,9 +111,7 @@ std::string realtime_permission_hint(bool fifo_refused, bool lock_refused, const
 RealtimeGuard::~RealtimeGuard() {
   if (!enabled_) return;
   for (const Follower& follower : followers_) {  // a process gone since is no error
-    sched_param param{};
-    param.sched_priority = follower.old_priority;
-    sched_setscheduler(follower.pid, follower.old_policy, &param);
+    setpriority(PRIO_PROCESS, static_cast<id_t>(follower.pid), follower.old_nice);
   }
   if (locked_) munlockall();
   if (fifo_) {

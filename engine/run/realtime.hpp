@@ -5,10 +5,11 @@
 // memlock limit) the loop runs as it is and note() says so in one line. Everything is
 // restored when the guard goes out of scope.
 //
-// Processes that compute in lock-step with the loop (a simulated board's, which the loop
-// waits on inside its tick: Device::lockstep_processes) get the same SCHED_FIFO priority
-// when the loop got it: otherwise any busy process on the machine delays the loop's tick
-// through them. They are given back their own scheduling at the end.
+// Processes and threads that must keep pace with the loop (a simulated board's process and
+// the thread that paces it: Device::realtime_peers) get nice -20 when the loop got
+// SCHED_FIFO, so that busy processes on the machine do not make the simulated board fall
+// behind real time, while the loop still preempts them at once. They are given back their
+// own niceness at the end.
 #include <string>
 #include <vector>
 
@@ -16,15 +17,14 @@ namespace hapscene {
 
 class RealtimeGuard {
  public:
-  // SCHED_FIFO at kPriority, for this thread and for `lockstep_processes` (process ids).
+  // SCHED_FIFO at kPriority for this thread, kPeerNice for `peers` (process or thread ids).
   // Does nothing when `enabled` is false.
-  explicit RealtimeGuard(bool enabled, const std::vector<int>& lockstep_processes = {});
+  explicit RealtimeGuard(bool enabled, const std::vector<int>& peers = {});
   ~RealtimeGuard();
   RealtimeGuard(const RealtimeGuard&) = delete;
   RealtimeGuard& operator=(const RealtimeGuard&) = delete;
 
-  // One line for the summary: what was obtained, or why not (the lock-step processes
-  // included).
+  // One line for the summary: what was obtained, or why not (the peers included).
   const std::string& note() const noexcept { return note_; }
   // When the system refused SCHED_FIFO or the memory lock for lack of privilege: how to
   // allow them (limits.conf or a capability) and what running without them costs. Empty
@@ -33,13 +33,14 @@ class RealtimeGuard {
 
   // Above ordinary processes and most kernel threads, below the watchdogs (1..99).
   static constexpr int kPriority = 80;
+  // The peers' niceness: the most CPU among ordinary tasks.
+  static constexpr int kPeerNice = -20;
 
  private:
-  // A lock-step process and the scheduling it had.
+  // A peer and the niceness it had.
   struct Follower {
     int pid{};
-    int old_policy{};
-    int old_priority{};
+    int old_nice{};
   };
   std::vector<Follower> followers_;
 

@@ -59,6 +59,23 @@ class MissWindow {
   std::array<std::uint64_t, kMaxOverrunWindow / 64> bits_{};
 };
 
+// A device's real-time stretch (Device::begin_real_time), ended however the run ends.
+class RealTimeStretch {
+ public:
+  RealTimeStretch(DeviceStatus& device, bool real_time, double period_s) : device_(device), real_time_(real_time) {
+    if (real_time_) device_.begin_real_time(period_s);
+  }
+  ~RealTimeStretch() {
+    if (real_time_) device_.end_real_time();
+  }
+  RealTimeStretch(const RealTimeStretch&) = delete;
+  RealTimeStretch& operator=(const RealTimeStretch&) = delete;
+
+ private:
+  DeviceStatus& device_;
+  bool real_time_;
+};
+
 }  // namespace
 
 OverrunLimits overrun_limits_at(const RunOptions& options, double rate_hz) noexcept {
@@ -88,9 +105,11 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
 
   // Wake-ups exactly when asked: the default 50 us timer slack would eat the spin margin.
   // Real-time scheduling and locked memory when permitted, for the length of a real-time
-  // run (see RealtimeGuard).
+  // run (see RealtimeGuard), for the loop and for the device's peers (a simulated board's
+  // world, which keeps its own pace from here on).
   if (real_time) prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
-  const RealtimeGuard realtime(real_time, real_time ? device.lockstep_processes() : std::vector<int>{});
+  const RealTimeStretch stretch(device, real_time, scene.period_s);
+  const RealtimeGuard realtime(real_time, real_time ? device.realtime_peers() : std::vector<int>{});
   summary.realtime_note = realtime.note();
   summary.realtime_hint = realtime.hint();
   std::uint32_t miss_streak = 0;
@@ -137,9 +156,10 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
     summary.max_abs_requested_N = std::fmax(summary.max_abs_requested_N, norm(state.effects_force_N));
     summary.max_abs_output_N = std::fmax(summary.max_abs_output_N, norm(state.output_N));
     if (observer != nullptr) observer->on_tick(state);
-    // Device time passes. A simulated device computes it here (a simulated board's
-    // process runs its firmware for the period while the loop waits): the simulated
-    // world's time, which a real device spends in the world, not the loop's own work.
+    // Device time passes. A simulated device computes it here (its plant, for the
+    // period): the simulated world's time, which a real device spends in the world, not
+    // the loop's own work. (A simulated board keeps its own pace in real time instead:
+    // Device::begin_real_time.)
     const std::int64_t advance_begin_ns = real_time ? clock.now_ns() : 0;
     device.advance(scene.period_s);
     const std::int64_t advance_ns = real_time ? clock.now_ns() - advance_begin_ns : 0;
@@ -160,8 +180,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
       // Of these, the misses the loop's own work made (the tick, the device's read and
       // write, the observers: those it would have made had it woken on time and the
       // device's simulation taken no time); then those the simulation's time added (a
-      // simulated board that fell behind real time: its process was not run in time, or
-      // is slower than real time); the rest came from a late wake-up, a stall of the
+      // simulated plant slower than real time); the rest came from a late wake-up, a stall of the
       // system (the OS or the VM did not run the loop), not of the loop.
       const auto misses_after = [&](std::int64_t late_by_ns) {
         return late_by_ns > 0 ? std::min(missed, late_by_ns / period_ns + 1) : std::int64_t{0};

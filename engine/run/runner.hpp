@@ -134,7 +134,7 @@ struct RunSummaryOf {
   std::uint64_t script_budget_overruns{}; // scripts disabled by their instruction, time or memory limit
   std::uint64_t deadline_misses{};  // deadlines passed without a command (a tick overrunning k periods: k)
   std::uint64_t stall_misses{};     // of these, the ones a late wake-up made (the system stalled the loop)
-  std::uint64_t simulation_misses{};  // and the ones a simulated device's advance() made (its board process fell behind)
+  std::uint64_t simulation_misses{};  // and the ones a simulated device's advance() made (its plant slower than real time)
   LatencyHistogram compute_ns;      // read + step + write of each tick
   LatencyHistogram wake_late_ns;    // real time: how late each tick started
   std::vector<ScriptReport> scripts;  // one per script effect, in scene order

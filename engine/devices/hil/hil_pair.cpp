@@ -78,11 +78,15 @@ void HilPair::substep(double h_s, bool move_plant) noexcept {
   const PlanarReading sensed = planar_reading_for(model_, plant_.q_rad());
   const auto cycles = static_cast<std::uint64_t>(std::llround(h_s * SimulatedBoard::kClock_Hz));
   const std::uint64_t until = joints_[0].board.cycle() + cycles;
+  // Both processes compute at once (a core each when there are two), then both answer.
+  for (std::size_t i = 0; i < 2; ++i) {
+    joints_[i].board.set_sensor_counts(sensed.counts[i]);
+    joints_[i].board.start_run_until(until);
+  }
   PlanarMotorCommand pins;
   for (std::size_t i = 0; i < 2; ++i) {
     SimulatedBoard& board = joints_[i].board;
-    board.set_sensor_counts(sensed.counts[i]);
-    board.run_until(until);
+    board.finish_run();
     pins.motor[i] = MotorCommand{board.motor_duty(), board.direction_high()};
   }
   // Motors out: the pins through each joint's drive law, then the coupling.

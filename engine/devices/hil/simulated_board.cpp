@@ -140,7 +140,17 @@ SimulatedBoard::~SimulatedBoard() {
 }
 
 void SimulatedBoard::run_until(std::uint64_t cycle) noexcept {
-  if (!exchange(Op::run_until, cycle)) cycle_ = std::max(cycle_, cycle);  // a lost board: time passes
+  start_run_until(cycle);
+  finish_run();
+}
+
+void SimulatedBoard::start_run_until(std::uint64_t cycle) noexcept {
+  running_to_ = cycle;
+  if (!send_request(Op::run_until, cycle)) cycle_ = std::max(cycle_, cycle);  // a lost board: time passes
+}
+
+void SimulatedBoard::finish_run() noexcept {
+  if (!receive_reply()) cycle_ = std::max(cycle_, running_to_);
 }
 
 void SimulatedBoard::reset() noexcept { exchange(Op::reset, 0); }
@@ -161,7 +171,9 @@ std::size_t SimulatedBoard::take_bytes(std::uint8_t* out, std::size_t capacity) 
   return n;
 }
 
-bool SimulatedBoard::exchange(Op op, std::uint64_t cycle) noexcept {
+bool SimulatedBoard::exchange(Op op, std::uint64_t cycle) noexcept { return send_request(op, cycle) && receive_reply(); }
+
+bool SimulatedBoard::send_request(Op op, std::uint64_t cycle) noexcept {
   if (lost_) return false;
   // The request: sensor, host bytes, what to do, as one message.
   Request request;
@@ -175,7 +187,11 @@ bool SimulatedBoard::exchange(Op op, std::uint64_t cycle) noexcept {
     return false;
   }
   to_board_count_ = 0;
+  return true;
+}
 
+bool SimulatedBoard::receive_reply() noexcept {
+  if (lost_) return false;
   // The reply: pins, cycle, the board's bytes (kept in order; dropped past a full queue,
   // as the board's own queue would).
   Reply reply;

@@ -40,6 +40,10 @@ class SimulatedBoard {
 
   // Runs the CPU (timers, interrupts, UART) until `cycle`.
   void run_until(std::uint64_t cycle) noexcept;
+  // The same in two halves, so that several boards compute at once: the request (the
+  // board process starts), then its reply (the pins and bytes above change only here).
+  void start_run_until(std::uint64_t cycle) noexcept;
+  void finish_run() noexcept;
   std::uint64_t cycle() const noexcept { return cycle_; }
 
   // The MR sensor output as the ADC will convert it (clamped to 0..1023 counts).
@@ -66,8 +70,11 @@ class SimulatedBoard {
  private:
   enum class Loss : std::uint8_t { none, exited, signalled, timed_out, channel };
 
-  // One round trip; false (and the board lost) when the process does not answer.
+  // One round trip, or its halves; false (and the board lost) when the process does not
+  // take the request or does not answer.
   bool exchange(board_protocol::Op op, std::uint64_t cycle) noexcept;
+  bool send_request(board_protocol::Op op, std::uint64_t cycle) noexcept;
+  bool receive_reply() noexcept;
   void lose(Loss why) noexcept;
   std::string said() const;  // what the process wrote on its stderr (simavr's errors)
   mutable std::string said_;
@@ -79,6 +86,7 @@ class SimulatedBoard {
 
   // The state the last reply brought.
   std::uint64_t cycle_{};
+  std::uint64_t running_to_{};  // the cycle of the request under way
   double motor_duty_{};
   bool direction_high_{};
   std::size_t to_board_pending_{};  // host bytes queued in the process

@@ -30,7 +30,7 @@ constexpr unsigned kLoadSeconds = 10;  // wall-clock bound on loading and the tr
 // hapscene's next request: no time limit (hapscene may pause between runs; it closes
 // the channel when it is done).
 bool read_exactly(void* data, std::size_t size) {
-  return board_channel::read_exactly(kChannelFd, data, size, /*timeout_ms=*/-1);
+  return board_channel::read_exactly(kChannelFd, data, size, /*timeout_ms=*/-1, nullptr, /*spin_reads=*/0);
 }
 
 
