@@ -51,7 +51,8 @@ void put16(std::vector<std::uint8_t>* b, std::size_t at, std::uint16_t v) {
 // The section header of `name`, by offset in the file.
 std::size_t section_header(const std::vector<std::uint8_t>& b, const std::string& name) {
   const std::uint32_t shoff = get32(b, 32);
-  const std::uint16_t shnum = b[48] | (b[49] << 8), shstrndx = b[50] | (b[51] << 8);
+  const auto shnum = static_cast<std::uint16_t>(b[48] | (b[49] << 8));
+  const auto shstrndx = static_cast<std::uint16_t>(b[50] | (b[51] << 8));
   const std::uint32_t names = get32(b, shoff + shstrndx * 40u + 16);
   for (std::uint16_t i = 0; i < shnum; ++i) {
     const std::size_t at = shoff + i * 40u;

@@ -53,34 +53,34 @@ PlanarSimulationConfig held_in_box(const PlanarScene& scene) {
   return config;
 }
 
-HilPairConfig hil_config(const PlanarSimulationConfig& simulation) {
+HilPairConfig pair_hil_config(const PlanarSimulationConfig& simulation) {
   HilPairConfig config;
   config.simulation = simulation;
   config.firmware_elf = default_firmware_elf();
   return config;
 }
 
-struct Sample {
+struct PairSample {
   Vec2 x_true_m, x_m, output_N, motor_force_N;
-  bool operator==(const Sample&) const = default;
+  bool operator==(const PairSample&) const = default;
 };
 
 // Records each tick; the truth is read after the device's previous advance.
-class Trace final : public TickObserverOf<2> {
+class PairTrace final : public TickObserverOf<2> {
  public:
-  Trace(const SimulationTruthOf<2>& truth, std::size_t ticks) : truth_(truth) { samples.reserve(ticks); }
+  PairTrace(const SimulationTruthOf<2>& truth, std::size_t ticks) : truth_(truth) { samples.reserve(ticks); }
   void on_tick(const TickStateOf<2>& s) noexcept override {
     samples.push_back({truth_.x_m(), s.x_m, s.output_N, truth_.motor_force_N()});
   }
-  std::vector<Sample> samples;
+  std::vector<PairSample> samples;
 
  private:
   const SimulationTruthOf<2>& truth_;
 };
 
-std::vector<Sample> run(const PlanarScene& scene, DeviceOf<2>& device, double duration_s,
+std::vector<PairSample> run_pair(const PlanarScene& scene, DeviceOf<2>& device, double duration_s,
                         TickObserverOf<2>* extra = nullptr) {
-  Trace trace(*device.truth(), static_cast<std::size_t>(duration_s * scene.rate_hz) + 1);
+  PairTrace trace(*device.truth(), static_cast<std::size_t>(duration_s * scene.rate_hz) + 1);
   ObserverListOf<2> observers;
   observers.add(&trace);
   if (extra != nullptr) observers.add(extra);
@@ -89,7 +89,7 @@ std::vector<Sample> run(const PlanarScene& scene, DeviceOf<2>& device, double du
   return trace.samples;
 }
 
-double largest_rise_N(const std::vector<Sample>& samples, std::size_t from) {
+double pair_largest_rise_N(const std::vector<PairSample>& samples, std::size_t from) {
   double rise_N = 0.0;
   for (std::size_t i = std::max<std::size_t>(from, 1); i < samples.size(); ++i) {
     rise_N = std::max(rise_N, norm(samples[i].output_N) - norm(samples[i - 1].output_N));
@@ -104,9 +104,9 @@ TEST_CASE("hil pair: a box contact renders the same forces as the simulated pant
   const PlanarScene scene = load_planar_environment_text(kBoxScene, "box.json");
   const PlanarSimulationConfig simulation = line_into_box(scene);
   SimulatedPlanar sim(scene.device, simulation);
-  HilPair hil(scene.device, hil_config(simulation));
-  const auto a = run(scene, sim, 1.5);
-  const auto b = run(scene, hil, 1.5);
+  HilPair hil(scene.device, pair_hil_config(simulation));
+  const auto a = run_pair(scene, sim, 1.5);
+  const auto b = run_pair(scene, hil, 1.5);
   REQUIRE(a.size() == b.size());
 
   // The same contact: peak force within 3 %, the force along the way within what a tick
@@ -127,7 +127,7 @@ TEST_CASE("hil pair: a box contact renders the same forces as the simulated pant
   CHECK(worst_N < 0.15);
   CHECK(worst_m < 0.5e-3);
   // The box pushes back along -x.
-  const auto deepest = std::max_element(b.begin(), b.end(), [](const Sample& p, const Sample& q) {
+  const auto deepest = std::max_element(b.begin(), b.end(), [](const PairSample& p, const PairSample& q) {
     return norm(p.output_N) < norm(q.output_N);
   });
   CHECK(deepest->output_N[0] < -1.0);
@@ -148,7 +148,7 @@ TEST_CASE("hil pair: faults on either board are survived, both motors zero meanw
           doctest::test_suite("threaded")) {
   const PlanarScene scene = load_planar_environment_text(kBoxScene, "box.json");
   const PlanarSimulationConfig simulation = held_in_box(scene);
-  HilPair hil(scene.device, hil_config(simulation));
+  HilPair hil(scene.device, pair_hil_config(simulation));
 
   // Faults at chosen ticks, on joint 2's board and then joint 1's, from inside the run.
   struct Faults final : TickObserverOf<2> {
@@ -172,7 +172,7 @@ TEST_CASE("hil pair: faults on either board are survived, both motors zero meanw
     }
   } faults;
   faults.hil = &hil;
-  const auto samples = run(scene, hil, 2.5, &faults);
+  const auto samples = run_pair(scene, hil, 2.5, &faults);
 
   for (int joint = 0; joint < 2; ++joint) CHECK(hil.link(joint).state() == LinkState::running);
   CHECK(hil.link(1).decoder().crc_errors >= 1);
@@ -194,11 +194,11 @@ TEST_CASE("hil pair: faults on either board are survived, both motors zero meanw
 
   // The position stayed right and the box pushes again after the ramp-in: the hand
   // (1000 N/m at 4 mm in) and the wall (400 N/m) balance at 2.86 mm, 1.14 N.
-  const Sample& last = samples.back();
+  const PairSample& last = samples.back();
   CHECK(norm(last.x_m - last.x_true_m) < 0.3e-3);
   CHECK(last.output_N[0] == doctest::Approx(-1.143).epsilon(0.08));
   // No jolt, faults or not.
-  CHECK(largest_rise_N(samples, 600) < 0.1);
+  CHECK(pair_largest_rise_N(samples, 600) < 0.1);
   CHECK(hil.report().find("joint 2 ") != std::string::npos);
 }
 
@@ -206,7 +206,7 @@ TEST_CASE("hil pair: a silent link on one board zeroes both motors, and both rec
           doctest::test_suite("threaded")) {
   const PlanarScene scene = load_planar_environment_text(kBoxScene, "box.json");
   const PlanarSimulationConfig simulation = held_in_box(scene);
-  HilPair hil(scene.device, hil_config(simulation));
+  HilPair hil(scene.device, pair_hil_config(simulation));
 
   // Joint 1's board stops answering for 150 ms (its replies lost on the way to the host).
   struct Silence final : TickObserverOf<2> {
@@ -225,7 +225,7 @@ TEST_CASE("hil pair: a silent link on one board zeroes both motors, and both rec
     }
   } silence;
   silence.hil = &hil;
-  const auto samples = run(scene, hil, 2.5, &silence);
+  const auto samples = run_pair(scene, hil, 2.5, &silence);
 
   // While joint 1's board was silent, joint 2's motor was off too (never one joint's force
   // from one fresh angle and one stale one).
@@ -235,7 +235,7 @@ TEST_CASE("hil pair: a silent link on one board zeroes both motors, and both rec
   CHECK(hil.link(0).state() == LinkState::running);
   CHECK(hil.pair().restarts() >= 1);
   CHECK(samples.back().output_N[0] == doctest::Approx(-1.143).epsilon(0.08));
-  CHECK(largest_rise_N(samples, 600) < 0.1);
+  CHECK(pair_largest_rise_N(samples, 600) < 0.1);
   // The silence is in joint 1's events and the summary; a silence that ends is survived,
   // not a run failure (as for one board).
   bool saw_silent = false;
@@ -251,7 +251,7 @@ TEST_CASE("hil pair: one board's process killed mid-run stops the run with zero 
           doctest::test_suite("threaded")) {
   const PlanarScene scene = load_planar_environment_text(kBoxScene, "box.json");
   const PlanarSimulationConfig simulation = held_in_box(scene);
-  HilPair hil(scene.device, hil_config(simulation));
+  HilPair hil(scene.device, pair_hil_config(simulation));
   // Joint 2's board process dies at tick 800, while the box pushes.
   struct Killer final : TickObserverOf<2> {
     HilPair* hil;
@@ -287,9 +287,9 @@ TEST_CASE("hil pair: one board's process killed mid-run stops the run with zero 
 TEST_CASE("hil pair: runs are deterministic" * doctest::test_suite("threaded")) {
   const PlanarScene scene = load_planar_environment_text(kBoxScene, "box.json");
   const PlanarSimulationConfig simulation = line_into_box(scene);
-  HilPair a(scene.device, hil_config(simulation));
-  HilPair b(scene.device, hil_config(simulation));
-  CHECK(run(scene, a, 0.5) == run(scene, b, 0.5));
+  HilPair a(scene.device, pair_hil_config(simulation));
+  HilPair b(scene.device, pair_hil_config(simulation));
+  CHECK(run_pair(scene, a, 0.5) == run_pair(scene, b, 0.5));
 }
 
 TEST_CASE("hil pair: a profile whose joints are not Hapkit boards is refused before any board starts") {

@@ -10,34 +10,34 @@ namespace {
 using test::at;
 using test::compile_inline;
 using test::kProbeSuffix;
-using test::load_error;
+using test::script_load_error;
 using test::run_inline;
 
 TEST_CASE("errors: a syntax error names the file and line") {
-  CHECK(load_error("params = { height = \"2 mm\" }\n\nx = = 1\n", {}, {}, "scripts/bumps.lua") ==
+  CHECK(script_load_error("params = { height = \"2 mm\" }\n\nx = = 1\n", {}, {}, "scripts/bumps.lua") ==
         "scripts/bumps.lua:3: unexpected symbol near '='");
-  CHECK(load_error("function force(s)\n  return 1", {}, {}, "scripts/bumps.lua") ==
+  CHECK(script_load_error("function force(s)\n  return 1", {}, {}, "scripts/bumps.lua") ==
         "scripts/bumps.lua:2: 'end' expected (to close 'function' at line 1) near <eof>");
 }
 
 TEST_CASE("errors: an error in top-level code fails the load") {
-  CHECK(load_error("local a = 1\nerror('boom')") == "t.lua:2: boom");
-  CHECK(load_error("error('no place', 0)") == "t.lua: no place");
-  CHECK(load_error("error({})") == "t.lua: error while loading (error object is a table value)");
+  CHECK(script_load_error("local a = 1\nerror('boom')") == "t.lua:2: boom");
+  CHECK(script_load_error("error('no place', 0)") == "t.lua: no place");
+  CHECK(script_load_error("error({})") == "t.lua: error while loading (error object is a table value)");
 }
 
 TEST_CASE("errors: force must be a function, reset and needs are checked") {
-  CHECK(load_error("local function force(s) return 0 end") ==
+  CHECK(script_load_error("local function force(s) return 0 end") ==
         "t.lua: the script must define a global function force(s) that returns the force in N");
-  CHECK(load_error("force = 3") == "t.lua: force must be a function, got a number");
-  CHECK(load_error("function force(s) return 0 end\nreset = true") ==
+  CHECK(script_load_error("force = 3") == "t.lua: force must be a function, got a number");
+  CHECK(script_load_error("function force(s) return 0 end\nreset = true") ==
         "t.lua: reset must be a function, got a boolean");
-  CHECK(load_error("needs = { velocty = false }\nfunction force(s) return 0 end") ==
+  CHECK(script_load_error("needs = { velocty = false }\nfunction force(s) return 0 end") ==
         "t.lua: needs.velocty: unknown need (did you mean \"velocity\"?) (a script can declare "
         "velocity and time)");
-  CHECK(load_error("needs = { velocity = 0 }\nfunction force(s) return 0 end") ==
+  CHECK(script_load_error("needs = { velocity = 0 }\nfunction force(s) return 0 end") ==
         "t.lua: needs.velocity: expected true or false, got a number");
-  CHECK(load_error("needs = 'none'\nfunction force(s) return 0 end") ==
+  CHECK(script_load_error("needs = 'none'\nfunction force(s) return 0 end") ==
         "t.lua: needs must be a table such as { velocity = false }, got a string");
 }
 
@@ -50,10 +50,10 @@ TEST_CASE("errors: needs declares what s carries") {
   CHECK_FALSE(neither.needs_velocity);
   CHECK_FALSE(neither.needs_time);
   // Reading what was declared unneeded is caught at load by the check call.
-  CHECK(load_error("needs = { velocity = false }\nfunction force(s) return -s.v end") ==
+  CHECK(script_load_error("needs = { velocity = false }\nfunction force(s) return -s.v end") ==
         std::string("t.lua:2: s.v is not available: the script declares needs.velocity = false") +
             std::string(kProbeSuffix));
-  CHECK(load_error("needs = { time = false }\nfunction force(s) return s.t end") ==
+  CHECK(script_load_error("needs = { time = false }\nfunction force(s) return s.t end") ==
         std::string("t.lua:2: s.t is not available: the script declares needs.time = false") +
             std::string(kProbeSuffix));
 }
@@ -116,7 +116,7 @@ TEST_CASE("errors: error values that are not strings, or carry no position") {
 }
 
 TEST_CASE("errors: an error in reset() disables the script") {
-  CHECK(load_error("function reset() error('cannot reset') end\nfunction force(s) return 0 end") ==
+  CHECK(script_load_error("function reset() error('cannot reset') end\nfunction force(s) return 0 end") ==
         "t.lua:1: cannot reset (while checking reset() at load)");
   auto script = run_inline(
       "calls = 0\n"
@@ -133,7 +133,7 @@ TEST_CASE("errors: an error in reset() disables the script") {
 TEST_CASE("errors: a broken reload leaves the running instance alone") {
   auto running = run_inline("function force(s) return -100 * s.x end");
   CHECK(running->force_N(at(0.01)) == -1.0);
-  CHECK(load_error("function force(s) return -100 * s.x") ==
+  CHECK(script_load_error("function force(s) return -100 * s.x") ==
         "t.lua:1: 'end' expected near <eof>");
   CHECK(running->force_N(at(0.02)) == -2.0);
   CHECK_FALSE(running->disabled());

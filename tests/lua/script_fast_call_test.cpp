@@ -9,7 +9,7 @@ namespace hapscene {
 namespace {
 
 using test::at;
-using test::load_error;
+using test::script_load_error;
 using test::run_inline;
 
 constexpr const char* kBudgetFault = "instruction budget exceeded (100000 instructions per call)";
@@ -85,11 +85,11 @@ TEST_CASE("fast call: s is passed directly only when force reads nothing but its
   CHECK_FALSE(direct("function force(...) local s = ... return s.x end"));            // varargs
   CHECK_FALSE(direct("function force(s) s = {x = 1} return s.x end"));                // overwritten
   // Writes keep the proxy, so they are still errors at the write.
-  CHECK(load_error("function force(s) s.x = 1 return 0 end").starts_with(
+  CHECK(script_load_error("function force(s) s.x = 1 return 0 end").starts_with(
       "t.lua:1: s is read-only (copy the value into a local to change it)"));
-  CHECK(load_error("function force(s) s.dt = s.x return 0 end").starts_with("t.lua:1: s is read-only"));
+  CHECK(script_load_error("function force(s) s.dt = s.x return 0 end").starts_with("t.lua:1: s is read-only"));
   // An unknown field: the same error and hint either way.
-  CHECK(load_error("function force(s) return s.xx end").starts_with(
+  CHECK(script_load_error("function force(s) return s.xx end").starts_with(
       "t.lua:1: s has no field 'xx' (did you mean 's.x'?)"));
 }
 

@@ -17,7 +17,7 @@ namespace hapscene {
 namespace {
 
 using test::at;
-using test::load_error;
+using test::script_load_error;
 using test::run_inline;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -246,13 +246,13 @@ TEST_CASE("hostile: the backstop does not fire on a long but ordinary call") {
 // ---- Metatables: frozen, no weak tables, bounded chains -------------------------------
 
 TEST_CASE("hostile: weak tables, long and looping __index chains are refused at setmetatable") {
-  CHECK(load_error("setmetatable({}, { __mode = 'k' })") ==
+  CHECK(script_load_error("setmetatable({}, { __mode = 'k' })") ==
         "t.lua:1: setmetatable: weak tables (__mode) are not allowed in scripts (the collector "
         "clears them in one step that cannot be interrupted)");
   // A loop: Lua would follow it 2000 times inside one instruction.
-  CHECK(load_error("local c = {}\nc.__index = c\nsetmetatable(c, c)").find(
+  CHECK(script_load_error("local c = {}\nc.__index = c\nsetmetatable(c, c)").find(
             "t.lua:3: setmetatable: this table is the __index or __newindex of another table") == 0);
-  CHECK(load_error("local a, b = {}, {}\nsetmetatable(a, { __index = b })\n"
+  CHECK(script_load_error("local a, b = {}, {}\nsetmetatable(a, { __index = b })\n"
                    "setmetatable(b, { __newindex = a })")
             .find("t.lua:3: setmetatable: this table is the __index") == 0);
   // 16 tables deep is fine, 17 is not.
@@ -261,9 +261,9 @@ TEST_CASE("hostile: weak tables, long and looping __index chains are refused at 
       "function force(s) return t.x or 0 end";
   char source[200];
   std::snprintf(source, sizeof source, chain.c_str(), 16);
-  CHECK(load_error(source) == "");
+  CHECK(script_load_error(source) == "");
   std::snprintf(source, sizeof source, chain.c_str(), 17);
-  CHECK(load_error(source) ==
+  CHECK(script_load_error(source) ==
         "t.lua:2: setmetatable: __index/__newindex chains longer than 16 tables are not allowed "
         "in scripts");
 }
@@ -283,9 +283,9 @@ TEST_CASE("hostile: a metatable is frozen when set, getmetatable still answers t
   CHECK(script->force_N(at(0.0)) == 111.0);
   CHECK_FALSE(script->disabled());
   // Protection still works, and the usual class idiom does too.
-  CHECK(load_error("local t = setmetatable({}, { __metatable = 'no' })\nsetmetatable(t, {})") ==
+  CHECK(script_load_error("local t = setmetatable({}, { __metatable = 'no' })\nsetmetatable(t, {})") ==
         "t.lua:2: cannot change a protected metatable");
-  CHECK(load_error("local Base = {}\nBase.__index = Base\nfunction Base.get(self) return self.v end\n"
+  CHECK(script_load_error("local Base = {}\nBase.__index = Base\nfunction Base.get(self) return self.v end\n"
                    "local Derived = setmetatable({}, Base)\nDerived.__index = Derived\n"
                    "local obj = setmetatable({ v = 3 }, Derived)\nassert(obj:get() == 3)\n"
                    "setmetatable(obj, nil)\nsetmetatable(obj, Derived)\n"
@@ -326,7 +326,7 @@ TEST_CASE("hostile: a top level of costly instructions stops at the load deadlin
   limits.memory_bytes = 16u << 20;
   limits.load_time_s = 1.0;
   const auto start = std::chrono::steady_clock::now();
-  const std::string error = load_error(
+  const std::string error = script_load_error(
       "local t = {}\n"
       "for i = 1, 100000 do t[i * 7 + 0.5] = true end\n"
       "for i = 1, 99999 do t[i * 7 + 0.5] = nil end\n"
@@ -362,7 +362,7 @@ TEST_CASE("hostile: the compile itself stops at the load deadline") {
   limits.memory_bytes = 1u << 30;
   limits.load_time_s = 0.005;
   const auto start = std::chrono::steady_clock::now();
-  const std::string error = load_error(source, {}, limits);
+  const std::string error = script_load_error(source, {}, limits);
   const double elapsed_s = seconds_since(start);
   CHECK(error == "t.lua: load time limit exceeded (0.005 s to load the script)");
   CHECK(elapsed_s < 2.0);
@@ -375,7 +375,7 @@ TEST_CASE("hostile: a source of many number literals is refused before Lua compi
   for (int i = 1; i <= 16000; ++i) numbers += std::to_string(16383 * i) + ",";
   numbers += "}\nfunction force(s) return 0 end\n";
   const auto start = std::chrono::steady_clock::now();
-  CHECK(load_error(numbers) ==
+  CHECK(script_load_error(numbers) ==
         "t.lua: 16001 number literals; a script may have at most 10000 (compiling many numbers "
         "can take seconds): compute large tables in code");
   CHECK(seconds_since(start) < 0.5);
@@ -384,7 +384,7 @@ TEST_CASE("hostile: a source of many number literals is refused before Lua compi
   for (int i = 1; i <= 9997; ++i) fine += "1,";
   fine += "}\nlocal s1 = '123 456' -- 789 1011\n--[==[ 1 2 3 ]==] local s2 = [[4 5 6]]\n"
           "function force(s) return #t + 0x1p4 + 1e-3 - 16.001 end\n";
-  CHECK(load_error(fine) == "");
+  CHECK(script_load_error(fine) == "");
 }
 
 TEST_CASE("hostile: params are checked in one pass over the source, however many there are") {
@@ -400,7 +400,7 @@ TEST_CASE("hostile: params are checked in one pass over the source, however many
     ScriptLimits limits;
     limits.memory_bytes = 64u << 20;
     const double start_s = thread_cpu_s();
-    CHECK(load_error(source, overrides, limits) == "");
+    CHECK(script_load_error(source, overrides, limits) == "");
     return thread_cpu_s() - start_s;
   };
   load_cpu_s(4000);  // warm up the allocator and caches
@@ -410,7 +410,7 @@ TEST_CASE("hostile: params are checked in one pass over the source, however many
   // Linear in the source, n log n in the overrides: measured 7 to 8 times; quadratic: 25.
   CHECK(large_s < 14.0 * small_s);
   // A bad default still names its line.
-  CHECK(load_error("params = {\n  a = \"1 mm\",\n  b = \"2 mmm\",\n}\nfunction force(s) return 0 end")
+  CHECK(script_load_error("params = {\n  a = \"1 mm\",\n  b = \"2 mmm\",\n}\nfunction force(s) return 0 end")
             .find("t.lua:3: params.b:") == 0);
 }
 

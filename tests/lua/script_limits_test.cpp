@@ -9,7 +9,7 @@ namespace {
 
 using test::at;
 using test::kProbeSuffix;
-using test::load_error;
+
 using test::run_inline;
 
 // Runs force once at x = 1 cm (the check at load ran at x = 0) and returns the fault.
@@ -148,16 +148,16 @@ TEST_CASE("limits: allocation per call and the memory cap stop memory bombs") {
   CHECK(hoarder->memory_bytes() <= limits.memory_bytes);
 
   // While loading, the cap applies too.
-  CHECK(load_error("local t = {}\nfor i = 1, 1e7 do t[i] = i end") ==
+  CHECK(test::script_load_error("local t = {}\nfor i = 1, 1e7 do t[i] = i end") ==
         "t.lua:2: memory limit exceeded (4194304 bytes)");
 }
 
 TEST_CASE("limits: strings are capped, so no single operation walks a huge one") {
-  CHECK(load_error("function force(s) return #string.rep('x', 1e9) end") ==
+  CHECK(test::script_load_error("function force(s) return #string.rep('x', 1e9) end") ==
         std::string("t.lua:1: string limit exceeded (string.rep would make 1000000000 bytes; "
                     "limit 4096)") +
             std::string(kProbeSuffix));
-  CHECK(load_error("function force(s) return #('ab'):rep(3000) end") ==
+  CHECK(test::script_load_error("function force(s) return #('ab'):rep(3000) end") ==
         std::string("t.lua:1: string limit exceeded (string.rep would make 6000 bytes; limit "
                     "4096)") +
             std::string(kProbeSuffix));
@@ -169,7 +169,7 @@ TEST_CASE("limits: strings are capped, so no single operation walks a huge one")
       "end");
   CHECK(fault_at_1cm(doubling.get()) == "t.lua:4: string limit exceeded (4096 bytes per string)");
   // Exactly at the limit is fine.
-  CHECK(load_error("local a = string.rep('x', 4095) .. 'y'\nfunction force(s) return #a end") == "");
+  CHECK(test::script_load_error("local a = string.rep('x', 4095) .. 'y'\nfunction force(s) return #a end") == "");
 }
 
 TEST_CASE("limits: runaway recursion is an error, not a crash") {
@@ -194,10 +194,10 @@ TEST_CASE("limits: runaway recursion is an error, not a crash") {
 }
 
 TEST_CASE("limits: the top-level chunk has its own, larger budget") {
-  CHECK(load_error("while true do end") ==
+  CHECK(test::script_load_error("while true do end") ==
         "t.lua:1: instruction budget exceeded (10000000 instructions while loading)");
   // A lookup table of 100 000 entries is fine.
-  CHECK(load_error("local t = {}\nfor i = 1, 100000 do t[i] = math.sin(i) end\n"
+  CHECK(test::script_load_error("local t = {}\nfor i = 1, 100000 do t[i] = math.sin(i) end\n"
                    "function force(s) return t[1] end") == "");
 }
 
@@ -219,11 +219,11 @@ TEST_CASE("limits: an optional wall-clock limit per call") {
 TEST_CASE("limits: limits are checked when compiling") {
   ScriptLimits limits;
   limits.memory_bytes = 1000;
-  CHECK(load_error("function force(s) return 0 end", {}, limits) ==
+  CHECK(test::script_load_error("function force(s) return 0 end", {}, limits) ==
         "environments/lab.json: script limits: memory_bytes must be at least 65536 (64 KiB)");
   limits = {};
   limits.instructions_per_call = 10;
-  CHECK(load_error("function force(s) return 0 end", {}, limits) ==
+  CHECK(test::script_load_error("function force(s) return 0 end", {}, limits) ==
         "environments/lab.json: script limits: instructions_per_call must be at least 100");
   // The smallest limits still run a spring.
   limits.instructions_per_call = 100;

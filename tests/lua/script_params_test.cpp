@@ -9,7 +9,7 @@ namespace {
 
 using test::at;
 using test::compile_inline;
-using test::load_error;
+using test::script_load_error;
 using test::run_inline;
 
 constexpr const char* kDeclared = R"(
@@ -80,60 +80,60 @@ TEST_CASE("params: overrides replace defaults, converted to SI") {
 }
 
 TEST_CASE("params: an override must name a declared parameter") {
-  CHECK(load_error(kDeclared, {{"stifness", "1 N/m"}}) ==
+  CHECK(script_load_error(kDeclared, {{"stifness", "1 N/m"}}) ==
         "environments/lab.json: /effects/2/params/stifness: t.lua has no parameter \"stifness\" "
         "(did you mean \"stiffness\"?)");
-  CHECK(load_error(kDeclared, {{"gain", 1}}) ==
+  CHECK(script_load_error(kDeclared, {{"gain", 1}}) ==
         "environments/lab.json: /effects/2/params/gain: t.lua has no parameter \"gain\" (its params "
         "are: count enabled height mode stiffness)");
-  CHECK(load_error("function force(s) return 0 end", {{"gain", 1}}) ==
+  CHECK(script_load_error("function force(s) return 0 end", {{"gain", 1}}) ==
         "environments/lab.json: /effects/2/params/gain: t.lua has no parameter \"gain\" (it "
         "declares no params)");
   // Keys are written as JSON pointer tokens.
-  CHECK(load_error(kDeclared, {{"a/b~c", 1}}) ==
+  CHECK(script_load_error(kDeclared, {{"a/b~c", 1}}) ==
         "environments/lab.json: /effects/2/params/a~1b~0c: t.lua has no parameter \"a/b~c\" (its "
         "params are: count enabled height mode stiffness)");
 }
 
 TEST_CASE("params: an override must match the kind and quantity of the default") {
   const std::string prefix = "environments/lab.json: /effects/2/params/";
-  CHECK(load_error(kDeclared, {{"height", "2 N/m"}}) ==
+  CHECK(script_load_error(kDeclared, {{"height", "2 N/m"}}) ==
         prefix + "height: expected a length (m), got a stiffness (\"2 N/m\")");
-  CHECK(load_error(kDeclared, {{"height", true}}) ==
+  CHECK(script_load_error(kDeclared, {{"height", true}}) ==
         prefix + "height: expected a length (m): a number or a string such as \"1 m\", got true");
-  CHECK(load_error(kDeclared, {{"height", "2 mmm"}}) ==
+  CHECK(script_load_error(kDeclared, {{"height", "2 mmm"}}) ==
         prefix + "height: unknown unit \"mmm\" (did you mean \"mm\"?)");
-  CHECK(load_error(kDeclared, {{"count", "2 mm"}}) ==
+  CHECK(script_load_error(kDeclared, {{"count", "2 mm"}}) ==
         prefix + "count: expected a plain number (the script's default has no unit), got a length "
                  "(\"2 mm\")");
-  CHECK(load_error(kDeclared, {{"count", true}}) == prefix + "count: expected a number, got true");
-  CHECK(load_error(kDeclared, {{"enabled", "yes"}}) ==
+  CHECK(script_load_error(kDeclared, {{"count", true}}) == prefix + "count: expected a number, got true");
+  CHECK(script_load_error(kDeclared, {{"enabled", "yes"}}) ==
         prefix + "enabled: expected true or false, got \"yes\"");
-  CHECK(load_error(kDeclared, {{"mode", 3}}) == prefix + "mode: expected a string, got 3");
-  CHECK(load_error(kDeclared, nlohmann::json::array({1, 2})) ==
+  CHECK(script_load_error(kDeclared, {{"mode", 3}}) == prefix + "mode: expected a string, got 3");
+  CHECK(script_load_error(kDeclared, nlohmann::json::array({1, 2})) ==
         "environments/lab.json: /effects/2/params: params must be an object, got [1,2]");
 }
 
 TEST_CASE("params: bad defaults point at the script's params line") {
-  CHECK(load_error("params = { h = \"3 furlongs\" }") ==
+  CHECK(script_load_error("params = { h = \"3 furlongs\" }") ==
         "t.lua:1: params.h: unknown unit \"furlongs\"");
-  CHECK(load_error("params = { curve = { 1, 2 } }") ==
+  CHECK(script_load_error("params = { curve = { 1, 2 } }") ==
         "t.lua:1: params.curve: a parameter default must be a number, a boolean or a string, got "
         "a table");
-  CHECK(load_error("params = { 5 }") == "t.lua:1: params[1]: parameter names must be strings");
-  CHECK(load_error("params = { k = 1/0 }") == "t.lua:1: params.k: must be a finite number, got inf");
-  CHECK(load_error("params = 3") ==
+  CHECK(script_load_error("params = { 5 }") == "t.lua:1: params[1]: parameter names must be strings");
+  CHECK(script_load_error("params = { k = 1/0 }") == "t.lua:1: params.k: must be a finite number, got inf");
+  CHECK(script_load_error("params = 3") ==
         "t.lua:1: params must be a table of defaults such as { stiffness = \"100 N/m\" }, got a "
         "number");
   // A table over several lines: the line of the field.
-  CHECK(load_error("\nparams = {\n  a = 1,\n  b = \"2 qq\",\n  c = 2,\n}\n") ==
+  CHECK(script_load_error("\nparams = {\n  a = 1,\n  b = \"2 qq\",\n  c = 2,\n}\n") ==
         "t.lua:4: params.b: unknown unit \"qq\" (did you mean \"m\"?)");
 }
 
 TEST_CASE("params: every parameter is declared in one table") {
-  CHECK(load_error("params = { a = 1 }\nparams.b = 2") ==
+  CHECK(script_load_error("params = { a = 1 }\nparams.b = 2") ==
         "t.lua:2: params.b is not declared: declare every parameter in the params table");
-  CHECK(load_error("params = { a = 1 }\nparams = { b = 2 }\nfunction force(s) return 0 end") ==
+  CHECK(script_load_error("params = { a = 1 }\nparams = { b = 2 }\nfunction force(s) return 0 end") ==
         "t.lua: params was replaced after it was declared: declare every parameter in one params "
         "table");
   // A typo when reading is caught too.

@@ -8,44 +8,44 @@ namespace {
 using test::at;
 using test::compile_inline;
 using test::kProbeSuffix;
-using test::load_error;
+using test::script_load_error;
 using test::run_inline;
 
 TEST_CASE("sandbox: io, os, debug, package and the loaders are not there") {
   for (const char* name : {"io", "os", "debug", "package", "require", "load", "loadstring",
                            "dofile", "loadfile"}) {
     CAPTURE(name);
-    CHECK(load_error(std::string("local escape = ") + name + "\nfunction force(s) return 0 end",
+    CHECK(script_load_error(std::string("local escape = ") + name + "\nfunction force(s) return 0 end",
                      {}, {}, "scripts/escape.lua") ==
           std::string("scripts/escape.lua:1: undefined global '") + name +
               "' (scripts run in a sandbox without it; see docs/reference/lua.md)");
   }
-  CHECK(load_error("os.execute('echo hacked')") ==
+  CHECK(script_load_error("os.execute('echo hacked')") ==
         "t.lua:1: undefined global 'os' (scripts run in a sandbox without it; see "
         "docs/reference/lua.md)");
-  CHECK(load_error("local f = io.open('/etc/passwd')") ==
+  CHECK(script_load_error("local f = io.open('/etc/passwd')") ==
         "t.lua:1: undefined global 'io' (scripts run in a sandbox without it; see "
         "docs/reference/lua.md)");
   // Raw access does not find them either.
-  CHECK(load_error("assert(rawget(_G, 'load') == nil and rawget(_G, 'require') == nil)\n"
+  CHECK(script_load_error("assert(rawget(_G, 'load') == nil and rawget(_G, 'require') == nil)\n"
                    "function force(s) return 0 end") == "");
 }
 
 TEST_CASE("sandbox: string.dump, string patterns and binary chunks are refused") {
-  CHECK(load_error("local dump = string.dump") == "t.lua:1: string.dump is not available in scripts");
-  CHECK(load_error("local n = ('aaa'):find('a*b')") ==
+  CHECK(script_load_error("local dump = string.dump") == "t.lua:1: string.dump is not available in scripts");
+  CHECK(script_load_error("local n = ('aaa'):find('a*b')") ==
         "t.lua:1: string.find is not available in scripts (a string pattern can run for seconds "
         "inside one call, where the budget cannot stop it)");
-  CHECK(load_error("local r = string.gsub('x', 'x', 'y')") ==
+  CHECK(script_load_error("local r = string.gsub('x', 'x', 'y')") ==
         "t.lua:1: string.gsub is not available in scripts (a string pattern can run for seconds "
         "inside one call, where the budget cannot stop it)");
   // A precompiled chunk would skip the parser's checks: only text is loaded.
-  CHECK(load_error(std::string("\x1bLuaT\x00\x19\x93\r\n\x1a\n", 12)) ==
+  CHECK(script_load_error(std::string("\x1bLuaT\x00\x19\x93\r\n\x1a\n", 12)) ==
         "t.lua: attempt to load a binary chunk (mode is 't')");
 }
 
 TEST_CASE("sandbox: finalizers cannot be set, so none runs outside the budget") {
-  CHECK(load_error("local t = setmetatable({}, { __gc = function() while true do end end })") ==
+  CHECK(script_load_error("local t = setmetatable({}, { __gc = function() while true do end end })") ==
         "t.lua:1: setmetatable: __gc finalizers are not allowed in scripts (they would run "
         "outside the instruction budget)");
   // Adding __gc after setmetatable does not register a finalizer (Lua semantics), so the
@@ -60,10 +60,10 @@ TEST_CASE("sandbox: finalizers cannot be set, so none runs outside the budget") 
 }
 
 TEST_CASE("sandbox: the collector belongs to the host") {
-  CHECK(load_error("collectgarbage('stop')") ==
+  CHECK(script_load_error("collectgarbage('stop')") ==
         "t.lua:1: collectgarbage(\"stop\") is not available in scripts (the host runs the "
         "collector between ticks); only collectgarbage(\"count\") is");
-  CHECK(load_error("collectgarbage()") ==
+  CHECK(script_load_error("collectgarbage()") ==
         "t.lua:1: collectgarbage(\"collect\") is not available in scripts (the host runs the "
         "collector between ticks); only collectgarbage(\"count\") is");
   auto script = run_inline("function force(s) return collectgarbage('count') end");
@@ -73,35 +73,35 @@ TEST_CASE("sandbox: the collector belongs to the host") {
 }
 
 TEST_CASE("sandbox: the string metatable is hidden and string methods cannot be changed") {
-  CHECK(load_error("assert(getmetatable('') == false)\nfunction force(s) return 0 end") == "");
-  CHECK(load_error("getmetatable('').__index = {}") ==
+  CHECK(script_load_error("assert(getmetatable('') == false)\nfunction force(s) return 0 end") == "");
+  CHECK(script_load_error("getmetatable('').__index = {}") ==
         "t.lua:1: attempt to index a boolean value");
-  CHECK(load_error("setmetatable(getmetatable(''), nil)") ==
+  CHECK(script_load_error("setmetatable(getmetatable(''), nil)") ==
         "t.lua:1: bad argument #1 to 'setmetatable' (table expected, got boolean)");
   // Changing the string table changes neither the methods nor string arithmetic.
-  CHECK(load_error("string.upper = function() return 'pwned' end\n"
+  CHECK(script_load_error("string.upper = function() return 'pwned' end\n"
                    "assert(('a'):upper() == 'A')\n"
                    "function force(s) return 0 end") == "");
-  CHECK(load_error("local n = '10' + 1") ==
+  CHECK(script_load_error("local n = '10' + 1") ==
         "t.lua:1: attempt to perform arithmetic on a string value (constant '10')");
 }
 
 TEST_CASE("sandbox: the script's own tables are protected") {
   for (const char* table : {"_G", "params", "string", "math"}) {
     CAPTURE(table);
-    CHECK(load_error(std::string("params = { a = 1 }\nsetmetatable(") + table + ", nil)") ==
+    CHECK(script_load_error(std::string("params = { a = 1 }\nsetmetatable(") + table + ", nil)") ==
           "t.lua:2: cannot change a protected metatable");
   }
-  CHECK(load_error("function force(s) setmetatable(s, nil) return 0 end") ==
+  CHECK(script_load_error("function force(s) setmetatable(s, nil) return 0 end") ==
         std::string("t.lua:1: cannot change a protected metatable") + std::string(kProbeSuffix));
 }
 
 TEST_CASE("sandbox: reading an undefined global is an error, with a suggestion") {
-  CHECK(load_error("stiffness = 100\nfunction force(s) return -stiffnes * s.x end") ==
+  CHECK(script_load_error("stiffness = 100\nfunction force(s) return -stiffnes * s.x end") ==
         std::string("t.lua:2: undefined global 'stiffnes' (did you mean 'stiffness'?)") +
             std::string(kProbeSuffix));
-  CHECK(load_error("local x = undefined_thing") == "t.lua:1: undefined global 'undefined_thing'");
-  CHECK(load_error("local x = math.sinn(1)") ==
+  CHECK(script_load_error("local x = undefined_thing") == "t.lua:1: undefined global 'undefined_thing'");
+  CHECK(script_load_error("local x = math.sinn(1)") ==
         "t.lua:1: math has no field 'sinn' (did you mean 'math.sin'?)");
 }
 
@@ -111,19 +111,19 @@ TEST_CASE("sandbox: globals are declared while loading, new ones while running a
   CHECK(counter->force_N(at(0.0)) == 1.0);
   CHECK(counter->force_N(at(0.0)) == 2.0);
   // A global first created inside force is a typo or per-tick garbage.
-  CHECK(load_error("function force(s)\n  total = s.x\n  return 0\nend") ==
+  CHECK(script_load_error("function force(s)\n  total = s.x\n  return 0\nend") ==
         std::string("t.lua:2: cannot create global 'total' while running (declare it at the top "
                     "level of the script, or use a local)") +
             std::string(kProbeSuffix));
 }
 
 TEST_CASE("sandbox: s is read-only and its fields are checked") {
-  CHECK(load_error("function force(s) s.x = 1 return 0 end") ==
+  CHECK(script_load_error("function force(s) s.x = 1 return 0 end") ==
         std::string("t.lua:1: s is read-only (copy the value into a local to change it)") +
             std::string(kProbeSuffix));
-  CHECK(load_error("function force(s) return s.xx end") ==
+  CHECK(script_load_error("function force(s) return s.xx end") ==
         std::string("t.lua:1: s has no field 'xx' (did you mean 's.x'?)") + std::string(kProbeSuffix));
-  CHECK(load_error("function force(s) return s.position end") ==
+  CHECK(script_load_error("function force(s) return s.position end") ==
         std::string("t.lua:1: s has no field 'position' (s has x, v, t, dt)") +
             std::string(kProbeSuffix));
   // pairs(s) sees nothing: the values live in a table the script cannot reach.

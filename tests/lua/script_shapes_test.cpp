@@ -122,7 +122,7 @@ TEST_CASE("script shapes: a bad entry is a load error naming it") {
 TEST_CASE("script shapes: a 1-D scene refuses them, after its own dimension check") {
   const std::string one_d = "shapes = { { type = \"circle\", center = {0, 0}, radius = 0.01, solid = \"inside\" } }\n"
                             "function force(s) return -100 * s.x end\n";
-  const std::string error = load_error(one_d);
+  const std::string error = script_load_error(one_d);
   CHECK(error == "t.lua: shapes: this is a 1-D scene, and shapes are for 2-D scripts (validate presses into them in "
                  "a 2-DOF scene; a 1-D scene's walls are found by a scan of the field): remove shapes, or use the "
                  "script in a planar environment");
@@ -131,5 +131,5 @@ TEST_CASE("script shapes: a 1-D scene refuses them, after its own dimension chec
                                       nlohmann::json::object(), "", "", {}, 1),
                        doctest::Contains("s.y is only in 2-D scenes"), InputError);
   // A bad entry is reported in a 1-D scene too (the table is read at load).
-  CHECK(load_error("shapes = { 1 }\nfunction force(s) return 0 end\n").find("t.lua: shapes[1]: expected a table") == 0);
+  CHECK(script_load_error("shapes = { 1 }\nfunction force(s) return 0 end\n").find("t.lua: shapes[1]: expected a table") == 0);
 }

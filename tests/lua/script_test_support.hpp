@@ -47,7 +47,7 @@ inline std::unique_ptr<ScriptInstance> run_inline(std::string source, ScriptLimi
 }
 
 // The InputError message compiling an inline source gives, or "" when it compiles.
-inline std::string load_error(std::string source, const nlohmann::json& overrides =
+inline std::string script_load_error(std::string source, const nlohmann::json& overrides =
                                                       nlohmann::json::object(),
                               ScriptLimits limits = {}, std::string display_name = "t.lua") {
   try {
