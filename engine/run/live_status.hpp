@@ -27,9 +27,11 @@ template <int N>
 class LiveStatusOf final : public TickObserverOf<N> {
  public:
   void on_scripts(ScriptSpan running, ScriptSpan replaced) noexcept override {
+    // A sequence lock without fences (which ThreadSanitizer does not model): each word's
+    // release store orders the odd sequence before it, and the reader's acquire loads of the
+    // words order its second read of the sequence after them (engine/base/published.hpp).
     const std::uint64_t sequence = sequence_.load(std::memory_order_relaxed);
     sequence_.store(sequence + 1, std::memory_order_relaxed);
-    std::atomic_thread_fence(std::memory_order_release);
     const ScriptSpan spans[2] = {running, replaced};
     for (std::size_t i = 0; i < 2; ++i) {
       data_[i].store(spans[i].data(), std::memory_order_release);
@@ -84,7 +86,6 @@ class LiveStatusOf final : public TickObserverOf<N> {
           data[i] = data_[i].load(std::memory_order_acquire);
           size[i] = size_[i].load(std::memory_order_acquire);
         }
-        std::atomic_thread_fence(std::memory_order_acquire);
         if (sequence_.load(std::memory_order_relaxed) == before) break;
       }
       std::this_thread::yield();
