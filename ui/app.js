@@ -19,6 +19,8 @@
     faults: [],       // the script faults shown, each once (their messages)
     end: null,        // the "end" event's data: {reason, fault, message}
     links: [],        // the device's links, as the newest event gave them
+    ticks: {},        // per plot: the tick values on its axes, {x: [...], y: [...]}
+    drawn: {},        // per plot: the names of the lines and marks drawn in the last frame
   };
 
   let scene = null;
@@ -48,10 +50,16 @@
     $('scene-name').textContent = s.name;
     $('scene-file').textContent = s.file + ' on ' + s.device.name + ', ' + s.rate_hz + ' Hz, ' + s.axes + '-DOF';
     $('unsaved').textContent = s.unsaved ? '(changed, not saved)' : '';
-    $('position-title').textContent = s.axes === 1 ? 'position (mm) against time (s)' : 'position x, y (mm) against time (s)';
-    $('trace-title').textContent = s.axes === 1 ? 'force (N) against position (mm), last 3 s'
-                                                : 'the plane (mm): handle, proxies, shapes, commanded force';
+    // Each plot's title names its lines with their colours (the keys); draw() names what it drew.
+    $('position-title').innerHTML = s.axes === 1 ? 'position (mm) against time (s): ' + keys(['x'])
+                                                 : 'position (mm) against time (s): ' + keys(['x', 'y']);
+    $('trace-title').innerHTML = s.axes === 1
+      ? 'force (N) against position (mm), last 3 s: ' + keys(['asked', 'commanded', 'limit'])
+      : 'the plane (mm), 1:1: ' + keys(['handle', 'proxy', 'commanded', 'shape', 'workspace']);
   }
+  const KEY_NAMES = { x: 'x', y: 'y', asked: 'asked', commanded: 'commanded', limit: 'limit', handle: 'handle',
+                      proxy: 'proxies', shape: 'shapes', workspace: 'workspace' };
+  const keys = (names) => names.map((n) => '<span class="key ' + n + '" data-key="' + n + '">' + KEY_NAMES[n] + '</span>').join(' ');
 
   const paramKey = (p) => p.effect + ':' + p.parameter;
   const controls = new Map();  // paramKey -> {row, range, number, p}
@@ -303,6 +311,23 @@
   }
 
   // ---- plots ----
+  // Round tick values: steps of 1, 2 or 5 times a power of ten, about `count` of them.
+  function roundTicks(range, count = 5) {
+    const span = range[1] - range[0];
+    if (!(span > 0) || !isFinite(span)) return { values: [range[0]], step: 1 };
+    const raw = span / count;
+    const power = Math.pow(10, Math.floor(Math.log10(raw)));
+    const m = raw / power;  // in [1, 10): the nearest of 1, 2, 5 and 10
+    const step = (m < 1.5 ? 1 : m < 3 ? 2 : m < 7 ? 5 : 10) * power;
+    const values = [];
+    for (let v = Math.ceil(range[0] / step - 1e-9) * step; v <= range[1] + step * 1e-9; v += step) {
+      values.push(Math.abs(v) < step * 1e-9 ? 0 : Number(v.toPrecision(12)));
+    }
+    return { values, step };
+  }
+  // The label of a tick: as many decimals as the step needs.
+  const tickLabel = (v, step) => v.toFixed(Math.max(0, -Math.floor(Math.log10(step) + 1e-9)));
+
   // A canvas sized to its box in device pixels, and a mapping from data to pixels.
   function frame(canvas, xRange, yRange) {
     const ratio = window.devicePixelRatio || 1;
@@ -317,23 +342,33 @@
     const left = 52, right = 10, top = 6, bottom = 22;
     const sx = (v) => left + (v - xRange[0]) / (xRange[1] - xRange[0]) * (w - left - right);
     const sy = (v) => h - bottom - (v - yRange[0]) / (yRange[1] - yRange[0]) * (h - top - bottom);
-    // Axes with a few ticks.
+    // Axes with round ticks and faint grid lines.
     g.strokeStyle = '#d2d2d7';
     g.fillStyle = '#6e6e73';
     g.font = '11px system-ui, sans-serif';
     g.lineWidth = 1;
     g.strokeRect(left, top, w - left - right, h - top - bottom);
-    for (let i = 0; i <= 4; i++) {
-      const yv = yRange[0] + (yRange[1] - yRange[0]) * i / 4;
-      g.fillText(fmt(yv, 3), 4, sy(yv) + 4);
-      const xv = xRange[0] + (xRange[1] - xRange[0]) * i / 4;
-      g.fillText(fmt(xv, 3), sx(xv) - 10, h - 6);
+    const xt = roundTicks(xRange), yt = roundTicks(yRange, 4);
+    g.strokeStyle = '#f0f0f2';
+    for (const yv of yt.values) {
+      g.beginPath(); g.moveTo(left, sy(yv)); g.lineTo(w - right, sy(yv)); g.stroke();
+      g.fillText(tickLabel(yv, yt.step), 4, sy(yv) + 4);
     }
-    return { g, sx, sy, w, h };
+    for (const xv of xt.values) {
+      g.beginPath(); g.moveTo(sx(xv), top); g.lineTo(sx(xv), h - bottom); g.stroke();
+      const label = tickLabel(xv, xt.step);
+      g.fillText(label, sx(xv) - g.measureText(label).width / 2, h - 6);
+    }
+    view.ticks[canvas.id] = { x: xt.values, y: yt.values };
+    view.drawn[canvas.id] = [];
+    return { g, sx, sy, w, h, id: canvas.id };
   }
+  // Notes what a plot drew, by its key's name.
+  const drew = (f, name) => { if (!view.drawn[f.id].includes(name)) view.drawn[f.id].push(name); };
 
-  function line(f, xs, ys, color, scaleX = 1, scaleY = 1, start = 0, width = 1.5) {
+  function line(f, name, xs, ys, color, scaleX = 1, scaleY = 1, start = 0, width = 1.5) {
     const { g, sx, sy } = f;
+    drew(f, name);
     g.strokeStyle = color;
     g.lineWidth = width;
     g.beginPath();
@@ -344,8 +379,9 @@
     g.stroke();
   }
 
-  function hline(f, y, xRange, color) {
+  function hline(f, name, y, xRange, color) {
     const { g, sx, sy } = f;
+    drew(f, name);
     g.strokeStyle = color;
     g.setLineDash([5, 4]);
     g.beginPath();
@@ -370,21 +406,21 @@
     // Position against time.
     const posRange = two ? [Math.min(lo[0], lo[1]) * 1e3, Math.max(hi[0], hi[1]) * 1e3] : [lo * 1e3, hi * 1e3];
     const fp = frame($('plot-position'), tRange, posRange);
-    line(fp, ticks.t, ticks.x, css('--x'), 1, 1e3);
-    if (two) line(fp, ticks.t, ticks.y, css('--y'), 1, 1e3);
+    line(fp, 'x', ticks.t, ticks.x, css('--x'), 1, 1e3);
+    if (two) line(fp, 'y', ticks.t, ticks.y, css('--y'), 1, 1e3);
 
     // Force against time, with the limit.
     const forceRange = two ? [0, limit * 1.15] : [-limit * 1.15, limit * 1.15];
     const ff = frame($('plot-force'), tRange, forceRange);
-    hline(ff, limit, tRange, css('--limit'));
-    if (!two) hline(ff, -limit, tRange, css('--limit'));
+    hline(ff, 'limit', limit, tRange, css('--limit'));
+    if (!two) hline(ff, 'limit', -limit, tRange, css('--limit'));
     if (two) {
-      line(ff, ticks.t, magnitude(ticks.ox, ticks.oy), css('--commanded'), 1, 1, 0, 3);
-      line(ff, ticks.t, magnitude(ticks.fx, ticks.fy), css('--asked'));
+      line(ff, 'commanded', ticks.t, magnitude(ticks.ox, ticks.oy), css('--commanded'), 1, 1, 0, 3);
+      line(ff, 'asked', ticks.t, magnitude(ticks.fx, ticks.fy), css('--asked'));
     } else {
       // Commanded first and wider: where it equals the asked force both show.
-      line(ff, ticks.t, ticks.ox, css('--commanded'), 1, 1, 0, 3);
-      line(ff, ticks.t, ticks.fx, css('--asked'));
+      line(ff, 'commanded', ticks.t, ticks.ox, css('--commanded'), 1, 1, 0, 3);
+      line(ff, 'asked', ticks.t, ticks.fx, css('--asked'));
     }
 
     // Force against position over the last TRACE_S s (1-D), or the plane (2-D).
@@ -392,10 +428,10 @@
     while (start < ticks.t.length && ticks.t[start] < newest - TRACE_S) start++;
     if (two) drawPlane(start); else {
       const ft = frame($('plot-trace'), [lo * 1e3, hi * 1e3], [-limit * 1.15, limit * 1.15]);
-      hline(ft, limit, [lo * 1e3, hi * 1e3], css('--limit'));
-      hline(ft, -limit, [lo * 1e3, hi * 1e3], css('--limit'));
-      line(ft, ticks.x, ticks.ox, css('--commanded'), 1e3, 1, start, 3);
-      line(ft, ticks.x, ticks.fx, css('--asked'), 1e3, 1, start);
+      hline(ft, 'limit', limit, [lo * 1e3, hi * 1e3], css('--limit'));
+      hline(ft, 'limit', -limit, [lo * 1e3, hi * 1e3], css('--limit'));
+      line(ft, 'commanded', ticks.x, ticks.ox, css('--commanded'), 1e3, 1, start, 3);
+      line(ft, 'asked', ticks.x, ticks.fx, css('--asked'), 1e3, 1, start);
     }
     view.frames++;
     view.plotted = Object.assign({ drawn_at_ms: performance.now() }, view.last);
@@ -414,6 +450,7 @@
     const f = frame(canvas, xr, yr);
     const { g, sx, sy } = f;
     // The workspace and the shapes.
+    drew(f, 'workspace');
     g.strokeStyle = css('--limit');
     g.setLineDash([4, 3]);
     g.strokeRect(sx(lo[0] * 1e3), sy(hi[1] * 1e3), sx(hi[0] * 1e3) - sx(lo[0] * 1e3), sy(lo[1] * 1e3) - sy(hi[1] * 1e3));
@@ -421,6 +458,7 @@
     g.fillStyle = 'rgba(31, 119, 180, 0.15)';
     g.strokeStyle = '#1f77b4';
     for (const s of scene.shapes) {
+      drew(f, 'shape');
       g.beginPath();
       if (s.kind === 'circle') {
         g.arc(sx(s.center_m[0] * 1e3), sy(s.center_m[1] * 1e3), s.radius_m * 1e3 / mmPerPx, 0, 2 * Math.PI);
@@ -437,14 +475,18 @@
       g.stroke();
     }
     // The handle's path, the handle, the proxies and the commanded force.
-    line(f, ticks.x, ticks.y, css('--x'), 1e3, 1e3, start);
+    line(f, 'handle', ticks.x, ticks.y, css('--x'), 1e3, 1e3, start);
     const k = ticks.t.length - 1;
     const hx = sx(ticks.x[k] * 1e3), hy = sy(ticks.y[k] * 1e3);
     g.fillStyle = css('--x');
     g.beginPath(); g.arc(hx, hy, 5, 0, 2 * Math.PI); g.fill();
     g.fillStyle = css('--asked');
-    for (const p of proxies) { g.beginPath(); g.arc(sx(p[0] * 1e3), sy(p[1] * 1e3), 3.5, 0, 2 * Math.PI); g.fill(); }
+    for (const p of proxies) {
+      drew(f, 'proxy');
+      g.beginPath(); g.arc(sx(p[0] * 1e3), sy(p[1] * 1e3), 3.5, 0, 2 * Math.PI); g.fill();
+    }
     const pxPerN = 40;
+    drew(f, 'commanded');
     g.strokeStyle = css('--commanded');
     g.lineWidth = 2;
     g.beginPath(); g.moveTo(hx, hy); g.lineTo(hx + ticks.ox[k] * pxPerN, hy - ticks.oy[k] * pxPerN); g.stroke();

@@ -1,12 +1,17 @@
 #pragma once
-// One value that one thread writes and others read, without a lock: a sequence lock over
-// atomic words, so every access is atomic and ThreadSanitizer sees every ordering. The
-// writer never waits; a reader retries while a write is under way and always gets a value
-// one write left whole.
-//   writer: sequence odd (relaxed), each word with release, sequence even with release
-//   reader: sequence (acquire), each word (acquire), sequence again; equal and even: done
-// A reader that saw a word of a write under way synchronizes with that word's release,
-// so its second read of the sequence sees the write's odd (or a later) number.
+// One value that one thread writes and others read, without a lock and without waiting on
+// each other: the writer never waits, and a reader never waits for a write under way (a
+// writer preempted halfway, by the loop's own SCHED_FIFO thread say, cannot stall a reader).
+//
+// Two slots, each a sequence lock over atomic words (every access atomic, so
+// ThreadSanitizer sees every ordering). Store k writes slot k % 2, then publishes k; a
+// reader reads the slot of the latest published store, and retries only when the writer
+// has meanwhile finished store k + 1 and begun k + 2 in that same slot (then the other slot
+// is whole).
+//   slot write: sequence odd (relaxed), each word with release, sequence even with release
+//   slot read:  sequence (acquire), each word (acquire), sequence again; equal and even: done
+// A reader that saw a word of a write under way synchronizes with that word's release, so
+// its second read of the sequence sees the write's odd (or a later) number.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -27,20 +32,24 @@ class Published {
   void store(const T& value) noexcept {
     std::uint64_t words[kWords]{};
     std::memcpy(words, &value, sizeof(T));
-    const std::uint64_t sequence = sequence_.load(std::memory_order_relaxed);
-    sequence_.store(sequence + 1, std::memory_order_relaxed);
-    for (std::size_t i = 0; i < kWords; ++i) words_[i].store(words[i], std::memory_order_release);
-    sequence_.store(sequence + 2, std::memory_order_release);
+    const std::uint64_t number = latest_.load(std::memory_order_relaxed) + 1;
+    Slot& slot = slots_[number & 1];
+    const std::uint64_t sequence = slot.sequence.load(std::memory_order_relaxed);
+    slot.sequence.store(sequence + 1, std::memory_order_relaxed);
+    for (std::size_t i = 0; i < kWords; ++i) slot.words[i].store(words[i], std::memory_order_release);
+    slot.sequence.store(sequence + 2, std::memory_order_release);
+    latest_.store(number, std::memory_order_release);
   }
 
   // From any thread.
   T load() const noexcept {
     std::uint64_t words[kWords];
     for (;;) {
-      const std::uint64_t before = sequence_.load(std::memory_order_acquire);
-      if ((before & 1) != 0) continue;
-      for (std::size_t i = 0; i < kWords; ++i) words[i] = words_[i].load(std::memory_order_acquire);
-      if (sequence_.load(std::memory_order_relaxed) == before) break;
+      const Slot& slot = slots_[latest_.load(std::memory_order_acquire) & 1];
+      const std::uint64_t before = slot.sequence.load(std::memory_order_acquire);
+      if ((before & 1) != 0) continue;  // rewritten since published: the other slot is whole now
+      for (std::size_t i = 0; i < kWords; ++i) words[i] = slot.words[i].load(std::memory_order_acquire);
+      if (slot.sequence.load(std::memory_order_relaxed) == before) break;
     }
     T value;
     std::memcpy(&value, words, sizeof(T));
@@ -48,8 +57,12 @@ class Published {
   }
 
  private:
-  std::atomic<std::uint64_t> sequence_{0};
-  std::atomic<std::uint64_t> words_[kWords]{};
+  struct Slot {
+    std::atomic<std::uint64_t> sequence{0};
+    std::atomic<std::uint64_t> words[kWords]{};
+  };
+  std::atomic<std::uint64_t> latest_{0};
+  Slot slots_[2];
 };
 
 }  // namespace hapscene

@@ -19,6 +19,7 @@ import argparse
 import base64
 import fcntl
 import json
+import math
 import os
 import shutil
 import signal
@@ -178,6 +179,37 @@ class RunOutputOnFailure:
         return False
 
 
+def check_plots_read(browser, what):
+    """Every plot's ticks are round numbers (steps of 1, 2 or 5 times a power of ten, the
+    values multiples of the step), and every line or mark a plot drew has its key in the
+    plot's title."""
+    info = browser.evaluate("""(() => {
+        const v = window.hapsceneView;
+        const titles = {'plot-position': 'position-title', 'plot-force': 'force-title', 'plot-trace': 'trace-title'};
+        const out = {};
+        for (const [plot, title] of Object.entries(titles)) {
+          out[plot] = {ticks: v.ticks[plot], drawn: v.drawn[plot],
+                       keys: Array.from(document.querySelectorAll('#' + title + ' .key')).map((k) => k.dataset.key)};
+        }
+        return out;
+    })()""")
+    for plot, d in info.items():
+        for axis in ("x", "y"):
+            values = d["ticks"][axis]
+            assert len(values) >= 3, (what, plot, axis, values)
+            step = values[1] - values[0]
+            mantissa = step / 10 ** math.floor(math.log10(step) + 1e-9)
+            assert any(abs(mantissa - m) < 1e-6 for m in (1, 2, 5)), (what, plot, axis, values)
+            for a, b in zip(values, values[1:]):
+                assert abs((b - a) - step) < 1e-9 * max(1.0, abs(step)), (what, plot, axis, values)
+            for v in values:
+                assert abs(v / step - round(v / step)) < 1e-6, (what, plot, axis, values)
+        missing = [name for name in d["drawn"] if name not in d["keys"]]
+        assert d["drawn"] and not missing, (what, plot, d["drawn"], d["keys"])
+    print("%s: round ticks and a key for every line: %s" % (what, ", ".join(
+        "%s %s" % (plot, "/".join(d["drawn"])) for plot, d in info.items())))
+
+
 def check_one_dof(browser, hapscene, scratch, screenshots):
     environment = os.path.join(scratch, "spring.json")
     shutil.copy(os.path.join(SOURCE_DIR, "environments", "spring.json"), environment)
@@ -195,6 +227,7 @@ def check_one_dof(browser, hapscene, scratch, screenshots):
         assert second["x_m"] != first["x_m"] or second["output_N"] != first["output_N"], (first, second)
         print("plotted values change: t %.3f -> %.3f s, x %.4f -> %.4f m" %
               (first["t_s"], second["t_s"], first["x_m"], second["x_m"]))
+        check_plots_read(browser, "1-DOF")
 
         # Move the stiffness slider with the mouse to about 3/4 of its range.
         box = browser.evaluate("""(() => {
@@ -238,6 +271,7 @@ def check_planar(browser, hapscene, scratch, screenshots):
             "window.hapsceneView && window.hapsceneView.frames > 5 && window.hapsceneView.samples > 1500"), timeout_s=60)
         last = browser.evaluate("window.hapsceneView.last")
         assert "y_m" in last and "output_y_N" in last, last
+        check_plots_read(browser, "2-DOF")
         if screenshots:
             browser.screenshot(os.path.join(screenshots, "live-view-planar.png"))
     finally:
