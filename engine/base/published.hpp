@@ -4,10 +4,11 @@
 // writer preempted halfway, by the loop's own SCHED_FIFO thread say, cannot stall a reader).
 //
 // Two slots, each a sequence lock over atomic words (every access atomic, so
-// ThreadSanitizer sees every ordering). Store k writes slot k % 2, then publishes k; a
-// reader reads the slot of the latest published store, and retries only when the writer
-// has meanwhile finished store k + 1 and begun k + 2 in that same slot (then the other slot
-// is whole).
+// ThreadSanitizer sees every ordering) that also holds its store's number. Store k writes
+// slot k % 2, then publishes k; a reader reads the slot of the latest published store k it
+// saw and takes it only when the slot still holds store k: a slot the writer has meanwhile
+// rewritten with k + 2 (not yet published, and newer than what a later read may see
+// published) is read again from the newest number, so reads never go back in time.
 //   slot write: sequence odd (relaxed), each word with release, sequence even with release
 //   slot read:  sequence (acquire), each word (acquire), sequence again; equal and even: done
 // A reader that saw a word of a write under way synchronizes with that word's release, so
@@ -36,6 +37,7 @@ class Published {
     Slot& slot = slots_[number & 1];
     const std::uint64_t sequence = slot.sequence.load(std::memory_order_relaxed);
     slot.sequence.store(sequence + 1, std::memory_order_relaxed);
+    slot.number.store(number, std::memory_order_release);
     for (std::size_t i = 0; i < kWords; ++i) slot.words[i].store(words[i], std::memory_order_release);
     slot.sequence.store(sequence + 2, std::memory_order_release);
     latest_.store(number, std::memory_order_release);
@@ -45,11 +47,13 @@ class Published {
   T load() const noexcept {
     std::uint64_t words[kWords];
     for (;;) {
-      const Slot& slot = slots_[latest_.load(std::memory_order_acquire) & 1];
+      const std::uint64_t number = latest_.load(std::memory_order_acquire);
+      const Slot& slot = slots_[number & 1];
       const std::uint64_t before = slot.sequence.load(std::memory_order_acquire);
-      if ((before & 1) != 0) continue;  // rewritten since published: the other slot is whole now
+      if ((before & 1) != 0) continue;  // being rewritten: the other slot holds a newer store
+      const std::uint64_t held = slot.number.load(std::memory_order_acquire);
       for (std::size_t i = 0; i < kWords; ++i) words[i] = slot.words[i].load(std::memory_order_acquire);
-      if (slot.sequence.load(std::memory_order_relaxed) == before) break;
+      if (slot.sequence.load(std::memory_order_relaxed) == before && held == number) break;
     }
     T value;
     std::memcpy(&value, words, sizeof(T));
@@ -59,6 +63,7 @@ class Published {
  private:
   struct Slot {
     std::atomic<std::uint64_t> sequence{0};
+    std::atomic<std::uint64_t> number{0};  // the store it holds
     std::atomic<std::uint64_t> words[kWords]{};
   };
   std::atomic<std::uint64_t> latest_{0};
