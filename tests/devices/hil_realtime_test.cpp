@@ -71,18 +71,25 @@ TEST_CASE("hil real time: the lab wall on the real firmware runs its seconds, th
     INFO("run " << run << ": " << summary.realtime_note << "; " << summary.deadline_misses << " misses, "
                 << summary.stall_misses << " stalls\n" << hil.report());
     CHECK_FALSE(hil.lost());
-    CHECK_FALSE(hil.fault_seen());
     CHECK(summary.simulation_misses == 0);  // the loop never waited for the board
-    // The board ran beside the loop and answered: the handle's STATEs reached the host.
     CHECK(hil.report().find("world pace       ") != std::string::npos);
-    CHECK(hil.link().counters().states_received > 100);
-    if (!fifo_granted(summary)) {  // no real-time priority here: nothing to promise under load
-      MESSAGE("SCHED_FIFO not permitted: the run's pace is not checked (" << summary.realtime_note << ")");
+    if (fifo_granted(summary)) {
+      CHECK(summary.realtime_note.find("the simulated world at nice -20 (2 processes and threads)") != std::string::npos);
+      CHECK_FALSE(summary.overrun_fault);
+      CHECK(summary.ticks == 1000);
+    } else {  // no real-time priority here: nothing to promise under load
+      MESSAGE("SCHED_FIFO not permitted: the loop's pace is not checked (" << summary.realtime_note << ")");
+    }
+    // The board kept pace (within the firmware's 20 ms command timeout) and answered: the
+    // handle's STATEs reached the host, no fault. A build that slows the world's own thread
+    // (ThreadSanitizer's, several times) can leave it too far behind to keep the board's
+    // timing: the summary says so, and the link is not judged then.
+    if (hil.world().most_behind_ns() > 20'000'000) {
+      MESSAGE("the simulated board fell " << hil.world().most_behind_ns() * 1e-6 << " ms behind real time: its link is not judged");
       continue;
     }
-    CHECK(summary.realtime_note.find("the simulated world at nice -20 (2 processes and threads)") != std::string::npos);
-    CHECK_FALSE(summary.overrun_fault);
-    CHECK(summary.ticks == 1000);
+    CHECK_FALSE(hil.fault_seen());
+    CHECK(hil.link().counters().states_received > 100);
   }
 }
 
