@@ -172,7 +172,7 @@ py::dict run_capstan(const LoadedScene& loaded, const SimulateArgs& a) {
       recorded = record_run<1>(scene, *device, loaded.path, settings);
     });
     report = device->report();
-    faulted = recorded.run.summary.overrun_fault || device->fault_seen() || script_faulted(recorded.run);
+    faulted = run_faulted(recorded.run, *device);
   }
   if (recorded.dropped > 0) throw std::runtime_error("hapscene.simulate: the run went past its reservation");
   const auto& v = recorded.samples;
@@ -239,9 +239,7 @@ py::dict run_planar_scene(const LoadedScene& loaded, const SimulateArgs& a) {
     if (const auto* simulated = dynamic_cast<const SimulatedPlanar*>(device.get())) {
       linkage_faults = simulated->plant().linkage_faults();
     }
-    const RunSummaryOf<2>& summary = recorded.run.summary;
-    faulted = summary.overrun_fault || summary.safety.nonfinite_faults > 0 || device->fault_seen() ||
-              script_faulted(recorded.run);
+    faulted = run_faulted(recorded.run, *device);
   }
   if (recorded.dropped > 0) throw std::runtime_error("hapscene.simulate: the run went past its reservation");
   const auto& v = recorded.samples;

@@ -182,7 +182,7 @@ int run_command(std::vector<std::string> args) {
     }
     write_out(device.report());
     flush_out();
-    faulted = faulted || summary.overrun_fault || device.fault_seen() || script_faulted(run);
+    faulted = faulted || run_faulted(run, device);
   }
   return end_run(faulted || write_failed);
 }

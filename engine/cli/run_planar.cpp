@@ -134,10 +134,7 @@ int run_planar(const Arguments& arguments, const RunSettings& settings, const st
   }
   write_out(device->report());
   flush_out();
-  // A script disabled by a fault, or a fault the device saw, fails the run (exit 1), as in 1-D.
-  const bool faulted = summary.overrun_fault || summary.safety.nonfinite_faults > 0 || device->fault_seen() ||
-                       script_faulted(run);
-  return end_run(faulted || write_failed);
+  return end_run(run_faulted(run, *device) || write_failed);
 }
 
 }  // namespace hapscene

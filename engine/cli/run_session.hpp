@@ -200,6 +200,15 @@ bool script_faulted(const WatchedRun<N>& run) {
   return false;
 }
 
+// The one rule, for every N, in the CLI and in Python: a run fails (exit 1) when it saw a
+// sustained overrun, a non-finite force (zeroed by safety), a device fault, or a script
+// disabled by a fault.
+template <int N>
+bool run_faulted(const WatchedRun<N>& run, const DeviceStatus& device) {
+  const RunSummaryOf<N>& summary = run.summary;
+  return summary.overrun_fault || summary.safety.nonfinite_faults > 0 || device.fault_seen() || script_faulted(run);
+}
+
 // Ends `hapscene run` with 1 when `failed` (else 0). A reload load, or a live view's load
 // or validate run, that never finished may still hold a thread: then the process ends at
 // once, without running static destructors under it, after flushing its output.

@@ -115,6 +115,21 @@ def test_simulate_2d_is_the_cli_log(tmp_path, env, options, kwargs):
     assert got["summary"]["plant_linkage_faults"] == int(linkage.group(1))
 
 
+@pytest.mark.parametrize("device,returned", [("", "1e308"), ('"device": "haplink", ', "1e308, 1e308")])
+def test_a_non_finite_force_fails_the_run_as_in_the_cli(tmp_path, device, returned):
+    # Two scripts whose finite forces sum past the largest double: the safety stage zeroes
+    # every tick, and the run fails (exit code 1) in Python as in the CLI, whatever its axes.
+    (tmp_path / "huge.lua").write_text(f"function force(s) return {returned} end\n")
+    env = tmp_path / "overflow.json"
+    env.write_text('{' + device + '"effects": [{"type": "script", "file": "huge.lua"}, '
+                   '{"type": "script", "file": "huge.lua"}]}')
+    cli = run_cli("run", env, "--sim-time", "--quiet", "--no-reload", "--duration", "50ms")
+    summary = hapscene.simulate(str(env), duration="50ms")["summary"]
+    assert cli.returncode == 1
+    assert summary["nonfinite_faults"] == 50
+    assert summary["faulted"] is True and summary["exit_code"] == 1
+
+
 def test_simulate_errors_are_the_cli_ranges():
     with pytest.raises(hapscene.InputError, match=r"^hapscene.simulate: duration: must be in \(0, 86400\] s, got 0 s$"):
         hapscene.simulate("environments/wall.json", duration=0)
