@@ -6,6 +6,7 @@
 // Generic code uses dot(), norm() and component() so it reads the same for every N.
 #include <cmath>
 #include <cstddef>
+#include <iterator>
 
 namespace hapscene {
 
@@ -55,6 +56,16 @@ template <int N>
 using Axes = typename detail::AxesOf<N>::type;
 
 using Vec2 = AxisVector<2>;
+
+// The numbers of axes a scene can have: the one list that every explicit instantiation of
+// the engine's templates follows. HAPSCENE_FOR_EACH_AXES(X) expands X(N) once for each N;
+// a device kind of a new N adds its N here (and its parts in SceneParts<N>), nothing else.
+#define HAPSCENE_FOR_EACH_AXES(X) X(1) X(2)
+// The names of the task-space axes, in order (labels, CSV columns, messages).
+inline constexpr const char* kAxisNames[] = {"x", "y", "z"};
+// The largest N of the list: the size of buffers that hold one value per axis of any scene.
+inline constexpr int kMaxAxes = 2;
+static_assert(kMaxAxes <= static_cast<int>(std::size(kAxisNames)), "every axis has a name");
 
 // Component i of an axis value (for N = 1, the value itself).
 constexpr double component(double value, int) noexcept { return value; }

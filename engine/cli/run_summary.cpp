@@ -166,9 +166,10 @@ void print_run_summary(const SceneOf<N>& scene, const RunSettings& settings, std
 }
 
 // The axis counts scenes are compiled for.
-template void print_run_summary<1>(const SceneOf<1>&, const RunSettings&, std::string_view, const RunSummaryOf<1>&,
-                                   const ScriptFaultPlaces<1>*);
-template void print_run_summary<2>(const SceneOf<2>&, const RunSettings&, std::string_view, const RunSummaryOf<2>&,
-                                   const ScriptFaultPlaces<2>*);
+#define HAPSCENE_PRINT_RUN_SUMMARY(N)                                                                      \
+  template void print_run_summary<N>(const SceneOf<N>&, const RunSettings&, std::string_view, const RunSummaryOf<N>&, \
+                                     const ScriptFaultPlaces<N>*);
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_PRINT_RUN_SUMMARY)
+#undef HAPSCENE_PRINT_RUN_SUMMARY
 
 }  // namespace hapscene

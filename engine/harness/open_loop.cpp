@@ -201,10 +201,11 @@ std::vector<Axes<N>> reset_each_point_N(const SceneOf<N>& scene, ScriptList& scr
                                         std::vector<bool>* live) {
   return call_at_points_N(scene, scripts, x_m, v_m_per_s, t_s, true, true, pace, live);
 }
-template std::vector<Axes<1>> reset_each_point_N<1>(const SceneOf<1>&, ScriptList&, const std::vector<Axes<1>>&,
-                                                    const Axes<1>&, double, ScanPace*, std::vector<bool>*);
-template std::vector<Axes<2>> reset_each_point_N<2>(const SceneOf<2>&, ScriptList&, const std::vector<Axes<2>>&,
-                                                    const Axes<2>&, double, ScanPace*, std::vector<bool>*);
+#define HAPSCENE_RESET_EACH_POINT(N)                                                                \
+  template std::vector<Axes<N>> reset_each_point_N<N>(const SceneOf<N>&, ScriptList&, const std::vector<Axes<N>>&, \
+                                                      const Axes<N>&, double, ScanPace*, std::vector<bool>*);
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_RESET_EACH_POINT)
+#undef HAPSCENE_RESET_EACH_POINT
 
 template <int N>
 std::vector<Axes<N>> OpenLoopOf<N>::sequential_N(const std::vector<Axes<N>>& x_m, const Axes<N>& v_m_per_s,
@@ -371,9 +372,10 @@ OpenLoopScanOf<N> OpenLoopOf<N>::scan(const std::vector<Axes<N>>& x_m, const Axe
   return result;
 }
 
-template class OpenLoopOf<1>;
-template class OpenLoopOf<2>;
-template ScriptFaultLog scan_faults_in_motion<1>(const SceneOf<1>&, const std::vector<Axes<1>>&);
-template ScriptFaultLog scan_faults_in_motion<2>(const SceneOf<2>&, const std::vector<Axes<2>>&);
+#define HAPSCENE_OPEN_LOOP(N) \
+  template class OpenLoopOf<N>; \
+  template ScriptFaultLog scan_faults_in_motion<N>(const SceneOf<N>&, const std::vector<Axes<N>>&);
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_OPEN_LOOP)
+#undef HAPSCENE_OPEN_LOOP
 
 }  // namespace hapscene

@@ -27,10 +27,11 @@ CheckResult pace_failure(const SceneOf<N>& scene, const char* what, const char* 
                                scene.rate_hz, what, average_s * 1e3, per, over.c_str(), scene.period_s * 1e3);
   return check;
 }
-template CheckResult pace_failure<1>(const SceneOf<1>&, const char*, const char*, double, std::uint64_t,
-                                     const std::string&);
-template CheckResult pace_failure<2>(const SceneOf<2>&, const char*, const char*, double, std::uint64_t,
-                                     const std::string&);
+#define HAPSCENE_PACE_FAILURE(N)                                                                 \
+  template CheckResult pace_failure<N>(const SceneOf<N>&, const char*, const char*, double, std::uint64_t, \
+                                       const std::string&);
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_PACE_FAILURE)
+#undef HAPSCENE_PACE_FAILURE
 
 double thread_cpu_time_s() noexcept {
   timespec now{};
@@ -133,7 +134,8 @@ CheckResult ScanPace::check(const SceneOf<N>& scene) const {
   check.threshold = allowed_per_call_s_;
   return check;
 }
-template CheckResult ScanPace::check<1>(const SceneOf<1>&) const;
-template CheckResult ScanPace::check<2>(const SceneOf<2>&) const;
+#define HAPSCENE_SCAN_PACE(N) template CheckResult ScanPace::check<N>(const SceneOf<N>&) const;
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_SCAN_PACE)
+#undef HAPSCENE_SCAN_PACE
 
 }  // namespace hapscene

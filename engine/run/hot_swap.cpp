@@ -116,9 +116,10 @@ const CrossfadeOf<N>* HotSwapOf<N>::before_tick(TickStateOf<N>* state) noexcept 
 }
 
 // The axis counts scenes are compiled for.
-template class SceneExchangeOf<1>;
-template class HotSwapOf<1>;
-template class SceneExchangeOf<2>;
-template class HotSwapOf<2>;
+#define HAPSCENE_HOT_SWAP(N)      \
+  template class SceneExchangeOf<N>; \
+  template class HotSwapOf<N>;
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_HOT_SWAP)
+#undef HAPSCENE_HOT_SWAP
 
 }  // namespace hapscene

@@ -287,7 +287,8 @@ std::string ReloadWatcherOf<N>::write_watched(const std::function<std::string()>
 }
 
 // The axis counts scenes are compiled for.
-template class ReloadWatcherOf<1>;
-template class ReloadWatcherOf<2>;
+#define HAPSCENE_RELOAD_WATCHER(N) template class ReloadWatcherOf<N>;
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_RELOAD_WATCHER)
+#undef HAPSCENE_RELOAD_WATCHER
 
 }  // namespace hapscene

@@ -276,9 +276,9 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
 }
 
 // The axis counts scenes are compiled for.
-template RunSummaryOf<1> run_scene<1>(const SceneOf<1>&, DeviceOf<1>&, const RunOptions&,
-                                      TickObserverOf<1>*);
-template RunSummaryOf<2> run_scene<2>(const SceneOf<2>&, DeviceOf<2>&, const RunOptions&,
-                                      TickObserverOf<2>*);
+#define HAPSCENE_RUN_SCENE(N) \
+  template RunSummaryOf<N> run_scene<N>(const SceneOf<N>&, DeviceOf<N>&, const RunOptions&, TickObserverOf<N>*);
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_RUN_SCENE)
+#undef HAPSCENE_RUN_SCENE
 
 }  // namespace hapscene

@@ -148,9 +148,10 @@ void TelemetryLogOf<N>::finish() {
 }
 
 // The axis counts scenes are compiled for.
-template std::string telemetry_csv_line<1>(const TelemetrySampleOf<1>&);
-template std::string telemetry_csv_line<2>(const TelemetrySampleOf<2>&);
-template class TelemetryLogOf<1>;
-template class TelemetryLogOf<2>;
+#define HAPSCENE_TELEMETRY_LOG(N)                                               \
+  template std::string telemetry_csv_line<N>(const TelemetrySampleOf<N>&); \
+  template class TelemetryLogOf<N>;
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_TELEMETRY_LOG)
+#undef HAPSCENE_TELEMETRY_LOG
 
 }  // namespace hapscene

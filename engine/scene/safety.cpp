@@ -41,7 +41,9 @@ bool inside_polygon(const std::vector<Vec2>& polygon_m, const Vec2& p_m) noexcep
 }
 
 // The scenes' axis counts.
-template double apply_ramp<1>(const SafetyConfigOf<1>&, double, SafetyStateOf<1>*) noexcept;
-template Vec2 apply_ramp<2>(const SafetyConfigOf<2>&, Vec2, SafetyStateOf<2>*) noexcept;
+#define HAPSCENE_APPLY_RAMP(N) \
+  template Axes<N> apply_ramp<N>(const SafetyConfigOf<N>&, Axes<N>, SafetyStateOf<N>*) noexcept;
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_APPLY_RAMP)
+#undef HAPSCENE_APPLY_RAMP
 
 }  // namespace hapscene

@@ -234,8 +234,7 @@ void step(const SceneOf<N>& scene, const typename SceneParts<N>::Reading& readin
   template Axes<N> sum_effects_N<N>(const SceneOf<N>&, const EffectInputOf<N>&, ScriptList&) noexcept; \
   template void step<N>(const SceneOf<N>&, const SceneParts<N>::Reading&, TickStateOf<N>*,     \
                         const CrossfadeOf<N>*) noexcept;
-HAPSCENE_SCENE_FUNCTIONS(1)
-HAPSCENE_SCENE_FUNCTIONS(2)
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_SCENE_FUNCTIONS)
 #undef HAPSCENE_SCENE_FUNCTIONS
 
 }  // namespace hapscene

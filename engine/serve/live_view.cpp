@@ -949,7 +949,8 @@ std::uint64_t LiveViewOf<N>::events_sent() const {
   return impl_->seq.load();
 }
 
-template class LiveViewOf<1>;
-template class LiveViewOf<2>;
+#define HAPSCENE_LIVE_VIEW(N) template class LiveViewOf<N>;
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_LIVE_VIEW)
+#undef HAPSCENE_LIVE_VIEW
 
 }  // namespace hapscene

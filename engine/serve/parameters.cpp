@@ -81,8 +81,8 @@ double si_value(const nlohmann::json& value, Quantity quantity) {
 template <int N>
 struct Limits {
   double max_force_N{};
-  double low_m[2]{};   // workspace per axis
-  double high_m[2]{};
+  double low_m[N]{};   // workspace per axis
+  double high_m[N]{};
   double stiffness_N_per_m{};
   const char* stiffness_from{};
   double rate_hz{};
@@ -246,7 +246,7 @@ void set_range(const Limits<N>& limits, const std::string& key, int axis, LivePa
       } else {
         p->min = limits.low_m[a];
         p->max = limits.high_m[a];
-        p->range_from = N == 1 ? "the workspace" : (a == 0 ? "the workspace in x" : "the workspace in y");
+        p->range_from = N == 1 ? std::string("the workspace") : std::string("the workspace in ") + kAxisNames[a];
       }
       break;
     case Quantity::stiffness_N_per_m:
@@ -288,7 +288,7 @@ void set_range(const Limits<N>& limits, const std::string& key, int axis, LivePa
 }
 
 std::string axis_label(const std::string& key, int axis) {
-  return axis < 0 ? key : key + (axis == 0 ? " x" : " y");
+  return axis < 0 ? key : key + " " + kAxisNames[axis];
 }
 
 // The string form of a unit written after a number ("10 mm" -> "mm"), or "" when none.
@@ -481,7 +481,9 @@ nlohmann::json parameter_to_json(const LiveParameter& p) {
           {"bound_N_per_m", p.bound_pose ? nlohmann::json(p.bound_N_per_m) : nlohmann::json(nullptr)}};
 }
 
-template std::vector<LiveParameter> live_parameters<1>(const nlohmann::json&, const SceneOf<1>&);
-template std::vector<LiveParameter> live_parameters<2>(const nlohmann::json&, const SceneOf<2>&);
+#define HAPSCENE_LIVE_PARAMETERS(N) \
+  template std::vector<LiveParameter> live_parameters<N>(const nlohmann::json&, const SceneOf<N>&);
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_LIVE_PARAMETERS)
+#undef HAPSCENE_LIVE_PARAMETERS
 
 }  // namespace hapscene

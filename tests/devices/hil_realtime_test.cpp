@@ -85,7 +85,7 @@ TEST_CASE("hil real time: the lab wall on the real firmware runs its seconds, th
     // (ThreadSanitizer's, several times) can leave it too far behind to keep the board's
     // timing: the summary says so, and the link is not judged then.
     if (hil.world().most_behind_ns() > 20'000'000) {
-      MESSAGE("the simulated board fell " << hil.world().most_behind_ns() * 1e-6 << " ms behind real time: its link is not judged");
+      MESSAGE("the simulated board fell " << static_cast<double>(hil.world().most_behind_ns()) * 1e-6 << " ms behind real time: its link is not judged");
       continue;
     }
     CHECK_FALSE(hil.fault_seen());
