@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <iterator>
+#include <variant>
 
 namespace hapscene {
 
@@ -61,11 +62,29 @@ using Vec2 = AxisVector<2>;
 // the engine's templates follows. HAPSCENE_FOR_EACH_AXES(X) expands X(N) once for each N;
 // a device kind of a new N adds its N here (and its parts in SceneParts<N>), nothing else.
 #define HAPSCENE_FOR_EACH_AXES(X) X(1) X(2)
+// The same list as a variant over a template of N: AxesVariant<T> is
+// std::variant<T<1>, T<2>> (checked against the list below).
+template <template <int> class T>
+using AxesVariant = std::variant<T<1>, T<2>>;
+
 // The names of the task-space axes, in order (labels, CSV columns, messages).
 inline constexpr const char* kAxisNames[] = {"x", "y", "z"};
 // The largest N of the list: the size of buffers that hold one value per axis of any scene.
 inline constexpr int kMaxAxes = 2;
 static_assert(kMaxAxes <= static_cast<int>(std::size(kAxisNames)), "every axis has a name");
+namespace detail {
+template <int N> struct AxesTag {};
+#define HAPSCENE_COUNT_AXES(N) +1
+static_assert(std::variant_size_v<AxesVariant<AxesTag>> == 0 HAPSCENE_FOR_EACH_AXES(HAPSCENE_COUNT_AXES),
+              "AxesVariant names every N of HAPSCENE_FOR_EACH_AXES");
+#undef HAPSCENE_COUNT_AXES
+#define HAPSCENE_WITHIN_MAX(N) &&(N) >= 1 && (N) <= kMaxAxes
+#define HAPSCENE_IS_MAX(N) || (N) == kMaxAxes
+static_assert(true HAPSCENE_FOR_EACH_AXES(HAPSCENE_WITHIN_MAX), "every N of the list is within 1..kMaxAxes");
+static_assert(false HAPSCENE_FOR_EACH_AXES(HAPSCENE_IS_MAX), "kMaxAxes is the largest N of the list");
+#undef HAPSCENE_WITHIN_MAX
+#undef HAPSCENE_IS_MAX
+}  // namespace detail
 
 // Component i of an axis value (for N = 1, the value itself).
 constexpr double component(double value, int) noexcept { return value; }

@@ -1,5 +1,6 @@
 // `hapscene run ENV [ENV...]`: runs each environment on the device for a while, with a
-// live status line on a terminal and a summary at the end of each.
+// live status line on a terminal and a summary at the end of each; written once over N
+// (what differs per device kind: run_kind.hpp).
 #include <unistd.h>
 
 #include <algorithm>
@@ -23,15 +24,15 @@
 #include "engine/cli/option_definitions.hpp"
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/run_session.hpp"
+#include "engine/cli/run_kind.hpp"
 #include "engine/cli/run_summary.hpp"
-#include "engine/cli/run_trace.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/cli/ui_option.hpp"
 #include "engine/devices/open_device.hpp"
-#include "engine/harness/figures.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/run/reload_watcher.hpp"
 #include "engine/run/runner.hpp"
+#include "engine/run/script_fault_places.hpp"
 #include "engine/run/telemetry_log.hpp"
 
 namespace hapscene {
@@ -50,7 +51,7 @@ RunSettings parse_settings(Arguments& arguments) {
 
   HandConfig& hand = settings.simulation.hand;
   // The hand's motion, hold and start points depend on the scene's axes: read after the
-  // files (parse_capstan_hand, or the planar run's own).
+  // files, by the scene's kind (open_run_device, run_kind.hpp).
   settings.hand_text = arguments.take_value("hand");
   settings.hold_text = arguments.take_value("hold");
   settings.start_text = arguments.take_value("start");
@@ -75,20 +76,62 @@ RunSettings parse_settings(Arguments& arguments) {
   return settings;
 }
 
-// The 1-DOF hand: --hand, --hold X, --start X.
-void parse_capstan_hand(const Arguments& arguments, RunSettings* settings) {
-  HandConfig& hand = settings->simulation.hand;
-  if (const auto& motion = settings->hand_text) {
-    const auto* found = std::find(std::begin(kHandMotionNames), std::end(kHandMotionNames), *motion);
-    if (found == std::end(kHandMotionNames) || *found == "path") {
-      arguments.fail("--hand: unknown motion \"" + *motion + "\" (use sweep, hold, release, shake or none)");
+// Runs every environment (all of one N) on its device, one after the other: devices are
+// opened first (a device that cannot be opened fails before anything moves), and a real
+// board on a serial port is opened once and shared by every environment. After each run:
+// the summary, the log, the figure, the device's report. Returns the exit code.
+template <int N>
+int run_environments(const Arguments& arguments, const RunSettings& settings, const std::vector<std::string>& files,
+                     const std::vector<EnvironmentOf<N>>& environments) {
+  std::vector<std::unique_ptr<DeviceOf<N>>> devices;
+  std::vector<std::string> hands;  // the hand's name, for each environment
+  const bool shared_device = settings.device.starts_with("serial");
+  for (const EnvironmentOf<N>& environment : environments) {
+    if (shared_device && !devices.empty()) {
+      hands.push_back(hands.back());
+      continue;
     }
-    hand.motion = static_cast<HandMotion>(found - std::begin(kHandMotionNames));
+    std::string hand;
+    devices.push_back(open_run_device(arguments, settings, environment.scene, &hand));
+    hands.push_back(hand);
   }
-  if (settings->hold_text) hand.hold_m = parse_option_quantity(*settings->hold_text, option::hold, "hapscene run: --hold");
-  if (settings->start_text) {
-    settings->simulation.start_x_m = parse_option_quantity(*settings->start_text, option::run_start, "hapscene run: --start");
+
+  const bool show_status = !settings.quiet && isatty(STDERR_FILENO) == 1;
+  bool faulted = false;       // a run that ended on a fault makes the exit code 1
+  bool write_failed = false;  // so does a --log file that could not be written
+  for (std::size_t i = 0; i < environments.size() && !g_stop_requested.load(); ++i) {
+    const SceneOf<N>& scene = environments[i].scene;
+    DeviceOf<N>& device = *devices[shared_device ? 0 : i];
+    // Observers (allocated before the run): the log, the figure's trace, where scripts faulted.
+    const std::unique_ptr<TelemetryLogOf<N>> log = open_telemetry_log<N>(settings, scene.rate_hz);
+    const std::unique_ptr<RunFigureOf<N>> figure =
+        settings.plot_path ? open_run_figure(arguments, settings, scene, device) : nullptr;
+    ScriptFaultPlaces<N> fault_places;
+    const WatchedRun<N> run = run_watched<N>(scene, device, files[i], settings, show_status,
+                                             {log.get(), figure ? figure->observer() : nullptr, &fault_places});
+    if (i > 0) print_out("\n");
+    print_run_summary<N>(scene, settings, hands[i], run.summary, &fault_places);
+    if (run.reloads > 0) print_out("  reloads          %llu\n", static_cast<unsigned long long>(run.reloads));
+    print_live_view_line(run);
+    if (log && !finish_telemetry_log(*log, *settings.log_path)) write_failed = true;
+    if (figure) {
+      figure->write(*settings.plot_path, hands[i]);
+      print_out("  plot             %s\n", printable(*settings.plot_path).c_str());
+    }
+    print_device_lines(device);
+    write_out(device.report());
+    flush_out();
+    faulted = faulted || run_faulted(run, device);
   }
+  return end_run(faulted || write_failed);
+}
+
+// The environments of one N, out of the loaded ones (all of that N).
+template <int N>
+std::vector<EnvironmentOf<N>> environments_of(std::vector<AnyEnvironment>* loaded) {
+  std::vector<EnvironmentOf<N>> out;
+  for (AnyEnvironment& environment : *loaded) out.push_back(std::move(std::get<EnvironmentOf<N>>(environment)));
+  return out;
 }
 
 }  // namespace
@@ -125,66 +168,21 @@ int run_command(std::vector<std::string> args) {
   std::signal(SIGTERM, on_interrupt);
   settings.options.stop_requested = &g_stop_requested;
 
-  // A 2-DOF environment runs alone, on its own path (run_planar.cpp).
+  // Load everything first: a bad file fails before anything moves. A 2-DOF environment
+  // runs alone (one file per run).
+  std::vector<AnyEnvironment> loaded;
   for (const std::string& file : files) {
-    if (environment_axes(file) != 2) continue;
-    if (files.size() != 1) arguments.fail(file + ": a 2-DOF environment runs alone (one file per run)");
-    return run_planar(arguments, settings, file);
-  }
-  parse_capstan_hand(arguments, &settings);
-
-  // Load everything and open every device first: a bad file fails before anything moves.
-  // A real board on a serial port is opened once and shared by every environment.
-  std::vector<Scene> scenes;
-  std::vector<std::unique_ptr<Device>> devices;
-  const bool shared_device = settings.device.starts_with("serial");
-  for (const std::string& file : files) {
-    scenes.push_back(load_environment_file(file));
-    if (shared_device && !devices.empty()) continue;
-    DeviceProfile profile = scenes.back().device;
-    if (settings.noise_counts >= 0.0) profile.plant.sensor_noise_counts = settings.noise_counts;
-    try {
-      devices.push_back(open_device(settings.device, profile, settings.simulation, settings.link));
-    } catch (const InputError& error) {
-      arguments.fail(error.what());
+    loaded.push_back(load_any_environment(file));
+    if (axes_of(loaded.back()) != 1 && files.size() != 1) {
+      arguments.fail(file + ": a " + std::to_string(axes_of(loaded.back())) + "-DOF environment runs alone (one file per run)");
     }
   }
-
-  const bool show_status = !settings.quiet && isatty(STDERR_FILENO) == 1;
-  bool faulted = false;  // a run that ended on a fault makes the exit code 1
-  bool write_failed = false;  // so does a --log file that could not be written
-  for (std::size_t i = 0; i < scenes.size() && !g_stop_requested.load(); ++i) {
-    const Scene& scene = scenes[i];
-    Device& device = *devices[shared_device ? 0 : i];
-    // Observers (allocated before the run): the log and the trace.
-    const std::unique_ptr<TelemetryLog> log = open_telemetry_log<1>(settings, scene.rate_hz);
-    // The figure's trace: a fixed number of records, decimated for long runs.
-    std::unique_ptr<RunTrace> trace;
-    if (settings.plot_path) {
-      const auto ticks = static_cast<std::uint64_t>(std::llround(settings.options.duration_s * scene.rate_hz));
-      trace = std::make_unique<RunTrace>(device.truth(), ticks);
-    }
-    const WatchedRun<1> run = run_watched<1>(scene, device, files[i], settings, show_status, {log.get(), trace.get()});
-    const RunSummary& summary = run.summary;
-    if (i > 0) print_out("\n");
-    const std::string hand(kHandMotionNames[static_cast<int>(settings.simulation.hand.motion)]);
-    print_run_summary<1>(scene, settings, hand, summary, nullptr);
-    if (run.reloads > 0) print_out("  reloads          %llu\n", static_cast<unsigned long long>(run.reloads));
-    print_live_view_line(run);
-    if (log && !finish_telemetry_log(*log, *settings.log_path)) write_failed = true;
-    if (trace) {
-      std::string what = "run, hand " + hand;
-      if (trace->ticks_per_bucket() > 1) {
-        what += ", lowest and highest force of every " + std::to_string(trace->ticks_per_bucket()) + " ticks";
-      }
-      write_output_file(*settings.plot_path, run_figure_svg(scene, trace->records(), what));
-      print_out("  plot             %s\n", printable(*settings.plot_path).c_str());
-    }
-    write_out(device.report());
-    flush_out();
-    faulted = faulted || run_faulted(run, device);
-  }
-  return end_run(faulted || write_failed);
+  const int axes = axes_of(loaded.front());
+#define HAPSCENE_RUN_FOR(N) \
+  if (axes == (N)) return run_environments<N>(arguments, settings, files, environments_of<N>(&loaded));
+  HAPSCENE_FOR_EACH_AXES(HAPSCENE_RUN_FOR)
+#undef HAPSCENE_RUN_FOR
+  return kExitFailure;  // not reached: every loaded environment has an N of the list
 }
 
 }  // namespace hapscene

@@ -3,7 +3,7 @@
 // status line and the scripts' log() lines on stderr, hot reload of the environment and
 // its scripts (unless --no-reload), the caller's observers (telemetry log, plot trace),
 // and the log lines still queued at the end printed once, after the run. run_command.cpp
-// (1-DOF) and run_planar.cpp (2-DOF) print the summary and their own outputs after it.
+// prints the summary and the outputs after it, for every N.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>

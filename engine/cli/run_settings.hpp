@@ -1,6 +1,5 @@
 #pragma once
-// `hapscene run`: its settings, the telemetry log of a run whatever its axes, and the run
-// of a 2-DOF (planar) environment (run_planar.cpp; 1-DOF ones: run_command.cpp).
+// `hapscene run`: its settings, and the telemetry log of a run whatever its axes.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -64,15 +63,5 @@ bool finish_telemetry_log(TelemetryLogOf<N>& log, const std::string& path) {
             static_cast<unsigned long long>(log.dropped()));
   return true;
 }
-
-// Runs one planar environment on the simulated 2-DOF device (the only 2-DOF device so far)
-// with the options of `hapscene run` that apply: --sim-time, --duration, --log,
-// --plot FILE.svg (the figure of engine/harness/planar_figure.hpp),
-// --hand none|hold|line|circle|sweep|release|shake, --hold X,Y, --start X,Y (default the
-// profile's home), --hand-stiffness, --hand-damping, --release, --quiet, --no-reload. As
-// a 1-DOF run (engine/cli/run_session.hpp): the live status and script log() lines on
-// stderr, hot reload of the environment and its scripts, the same summary
-// (engine/cli/run_summary.hpp). Returns the exit code.
-int run_planar(const Arguments& arguments, const RunSettings& settings, const std::string& file);
 
 }  // namespace hapscene

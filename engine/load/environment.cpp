@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <utility>
 #include <variant>
 
@@ -197,56 +198,6 @@ const nlohmann::json& effects_array(ObjectReader& reader) {
   return *effects;
 }
 
-Environment compile(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
-  ObjectReader reader(root, "", file);
-  Environment environment;
-  Scene& scene = environment.scene;
-  // A planar profile here is a 2-DOF scene given to a command that takes 1-DOF ones.
-  const auto load_capstan_profile = [](const std::string& name, const std::string& dir) {
-    if (names_planar_profile(name, dir)) {
-      throw InputError("\"" + name + "\" is a 2-DOF (planar) profile: this command takes 1-DOF scenes only so far "
-                       "(2-DOF scenes: probe, run, plot and validate)");
-    }
-    return load_device_profile(name, dir);
-  };
-  compile_header(reader, file, base_dir, load_capstan_profile, &scene);
-  scene.device_model = compile_device_model(scene.device);
-
-  // Safety: the device's limits, lowered by the environment's.
-  const DeviceLimits& limits = scene.device.limits;
-  scene.safety = SafetyConfig{limits.max_force_N,  limits.slew_limit_N_per_s,
-                              limits.workspace_min_m, limits.workspace_max_m,
-                              limits.soft_start_s, limits.soft_start_threshold_N};
-  if (const nlohmann::json* safety = reader.get("safety")) {
-    ObjectReader safety_reader(*safety, reader.pointer_to("safety"), file);
-    parse_safety(safety_reader, limits, &scene.safety);
-  }
-  finalise_safety(scene.period_s, &scene.safety);
-
-  compile_velocity(reader, &scene);
-
-  // Effects, and what they need.
-  const nlohmann::json* effects = &effects_array(reader);
-  ScriptLoadBudget script_budget = plan_script_loads(*effects, file, reader.pointer_to("effects"));
-  for (std::size_t i = 0; i < effects->size(); ++i) {
-    Effect effect;
-    const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
-    if (parse_effect((*effects)[i], pointer, file, base_dir, &script_budget, &effect)) {
-      std::string warning = inert_effect_warning(effect, (*effects)[i], scene);
-      if (!warning.empty()) scene.load_warnings.push_back(printable(file + ": " + pointer + " " + warning));
-      add_effect(&scene, std::move(effect));
-    }
-  }
-
-  // Thresholds for the harness (hapscene validate): not part of the scene.
-  if (const nlohmann::json* validate = reader.get("validate")) {
-    ObjectReader validate_reader(*validate, reader.pointer_to("validate"), file);
-    parse_validate_block(validate_reader, &environment.validate);
-  }
-  reader.finish();
-  return environment;
-}
-
 // A planar scene's "safety" block: force and slew limits, soft start, and the workspace
 // as a box ({"min": [x, y], "max": [x, y]}) within the device's; each only safer than the
 // device's. The box narrows the device's workspace and never replaces it: the tick tests
@@ -279,48 +230,110 @@ void set_planar_workspace(const PlanarWorkspace& workspace, SafetyConfigOf<2>* s
   if (!workspace.is_box) safety->workspace_polygon_m = workspace.polygon_m;
 }
 
-PlanarScene compile_planar(const nlohmann::json& root, const std::string& file, const std::string& base_dir,
-                           ValidateThresholds* validate = nullptr) {
+// What loading differs in per device kind: the profile, the compiled device model, the
+// device's own safety limits and the "safety" block over them, the effects' parser and the
+// "validate" block's keys. One specialisation per N of HAPSCENE_FOR_EACH_AXES; compile<N>
+// below is written once.
+template <int N>
+struct KindLoad;
+
+// One axis: the capstan devices (the Hapkit), the lab effects.
+template <>
+struct KindLoad<1> {
+  // A planar profile here is a 2-DOF scene given to a command that takes 1-DOF ones.
+  static DeviceProfile load_profile(const std::string& name, const std::string& dir) {
+    if (names_planar_profile(name, dir)) {
+      throw InputError("\"" + name + "\" is a 2-DOF (planar) profile: this command takes 1-DOF scenes only so far "
+                       "(2-DOF scenes: probe, run, plot and validate)");
+    }
+    return load_device_profile(name, dir);
+  }
+  static DeviceModel compile_model(const DeviceProfile& device) { return compile_device_model(device); }
+  static void device_safety(const DeviceProfile& device, SafetyConfig* safety) {
+    const DeviceLimits& limits = device.limits;
+    *safety = SafetyConfig{limits.max_force_N,     limits.slew_limit_N_per_s, limits.workspace_min_m,
+                           limits.workspace_max_m, limits.soft_start_s,       limits.soft_start_threshold_N};
+  }
+  static void parse_safety_block(ObjectReader& reader, const DeviceProfile& device, SafetyConfig* safety) {
+    parse_safety(reader, device.limits, safety);
+  }
+  static bool parse_effect_at(const nlohmann::json& value, const std::string& pointer, const std::string& file,
+                              const std::string& base_dir, ScriptLoadBudget* budget, Effect* effect) {
+    return parse_effect(value, pointer, file, base_dir, budget, effect);
+  }
+  static void parse_validate(ObjectReader& reader, ValidateThresholds* thresholds) {
+    parse_validate_block(reader, thresholds);
+  }
+};
+
+// Two axes: the planar linkages (the Haplink, pantographs, the Haply 2DIY), the 2-D effects.
+template <>
+struct KindLoad<2> {
+  static PlanarProfile load_profile(const std::string& name, const std::string& dir) {
+    return load_planar_profile(name, dir);
+  }
+  static PlanarTickModel compile_model(const PlanarProfile& device) { return compile_planar_tick_model(device); }
+  static void device_safety(const PlanarProfile& device, SafetyConfigOf<2>* safety) {
+    const PlanarLimits& limits = device.limits;
+    safety->max_force_N = limits.max_force_N;
+    safety->slew_limit_N_per_s = limits.slew_limit_N_per_s;
+    safety->soft_start_s = limits.soft_start_s;
+    safety->soft_start_threshold_N = limits.soft_start_threshold_N;
+    set_planar_workspace(limits.workspace, safety);
+  }
+  static void parse_safety_block(ObjectReader& reader, const PlanarProfile& device, SafetyConfigOf<2>* safety) {
+    parse_planar_safety(reader, device.limits, safety);
+  }
+  static bool parse_effect_at(const nlohmann::json& value, const std::string& pointer, const std::string& file,
+                              const std::string& base_dir, ScriptLoadBudget* budget, PlanarEffect* effect) {
+    return parse_planar_effect(value, pointer, file, effect, base_dir, budget);
+  }
+  static void parse_validate(ObjectReader& reader, ValidateThresholds* thresholds) {
+    parse_planar_validate_block(reader, thresholds);
+  }
+};
+
+// An environment's JSON, compiled for a device of N axes: the header, the device's model
+// and safety limits lowered by the file's, velocity, the effects (script effects share one
+// load budget), and the harness's thresholds (checked at every load, not part of the scene).
+template <int N>
+EnvironmentOf<N> compile(const nlohmann::json& root, const std::string& file, const std::string& base_dir) {
+  using Kind = KindLoad<N>;
   ObjectReader reader(root, "", file);
-  PlanarScene scene;
-  compile_header(reader, file, base_dir, load_planar_profile, &scene);
-  scene.device_model = compile_planar_tick_model(scene.device);
+  EnvironmentOf<N> environment;
+  SceneOf<N>& scene = environment.scene;
+  compile_header(reader, file, base_dir, &Kind::load_profile, &scene);
+  scene.device_model = Kind::compile_model(scene.device);
 
   // Safety: the device's limits, lowered by the environment's.
-  const PlanarLimits& limits = scene.device.limits;
-  scene.safety.max_force_N = limits.max_force_N;
-  scene.safety.slew_limit_N_per_s = limits.slew_limit_N_per_s;
-  scene.safety.soft_start_s = limits.soft_start_s;
-  scene.safety.soft_start_threshold_N = limits.soft_start_threshold_N;
-  set_planar_workspace(limits.workspace, &scene.safety);
+  Kind::device_safety(scene.device, &scene.safety);
   if (const nlohmann::json* safety = reader.get("safety")) {
     ObjectReader safety_reader(*safety, reader.pointer_to("safety"), file);
-    parse_planar_safety(safety_reader, limits, &scene.safety);
+    Kind::parse_safety_block(safety_reader, scene.device, &scene.safety);
   }
   finalise_safety(scene.period_s, &scene.safety);
   compile_velocity(reader, &scene);
 
-  // Effects; script effects share one load budget, as in compile().
+  // Effects, and what they need.
   const nlohmann::json& effects = effects_array(reader);
   ScriptLoadBudget script_budget = plan_script_loads(effects, file, reader.pointer_to("effects"));
   for (std::size_t i = 0; i < effects.size(); ++i) {
-    PlanarEffect effect;
+    typename SceneParts<N>::Effects::Variant effect;
     const std::string pointer = json_pointer_append(reader.pointer_to("effects"), i);
-    if (parse_planar_effect(effects[i], pointer, file, &effect, base_dir, &script_budget)) {
+    if (Kind::parse_effect_at(effects[i], pointer, file, base_dir, &script_budget, &effect)) {
       std::string warning = inert_effect_warning(effect, effects[i], scene);
       if (!warning.empty()) scene.load_warnings.push_back(printable(file + ": " + pointer + " " + warning));
       add_effect(&scene, std::move(effect));
     }
   }
-  // Thresholds for the harness (hapscene validate on a 2-DOF scene), checked at every load.
-  ValidateThresholds thresholds;
-  if (const nlohmann::json* block = reader.get("validate")) {
-    ObjectReader validate_reader(*block, reader.pointer_to("validate"), file);
-    parse_planar_validate_block(validate_reader, &thresholds);
+
+  // Thresholds for the harness (hapscene validate): not part of the scene.
+  if (const nlohmann::json* validate = reader.get("validate")) {
+    ObjectReader validate_reader(*validate, reader.pointer_to("validate"), file);
+    Kind::parse_validate(validate_reader, &environment.validate);
   }
-  if (validate != nullptr) *validate = thresholds;
   reader.finish();
-  return scene;
+  return environment;
 }
 
 // The "device" an environment's JSON names (default "hapkit3"), without checking more.
@@ -334,71 +347,74 @@ std::string device_named(const nlohmann::json& root) {
 
 }  // namespace
 
-Environment compile_environment(std::string_view json_text, const std::string& display_name,
-                                const std::string& base_dir) {
-  return compile(parse_json_text(json_text, display_name), display_name, base_dir);
-}
-
 namespace {
 
 // A user's file: its warnings go to stderr at every load, whatever the command (scenes a
 // command builds from its own text, such as the bench's, keep theirs in the scene).
-template <typename Loaded>
-Loaded print_warnings(Loaded loaded) {
-  const auto& warnings = [&]() -> const std::vector<std::string>& {
-    if constexpr (requires { loaded.scene; }) {
-      return loaded.scene.load_warnings;
-    } else {
-      return loaded.load_warnings;
-    }
-  }();
-  for (const std::string& warning : warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+template <int N>
+const EnvironmentOf<N>& print_warnings(const EnvironmentOf<N>& loaded) {
+  for (const std::string& warning : loaded.scene.load_warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   return loaded;
+}
+
+// The folder relative paths in a file are taken from.
+std::string base_dir_of(const std::string& path) {
+  const std::filesystem::path file(path);
+  return file.parent_path().empty() ? "." : file.parent_path().string();
+}
+
+// The number of axes of the device a parsed environment names.
+int axes_of(const nlohmann::json& root, const std::string& base_dir) {
+  return names_planar_profile(device_named(root), base_dir) ? 2 : 1;
+}
+
+// A parsed environment compiled for the N of its device (one of HAPSCENE_FOR_EACH_AXES).
+AnyEnvironment compile_any(const nlohmann::json& root, const std::string& display_name, const std::string& base_dir) {
+  const int axes = axes_of(root, base_dir);
+  std::optional<AnyEnvironment> environment;
+#define HAPSCENE_COMPILE_FOR(N) \
+  if (axes == (N)) environment.emplace(std::in_place_type<EnvironmentOf<N>>, compile<N>(root, display_name, base_dir));
+  HAPSCENE_FOR_EACH_AXES(HAPSCENE_COMPILE_FOR)
+#undef HAPSCENE_COMPILE_FOR
+  return std::move(*environment);
 }
 
 }  // namespace
 
+template <int N>
+EnvironmentOf<N> compile_environment_of(std::string_view json_text, const std::string& display_name,
+                                        const std::string& base_dir) {
+  return compile<N>(parse_json_text(json_text, display_name), display_name, base_dir);
+}
+
+template <int N>
+EnvironmentOf<N> load_environment_of(const std::string& path) {
+  return print_warnings(compile_environment_of<N>(environment_text_of(path), path, base_dir_of(path)));
+}
+
+AnyEnvironment compile_any_environment(std::string_view json_text, const std::string& display_name,
+                                       const std::string& base_dir) {
+  return compile_any(parse_json_text(json_text, display_name), display_name, base_dir);
+}
+
+AnyEnvironment load_any_environment(const std::string& path) {
+  AnyEnvironment loaded = compile_any_environment(environment_text_of(path), path, base_dir_of(path));
+  std::visit([](const auto& environment) { print_warnings(environment); }, loaded);
+  return loaded;
+}
+
+int axes_of(const AnyEnvironment& environment) {
+  return std::visit([](const auto& loaded) { return std::decay_t<decltype(loaded)>::kAxes; }, environment);
+}
+
 int environment_axes(const std::string& path) {
   const std::filesystem::path file(path);
   if (file.extension() == ".lua") return 1;  // a script alone: the Hapkit
-  const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
-  return environment_text_axes(read_text_file(path, kMaxJsonFileBytes), path, base_dir);
+  return environment_text_axes(read_text_file(path, kMaxJsonFileBytes), path, base_dir_of(path));
 }
 
 int environment_text_axes(std::string_view json_text, const std::string& display_name, const std::string& base_dir) {
-  const nlohmann::json root = parse_json_text(json_text, display_name);
-  return names_planar_profile(device_named(root), base_dir) ? 2 : 1;
-}
-
-PlanarScene load_planar_environment_text(std::string_view json_text, const std::string& display_name,
-                                         const std::string& base_dir) {
-  return compile_planar(parse_json_text(json_text, display_name), display_name, base_dir);
-}
-
-PlanarScene load_planar_environment_file(const std::string& path) {
-  const std::filesystem::path file(path);
-  const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
-  return print_warnings(load_planar_environment_text(read_text_file(path, kMaxJsonFileBytes), path, base_dir));
-}
-
-PlanarEnvironment compile_planar_environment(std::string_view json_text, const std::string& display_name,
-                                             const std::string& base_dir) {
-  PlanarEnvironment environment;
-  environment.scene = compile_planar(parse_json_text(json_text, display_name), display_name, base_dir,
-                                     &environment.validate);
-  return environment;
-}
-
-PlanarEnvironment load_planar_environment(const std::string& path) {
-  const std::filesystem::path file(path);
-  const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
-  return print_warnings(compile_planar_environment(read_text_file(path, kMaxJsonFileBytes), path, base_dir));
-}
-
-Environment load_environment(const std::string& path) {
-  const std::filesystem::path file(path);
-  const std::string base_dir = file.parent_path().empty() ? "." : file.parent_path().string();
-  return print_warnings(compile_environment(environment_text_of(path), path, base_dir));
+  return axes_of(parse_json_text(json_text, display_name), base_dir);
 }
 
 std::string environment_text_of(const std::string& path) {
@@ -412,11 +428,10 @@ std::string environment_text_of(const std::string& path) {
   return root.dump(2) + "\n";
 }
 
-Scene load_environment_file(const std::string& path) { return load_environment(path).scene; }
-
-Scene load_environment_text(std::string_view json_text, const std::string& display_name,
-                            const std::string& base_dir) {
-  return compile_environment(json_text, display_name, base_dir).scene;
-}
+#define HAPSCENE_ENVIRONMENT_LOADS(N)                                                                          \
+  template EnvironmentOf<N> compile_environment_of<N>(std::string_view, const std::string&, const std::string&); \
+  template EnvironmentOf<N> load_environment_of<N>(const std::string&);
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_ENVIRONMENT_LOADS)
+#undef HAPSCENE_ENVIRONMENT_LOADS
 
 }  // namespace hapscene
