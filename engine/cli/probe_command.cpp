@@ -11,11 +11,14 @@
 // START:STOP:STEP --y START:STOP:STEP [--v VX,VY]`, one row per grid point (x outer, y
 // inner), each shape's proxy at the nearest point of its boundary (open loop).
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <utility>
+#include <variant>
+#include <vector>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
@@ -26,7 +29,6 @@
 #include "engine/cli/standard_output.hpp"
 #include "engine/devices/planar/planar_profile.hpp"
 #include "engine/harness/open_loop.hpp"
-#include "engine/harness/planar_open_loop.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/scene/step.hpp"
 
@@ -160,106 +162,125 @@ bool faulted_at(const OpenLoopScanOf<N>& scan, std::size_t i) {
   return !scan.script_faulted.empty() && scan.script_faulted[i];
 }
 
-// --v VX,VY for a planar environment.
-Vec2 parse_planar_velocity(const Arguments& arguments, const std::string& text) {
-  const std::size_t comma = text.find(',');
-  if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos) {
-    arguments.fail("--v: a 2-DOF environment takes VX,VY, got \"" + text + "\"");
-  }
-  return Vec2{{parse_option_quantity(text.substr(0, comma), option::probe_velocity, "hapscene probe: --v VX"),
-               parse_option_quantity(text.substr(comma + 1), option::probe_velocity, "hapscene probe: --v VY")}};
+// The device's workspace box, which --x and --y are compared with (the unit note).
+std::pair<double, double> device_workspace_along(const DeviceProfile& device, int /*axis*/) {
+  return {device.limits.workspace_min_m, device.limits.workspace_max_m};
+}
+std::pair<double, double> device_workspace_along(const PlanarProfile& device, int axis) {
+  Vec2 low_m;
+  Vec2 high_m;
+  workspace_bounds(device.limits.workspace, &low_m, &high_m);
+  return {low_m[axis], high_m[axis]};
 }
 
-// A planar environment's grid: x outer, y inner. The built-in 2-D effects are evaluated
-// open loop (no history: each shape's proxy at the nearest point of its boundary).
-int probe_planar(const Arguments& arguments, const std::string& file, const std::string& x_text,
-                 const std::optional<std::string>& y_text, const std::optional<std::string>& v_text, double t_s) {
-  if (!y_text) arguments.fail("--y START:STOP:STEP is required for a 2-DOF environment");
-  const ProbeRange x_range = parse_range(arguments, "x", x_text);
-  const ProbeRange y_range = parse_range(arguments, "y", *y_text);
-  if (static_cast<double>(x_range.points) * static_cast<double>(y_range.points) >
-      static_cast<double>(option::kMaxProbePoints)) {
+// --v: V for one axis; VX,VY (one value per axis, comma-separated) for more.
+template <int N>
+Axes<N> parse_velocity(const Arguments& arguments, const std::string& text) {
+  if constexpr (N == 1) {
+    return parse_option_quantity(text, option::probe_velocity, "hapscene probe: --v");
+  } else {
+    std::string form;
+    for (int i = 0; i < N; ++i) form += std::string(i > 0 ? ",V" : "V") + static_cast<char>(std::toupper(kAxisNames[i][0]));
+    std::vector<std::string> parts;
+    for (std::size_t from = 0;;) {
+      const std::size_t comma = text.find(',', from);
+      parts.push_back(text.substr(from, comma == std::string::npos ? std::string::npos : comma - from));
+      if (comma == std::string::npos) break;
+      from = comma + 1;
+    }
+    if (parts.size() != static_cast<std::size_t>(N)) {
+      arguments.fail("--v: a " + std::to_string(N) + "-DOF environment takes " + form + ", got \"" + text + "\"");
+    }
+    Axes<N> v_m_per_s{};
+    for (int i = 0; i < N; ++i) {
+      const std::string label = std::string("hapscene probe: --v V") + static_cast<char>(std::toupper(kAxisNames[i][0]));
+      v_m_per_s[i] = parse_option_quantity(parts[static_cast<std::size_t>(i)], option::probe_velocity, label);
+    }
+    return v_m_per_s;
+  }
+}
+
+// The CSV's header: position, velocity, asked force and commanded force, one column per
+// axis (x_m,v_m_per_s,force_N,output_N in 1-D; x_m,y_m,vx_m_per_s,... in 2-D).
+template <int N>
+std::string probe_header() {
+  if constexpr (N == 1) {
+    return "x_m,v_m_per_s,force_N,output_N\n";
+  } else {
+    std::string header;
+    const auto columns = [&](const std::string& before, const std::string& after) {
+      for (int i = 0; i < N; ++i) header += (header.empty() ? "" : ",") + before + kAxisNames[i] + after;
+    };
+    columns("", "_m");
+    columns("v", "_m_per_s");
+    columns("force_", "_N");
+    columns("output_", "_N");
+    return header + "\n";
+  }
+}
+
+// One value per axis, comma-separated, each the shortest text that reads back.
+template <int N>
+std::string csv_values(const Axes<N>& value) {
+  std::string out;
+  for (int i = 0; i < N; ++i) out += (i > 0 ? "," : "") + shortest(component(value, i));
+  return out;
+}
+
+// The open-loop force at every point of the grid (axis x outer, the last axis inner), as
+// CSV on stdout; notes and script faults on stderr. Returns the exit code.
+template <int N>
+int probe_environment(const Arguments& arguments, const SceneOf<N>& scene, const std::vector<std::string>& range_texts,
+                      const std::optional<std::string>& v_text, double t_s) {
+  std::vector<ProbeRange> ranges;
+  double grid_points = 1.0;
+  for (int i = 0; i < N; ++i) {
+    ranges.push_back(parse_range(arguments, kAxisNames[i], range_texts[static_cast<std::size_t>(i)]));
+    grid_points *= static_cast<double>(ranges.back().points);
+  }
+  if (N > 1 && grid_points > static_cast<double>(option::kMaxProbePoints)) {
     arguments.fail("--x and --y: more than " + std::to_string(option::kMaxProbePoints) + " points in the grid");
   }
-  const Vec2 v_m_per_s = v_text ? parse_planar_velocity(arguments, *v_text) : Vec2{};
-  const PlanarScene scene = load_planar_environment_file(file);
-  {
-    Vec2 low_m;
-    Vec2 high_m;
-    workspace_bounds(scene.device.limits.workspace, &low_m, &high_m);
-    for (const std::string& note : {range_unit_note("x", x_range, low_m[0], high_m[0]),
-                                    range_unit_note("y", y_range, low_m[1], high_m[1])}) {
-      if (!note.empty()) std::fprintf(stderr, "%s\n", note.c_str());
+  const Axes<N> v_m_per_s = v_text ? parse_velocity<N>(arguments, *v_text) : Axes<N>{};
+  for (int i = 0; i < N; ++i) {
+    const auto [low_m, high_m] = device_workspace_along(scene.device, i);
+    const std::string note = range_unit_note(kAxisNames[i], ranges[static_cast<std::size_t>(i)], low_m, high_m);
+    if (!note.empty()) std::fprintf(stderr, "%s\n", note.c_str());
+  }
+  // The grid, axis 0 outer.
+  std::vector<std::vector<double>> positions_m;
+  for (const ProbeRange& range : ranges) positions_m.push_back(range_positions_m(range));
+  std::vector<Axes<N>> points;
+  points.reserve(static_cast<std::size_t>(grid_points));
+  std::vector<std::size_t> index(N, 0);
+  while (true) {
+    Axes<N> point{};
+    if constexpr (N == 1) {
+      point = positions_m[0][index[0]];
+    } else {
+      for (int i = 0; i < N; ++i) point[i] = positions_m[static_cast<std::size_t>(i)][index[static_cast<std::size_t>(i)]];
     }
+    points.push_back(point);
+    int axis = N - 1;
+    while (axis >= 0 && ++index[static_cast<std::size_t>(axis)] == positions_m[static_cast<std::size_t>(axis)].size()) {
+      index[static_cast<std::size_t>(axis)] = 0;
+      --axis;
+    }
+    if (axis < 0) break;
   }
-  const std::vector<double> x_m = range_positions_m(x_range);
-  const std::vector<double> y_m = range_positions_m(y_range);
-  // Every point as fresh, reset instances give it at run time t (as the 1-D probe's
-  // OpenLoop), within the same CPU budget for creating them; each fault once, with the
-  // first point (in the order of the output) that met it.
-  std::vector<Vec2> points;
-  points.reserve(x_m.size() * y_m.size());
-  for (const double x : x_m) {
-    for (const double y : y_m) points.push_back(Vec2{{x, y}});
-  }
-  PlanarOpenLoop open_loop(scene, t_s);
-  const PlanarOpenLoopScan scan = open_loop.scan(points, v_m_per_s);
-  std::string out = "x_m,y_m,vx_m_per_s,vy_m_per_s,force_x_N,force_y_N,output_x_N,output_y_N\n";
+
+  // Every point as fresh, reset instances give it at run time t, within one CPU budget for
+  // creating them; each fault once, with the first point (in the order of the output)
+  // that met it.
+  OpenLoopOf<N> open_loop(scene, t_s);
+  const OpenLoopScanOf<N> scan = open_loop.scan(points, v_m_per_s);
+  std::string out = probe_header<N>();
+  const std::string empty_forces(2 * N - 1, ',');
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const Vec2& force_N = scan.force_N[i];
-    const Vec2 output_N = open_loop.output_N(points[i], force_N);
-    out += shortest(points[i][0]) + "," + shortest(points[i][1]) + "," + shortest(v_m_per_s[0]) + "," +
-           shortest(v_m_per_s[1]) + "," +
-           (faulted_at(scan, i) ? std::string(",,,")
-                                : shortest(force_N[0]) + "," + shortest(force_N[1]) + "," + shortest(output_N[0]) +
-                                      "," + shortest(output_N[1])) +
-           "\n";
-  }
-  write_out(out);
-  flush_out();
-  if (!scan.behaviour.static_field()) {
-    std::fprintf(stderr, "note: %s; each point is from fresh instances at t = %g s\n", scan.behaviour.note.c_str(),
-                 t_s);
-  }
-  const ScriptFaultLog& faults = open_loop.faults();
-  for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
-  if (faults.omitted()) {
-    std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the grid are shown)\n",
-                 ScriptFaultLog::kMaxMessages);
-  }
-  return faults.empty() ? kExitOk : kExitFailure;
-}
-
-}  // namespace
-
-int probe_command(std::vector<std::string> args) {
-  Arguments arguments(std::move(args), "hapscene probe");
-  const std::optional<std::string> x_text = arguments.take_value("x");
-  const std::optional<std::string> y_text = arguments.take_value("y");
-  const std::optional<std::string> v_text = arguments.take_value("v");
-  const double t_s = arguments.take(option::probe_time).value_or(0.0);
-  const std::vector<std::string> files = arguments.positionals();
-  if (files.size() != 1) arguments.fail("expected one environment file");
-  if (!x_text) arguments.fail("--x START:STOP:STEP is required");
-  if (environment_axes(files[0]) == 2) return probe_planar(arguments, files[0], *x_text, y_text, v_text, t_s);
-  if (y_text) arguments.fail("--y: only for a 2-DOF environment (its device a planar profile)");
-  const double v_m_per_s =
-      v_text ? parse_option_quantity(*v_text, option::probe_velocity, "hapscene probe: --v") : 0.0;
-  const ProbeRange range = parse_range(arguments, "x", *x_text);
-
-  const Scene scene = load_environment_file(files[0]);
-  const std::string unit_note =
-      range_unit_note("x", range, scene.device.limits.workspace_min_m, scene.device.limits.workspace_max_m);
-  if (!unit_note.empty()) std::fprintf(stderr, "%s\n", unit_note.c_str());
-  const std::vector<double> x_m = range_positions_m(range);
-  OpenLoop open_loop(scene, t_s);
-  const OpenLoopScan scan = open_loop.scan(x_m, v_m_per_s);
-  std::string out = "x_m,v_m_per_s,force_N,output_N\n";
-  for (std::size_t i = 0; i < x_m.size(); ++i) {
-    const double force_N = scan.force_N[i];
-    out += shortest(x_m[i]) + "," + shortest(v_m_per_s) + "," +
-           (faulted_at(scan, i) ? std::string(",")
-                                : shortest(force_N) + "," + shortest(open_loop.output_N(x_m[i], force_N))) +
+    const Axes<N>& force_N = scan.force_N[i];
+    out += csv_values<N>(points[i]) + "," + csv_values<N>(v_m_per_s) + "," +
+           (faulted_at(scan, i) ? empty_forces
+                                : csv_values<N>(force_N) + "," + csv_values<N>(open_loop.output_N(points[i], force_N))) +
            "\n";
   }
   write_out(out);
@@ -270,12 +291,43 @@ int probe_command(std::vector<std::string> args) {
     std::fprintf(stderr, "note: %s; each point is from fresh instances at t = %g s\n", scan.behaviour.note.c_str(),
                  t_s);
   }
-  for (const std::string& fault : open_loop.faults().lines()) std::fprintf(stderr, "%s\n", fault.c_str());
-  if (open_loop.faults().omitted()) {
-    std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the workspace are shown)\n",
-                 ScriptFaultLog::kMaxMessages);
+  const ScriptFaultLog& faults = open_loop.faults();
+  for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
+  if (faults.omitted()) {
+    std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the %s are shown)\n",
+                 ScriptFaultLog::kMaxMessages, N == 1 ? "workspace" : "grid");
   }
-  return open_loop.faults().empty() ? kExitOk : kExitFailure;
+  return faults.empty() ? kExitOk : kExitFailure;
+}
+
+}  // namespace
+
+int probe_command(std::vector<std::string> args) {
+  Arguments arguments(std::move(args), "hapscene probe");
+  std::vector<std::optional<std::string>> range_texts;
+  for (int i = 0; i < kMaxAxes; ++i) range_texts.push_back(arguments.take_value(kAxisNames[i]));
+  const std::optional<std::string> v_text = arguments.take_value("v");
+  const double t_s = arguments.take(option::probe_time).value_or(0.0);
+  const std::vector<std::string> files = arguments.positionals();
+  if (files.size() != 1) arguments.fail("expected one environment file");
+  if (!range_texts[0]) arguments.fail("--x START:STOP:STEP is required");
+  const AnyEnvironment loaded = load_any_environment(files[0]);
+  const int axes = axes_of(loaded);
+  // One range per axis of the scene: --x, and --y for a 2-DOF environment.
+  for (int i = 1; i < kMaxAxes; ++i) {
+    const std::string option = std::string("--") + kAxisNames[i];
+    if (i < axes && !range_texts[static_cast<std::size_t>(i)]) {
+      arguments.fail(option + " START:STOP:STEP is required for a " + std::to_string(axes) + "-DOF environment");
+    }
+    if (i >= axes && range_texts[static_cast<std::size_t>(i)]) {
+      arguments.fail(option + ": only for a 2-DOF environment (its device a planar profile)");
+    }
+  }
+  std::vector<std::string> texts;
+  for (int i = 0; i < axes; ++i) texts.push_back(*range_texts[static_cast<std::size_t>(i)]);
+  return std::visit(
+      [&](const auto& environment) { return probe_environment(arguments, environment.scene, texts, v_text, t_s); },
+      loaded);
 }
 
 }  // namespace hapscene
