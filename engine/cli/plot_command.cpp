@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include "engine/base/errors.hpp"
@@ -91,7 +92,14 @@ int plot_planar(const Arguments& arguments, const std::string& file, const PlotT
       scenario.proxy_index >= 0
           ? std::string("proxy of the ") + planar_shape_kind_name(shapes[static_cast<std::size_t>(scenario.proxy_index)].kind)
           : std::string();
-  const std::string svg = planar_figure_svg(scene, figure, run.records, what, proxy_label);
+  // Script faults: the field scan's and the run's, each once (as in 1-D).
+  ScriptFaultLog faults;
+  const std::string svg = planar_figure_svg(scene, figure, run.records, what, proxy_label, &faults);
+  for (const ScriptReport& script : run.summary.scripts) {
+    if (!script.disabled) continue;
+    faults.add(script.fault, printf_string("t %.3f s of the %s run", script.fault_time_s, scenario.name.c_str()),
+               std::numeric_limits<double>::infinity());
+  }
   const std::string path = out_path.value_or(default_figure_path(file));
   write_output_file(path, svg);
   print_out("wrote %s\n", printable(path).c_str());
@@ -100,8 +108,13 @@ int plot_planar(const Arguments& arguments, const std::string& file, const PlotT
     std::fprintf(stderr, "note: %s: %s; the figure shows the force field only\n", scenario.name.c_str(),
                  scenario.description.c_str());
   }
-  // Built-in 2-D effects give finite forces; a non-finite one would be a fault seen.
-  return run.summary.safety.nonfinite_faults == 0 ? kExitOk : kExitFailure;
+  for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
+  if (faults.omitted()) {
+    std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the workspace are shown)\n",
+                 ScriptFaultLog::kMaxMessages);
+  }
+  // A script fault, or a non-finite force the run's safety stage zeroed, is a fault seen.
+  return faults.empty() && run.summary.safety.nonfinite_faults == 0 ? kExitOk : kExitFailure;
 }
 
 }  // namespace

@@ -434,7 +434,11 @@ PlanarFieldGrid planar_field_grid(const PlanarScene& scene, int grid) {
     }
   }
   std::vector<Vec2> scripted_N;
-  if (scene.script_count > 0) scripted_N = PlanarOpenLoop(scene).scan(points_m, Vec2{}).force_N;
+  if (scene.script_count > 0) {
+    PlanarOpenLoop open_loop(scene);
+    scripted_N = open_loop.scan(points_m, Vec2{}).force_N;
+    out.faults = open_loop.faults();
+  }
   ScriptList no_scripts;
   for (int r = 0; r < out.rows; ++r) {
     for (int c = 0; c < out.columns; ++c) {
@@ -456,11 +460,12 @@ PlanarFieldGrid planar_field_grid(const PlanarScene& scene, int grid) {
 
 std::string planar_figure_svg(const PlanarScene& scene, const PlanarFigureOptions& options,
                               const std::vector<PlanarTickRecord>& records, const std::string& what,
-                              const std::string& proxy_label) {
+                              const std::string& proxy_label, ScriptFaultLog* faults) {
   const std::string title = scene.name + " (" + scene.source_path + ") on " + scene.device.name;
   const double field_top_px = svg_title_height(title, options.width_px);
   const PlanarFieldView view = planar_field_view(scene, options.width_px, field_top_px);
   const PlanarFieldGrid grid = planar_field_grid(scene, options.grid);
+  if (faults != nullptr) faults->merge(grid.faults);
   std::string body = field_panel_svg(scene, view, grid, records, what, proxy_label, field_top_px);
   double height_px = view.top_px + view.height_px + kBottom_px;
   if (!records.empty()) {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/base/axes.hpp"
+#include "engine/harness/open_loop.hpp"
 #include "engine/harness/planar_trace.hpp"
 #include "engine/scene/scene.hpp"
 
@@ -55,13 +56,16 @@ struct PlanarFieldGrid {
   std::vector<Vec2> force_N;     // the effects' sum
   std::vector<Vec2> output_N;    // after the static safety rules
   double largest_N{};            // largest |output|
+  ScriptFaultLog faults;         // script faults met in the scan, each once with its first point
 };
 PlanarFieldGrid planar_field_grid(const PlanarScene& scene, int grid);
 
 // The whole figure. `records` (may be empty) is the run drawn, `what` names it ("sweep (a
 // raster ...)"), `proxy_label` names the traced proxy ("proxy of the box", "" when none).
+// Script faults of the field's scan are added to `faults` (when not null): a figure never
+// hides that the field it draws holds the 0 N of a disabled script.
 std::string planar_figure_svg(const PlanarScene& scene, const PlanarFigureOptions& options,
                               const std::vector<PlanarTickRecord>& records, const std::string& what,
-                              const std::string& proxy_label);
+                              const std::string& proxy_label, ScriptFaultLog* faults = nullptr);
 
 }  // namespace hapscene
