@@ -286,6 +286,13 @@
     const source = new EventSource(api('/api/stream'));
     source.onopen = () => { $('connection').textContent = 'live'; $('connection').className = 'badge live'; };
     source.onmessage = onTicks;
+    // The log so far, sent first on every (re)connection: it replaces what the list shows.
+    source.addEventListener('log', (message) => {
+      let history = [];
+      try { history = JSON.parse(message.data).log || []; } catch (error) { history = []; }
+      $('log').textContent = '';
+      for (const line of history) addLog(line);
+    });
     // The run's last event: how it ended; a fault that ended it is shown with the script faults.
     source.addEventListener('end', (message) => {
       view.ended = true;

@@ -501,7 +501,10 @@ struct LiveViewOf<N>::Impl {
     }
     auto client = std::make_shared<StreamClient>();
     {
+      // The log so far first ("event: log", the last kLiveLogHistory lines): what happened
+      // before the page opened. Lines not yet sent come in the client's next events.
       std::lock_guard lock(clients_mutex);
+      client->queue.push_back("event: log\ndata: " + json{{"log", log_history}}.dump() + "\n\n");
       clients.push_back(client);
     }
     res.set_header("Cache-Control", "no-store");
@@ -704,6 +707,10 @@ struct LiveViewOf<N>::Impl {
         if (!monitor->overrun_stopped()) pending_log.push_back(overrun_text(*monitor));
       }
       event["log"] = json(pending_log);
+      for (std::string& line : pending_log) {
+        if (log_history.size() >= kLiveLogHistory) log_history.pop_front();
+        log_history.push_back(std::move(line));
+      }
       pending_log.clear();
       for (const json& new_fault : new_faults) {
         if (fault_history.size() >= kLiveClientQueue) fault_history.erase(fault_history.begin());
@@ -752,10 +759,11 @@ struct LiveViewOf<N>::Impl {
   json scene_json;
   std::uint64_t changes{};
 
-  std::mutex clients_mutex;  // clients, their queues, pending_log
+  std::mutex clients_mutex;  // clients, their queues, pending_log, log_history
   std::condition_variable clients_cv;
   std::vector<std::shared_ptr<StreamClient>> clients;
   std::vector<std::string> pending_log;
+  std::deque<std::string> log_history;  // the last kLiveLogHistory lines sent, for new clients
   std::uint64_t dropped_events_total{};
 
   std::vector<std::string> link_names;  // the device's boards (set before serving)

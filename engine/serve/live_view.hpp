@@ -39,6 +39,8 @@ inline constexpr double kLiveEventsPerSecond = 50.0;
 inline constexpr double kLiveMaxTicksPerSecond = 2000.0;
 // Events a client may fall behind before its oldest are dropped (and counted).
 inline constexpr std::size_t kLiveClientQueue = 64;
+// Log lines a stream's new client gets first (what the page keeps: the same 200).
+inline constexpr std::size_t kLiveLogHistory = 200;
 
 // Loads and validate runs the live views of this process abandoned when they stopped
 // (their threads may still run: the process should then end with std::_Exit after

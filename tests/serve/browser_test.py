@@ -278,8 +278,10 @@ def check_planar(browser, hapscene, scratch, screenshots):
         end_run(process)
 
 
-BOOM_SCRIPT = """-- faults after 50 ms
+BOOM_SCRIPT = """-- says hello on its first call, faults after 50 ms
+local said = false
 function force(s)
+  if not said then log('hello from the first call') said = true end
   if s.t > 0.05 then error('boom') end
   return 0
 end
@@ -287,7 +289,8 @@ end
 
 
 def check_script_fault(browser, hapscene, scratch):
-    """A script that faults inside the loop: the page shows its located message, once."""
+    """A script that faults inside the loop: the page shows its located message, once; and the
+    line it logged on its first call, a second before the page opened, is in the page's log."""
     with open(os.path.join(scratch, "boom.lua"), "w") as out:
         out.write(BOOM_SCRIPT)
     environment = os.path.join(scratch, "boom.json")
@@ -296,10 +299,14 @@ def check_script_fault(browser, hapscene, scratch):
                                                {"type": "script", "file": "boom.lua"}]}, out)
     process, url = start_run(hapscene, environment, [])
     with RunOutputOnFailure(process):
+        time.sleep(1.0)  # the hello and the fault happen before the page opens
         browser.open(url)
+        log = wait_for("the log from before the page opened", lambda: browser.evaluate(
+            "Array.from(document.querySelectorAll('#log li')).map((e) => e.textContent).join('\\n')"), timeout_s=60)
+        assert "hello from the first call" in log, log
         shown = wait_for("the page to show the script's fault", lambda: browser.evaluate(
             "Array.from(document.querySelectorAll('#faults .fault')).map((e) => e.textContent).join('\\n')"), timeout_s=60)
-        assert "boom.lua:3: boom" in shown, shown
+        assert "boom.lua:5: boom" in shown, shown
         # More events come; the fault stays shown once.
         events = browser.evaluate("window.hapsceneView.events")
         wait_for("more events", lambda: browser.evaluate("window.hapsceneView.events") > events + 20, timeout_s=30)
@@ -308,6 +315,7 @@ def check_script_fault(browser, hapscene, scratch):
         scripts = browser.evaluate("document.getElementById('st-scripts').textContent")
         assert scripts == "disabled now: 1, faults in the run: 1", scripts
         print("the page shows the script fault once: " + shown)
+        print("and the log from before it opened: " + log.splitlines()[0])
 
 
 def stall(process, seconds):

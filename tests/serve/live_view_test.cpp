@@ -4,8 +4,10 @@
 // located message, nothing changes), and saving that keeps the file's layout.
 #include <doctest/doctest.h>
 
+#include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 
 #include "tests/cli/cli_support.hpp"
 #include "tests/scratch_folder.hpp"
@@ -120,8 +122,11 @@ TEST_CASE("live view: the stream is Server-Sent Events, 30 to 120 a second, carr
   std::size_t data_events = 0;
   double first_t = 0.0, last_t = 0.0;
   std::uint64_t previous_id = 0;
+  // First the log so far (nothing has been logged in this run).
+  CHECK(events.front().event == "log");
+  CHECK(json::parse(events.front().data) == json{{"log", json::array()}});
   for (const test::SseEvent& event : events) {
-    if (event.event == "end") continue;
+    if (event.event == "end" || event.event == "log") continue;
     CHECK(event.event == "message");
     const json data = json::parse(event.data);
     // The fields, all there, the columns of one length.
@@ -163,6 +168,32 @@ TEST_CASE("live view: the stream is Server-Sent Events, 30 to 120 a second, carr
   const double events_per_s = static_cast<double>(data_events) / 1.5;
   CHECK(events_per_s >= 30.0);
   CHECK(events_per_s <= 120.0);
+}
+
+TEST_CASE("live view: a stream opened late starts with the log so far, and no line comes twice") {
+  // (The run's script log() lines reach add_log through the status thread of `run`; the
+  // browser test shows one logged before the page opened. Here the server alone.)
+  test::ScratchFolder folder("live_log_history");
+  test::LiveRun<1> run(folder.write("spring.json", kSpring).string(), 1.5);
+  run.view->add_log("scripts/hello.lua:3: hello (t = 0.000 s)");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // sent in an event to nobody
+  run.view->add_log("a line after");  // a race with the stream's opening, on purpose
+  const std::vector<test::SseEvent> events = run.stream_for(0.5);
+  REQUIRE_FALSE(events.empty());
+  REQUIRE(events.front().event == "log");
+  const json history = json::parse(events.front().data)["log"];
+  REQUIRE_FALSE(history.empty());
+  CHECK(history[0] == "scripts/hello.lua:3: hello (t = 0.000 s)");
+  // Each line comes once: the later one in the history or in a data event, whichever it
+  // was sent in when the stream opened; the first never again.
+  std::size_t hellos = 0;
+  std::size_t afters = 0;
+  for (const test::SseEvent& event : events) {
+    hellos += test::occurrences(event.data, "hello (t =");
+    afters += test::occurrences(event.data, "a line after");
+  }
+  CHECK(hellos == 1);
+  CHECK(afters == 1);
 }
 
 TEST_CASE("live view: a parameter change goes through load, check and cross-fade, a bad one gets the loader's message and changes nothing") {
