@@ -53,12 +53,18 @@
     // Each plot's title names its lines with their colours (the keys); draw() names what it drew.
     $('position-title').innerHTML = s.axes === 1 ? 'position (mm) against time (s): ' + keys(['x'])
                                                  : 'position (mm) against time (s): ' + keys(['x', 'y']);
+    // 1-D: the scene along the workspace under the trace (the walls' solid sides, the
+    // textures' fields, the static force curve), and the handle now.
+    const marks = (kind) => (s.shapes || []).some((shape) => shape.kind === kind);
     $('trace-title').innerHTML = s.axes === 1
-      ? 'force (N) against position (mm), last 3 s: ' + keys(['asked', 'commanded', 'limit'])
+      ? 'the scene, force (N) against position (mm), last 3 s: ' +
+        keys(['asked', 'commanded', 'limit'].concat(s.force_curve ? ['static'] : [], marks('wall') ? ['solid'] : [],
+                                                  marks('texture') ? ['field'] : [], ['handle']))
       : 'the plane (mm), 1:1: ' + keys(['handle', 'proxy', 'commanded', 'shape', 'workspace']);
   }
   const KEY_NAMES = { x: 'x', y: 'y', asked: 'asked', commanded: 'commanded', limit: 'limit', handle: 'handle',
-                      proxy: 'proxies', shape: 'shapes', workspace: 'workspace' };
+                      proxy: 'proxies', shape: 'shapes', workspace: 'workspace',
+                      static: 'at rest (probe)', solid: 'solid side', field: 'texture fields' };
   const keys = (names) => names.map((n) => '<span class="key ' + n + '" data-key="' + n + '">' + KEY_NAMES[n] + '</span>').join(' ');
 
   const paramKey = (p) => p.effect + ':' + p.parameter;
@@ -435,13 +441,50 @@
     while (start < ticks.t.length && ticks.t[start] < newest - TRACE_S) start++;
     if (two) drawPlane(start); else {
       const ft = frame($('plot-trace'), [lo * 1e3, hi * 1e3], [-limit * 1.15, limit * 1.15]);
+      drawSceneMarks(ft, lo, hi, limit);
       hline(ft, 'limit', limit, [lo * 1e3, hi * 1e3], css('--limit'));
       hline(ft, 'limit', -limit, [lo * 1e3, hi * 1e3], css('--limit'));
+      if (scene.force_curve) {
+        ft.g.setLineDash([2, 3]);
+        line(ft, 'static', scene.force_curve.x_m, scene.force_curve.output_N, css('--static'), 1e3, 1, 0, 2);
+        ft.g.setLineDash([]);
+      }
       line(ft, 'commanded', ticks.x, ticks.ox, css('--commanded'), 1e3, 1, start, 3);
       line(ft, 'asked', ticks.x, ticks.fx, css('--asked'), 1e3, 1, start);
+      // The handle now: a line at its position, and a dot at the force commanded there.
+      const k = ticks.t.length - 1;
+      const hx = ft.sx(ticks.x[k] * 1e3);
+      drew(ft, 'handle');
+      ft.g.strokeStyle = css('--x');
+      ft.g.lineWidth = 1;
+      ft.g.beginPath(); ft.g.moveTo(hx, ft.sy(-limit * 1.15)); ft.g.lineTo(hx, ft.sy(limit * 1.15)); ft.g.stroke();
+      ft.g.fillStyle = css('--x');
+      ft.g.beginPath(); ft.g.arc(hx, ft.sy(ticks.ox[k]), 4.5, 0, 2 * Math.PI); ft.g.fill();
     }
     view.frames++;
     view.plotted = Object.assign({ drawn_at_ms: performance.now() }, view.last);
+  }
+
+  // The 1-D scene under the trace: each wall's solid side (hatched, from the wall to the
+  // workspace's end) and each texture's fields (bands), across the force range.
+  function drawSceneMarks(f, lo, hi, limit) {
+    const { g, sx, sy } = f;
+    const top = sy(limit * 1.15), bottom = sy(-limit * 1.15);
+    for (const shape of scene.shapes || []) {
+      if (shape.kind === 'wall') {
+        drew(f, 'solid');
+        const from = shape.solid === 'above' ? shape.position_m : lo, to = shape.solid === 'above' ? hi : shape.position_m;
+        g.fillStyle = css('--solid');
+        g.fillRect(sx(from * 1e3), top, sx(to * 1e3) - sx(from * 1e3), bottom - top);
+        g.strokeStyle = css('--solid-edge');
+        g.lineWidth = 2;
+        g.beginPath(); g.moveTo(sx(shape.position_m * 1e3), top); g.lineTo(sx(shape.position_m * 1e3), bottom); g.stroke();
+      } else if (shape.kind === 'texture') {
+        drew(f, 'field');
+        g.fillStyle = css('--field');
+        for (const [from, to] of shape.fields_m) g.fillRect(sx(from * 1e3), top, Math.max(1, sx(to * 1e3) - sx(from * 1e3)), bottom - top);
+      }
+    }
   }
 
   function drawPlane(start) {

@@ -33,6 +33,7 @@
 #include "engine/harness/report.hpp"
 #include "engine/harness/validate.hpp"
 #include "engine/load/environment.hpp"
+#include "engine/serve/capstan_sketch.hpp"
 #include "engine/serve/connection_gate.hpp"
 #include "engine/serve/parameters.hpp"
 #include "engine/serve/stream_tap.hpp"
@@ -259,7 +260,12 @@ VersionDescription describe_version(const SceneOf<N>& scene, const std::string& 
     }
   }
   json shapes = json::array();
-  if constexpr (N > 1) {
+  json force_curve = nullptr;
+  std::string force_curve_note;
+  if constexpr (N == 1) {
+    shapes = capstan_shapes_json(scene);
+    force_curve = static_force_curve_json(scene, &force_curve_note);
+  } else {
     for (const PlanarShapeGeometry& shape : planar_shape_list(scene)) {
       json s{{"kind", planar_shape_kind_name(shape.kind)}, {"solid_inside", shape.solid_inside}};
       if (shape.kind == PlanarShapeKind::wall) {
@@ -287,6 +293,10 @@ VersionDescription describe_version(const SceneOf<N>& scene, const std::string& 
                         {"effects", effects},
                         {"parameters", params},
                         {"shapes", shapes}};
+  if constexpr (N == 1) {
+    out.scene_json["force_curve"] = force_curve;
+    if (!force_curve_note.empty()) out.scene_json["force_curve_note"] = force_curve_note;
+  }
   return out;
 }
 

@@ -9,7 +9,7 @@ library and the browser is needed. Without chromium the test fails: it is the po
 
 usage: browser_test.py --hapscene BUILD/hapscene [--screenshots DIR]
        browser_test.py --hapscene BUILD/hapscene --measure ENV --seconds T [--rounds R]
-  --screenshots DIR   also writes DIR/live-view.png (1-D) and DIR/live-view-planar.png (2-D)
+  --screenshots DIR   also writes DIR/live-view.png (1-D: a wall and a texture) and DIR/live-view-planar.png (2-D)
   --measure ENV       the loop's timing without and with the page open and streaming:
                       R rounds of `run ENV --duration T --quiet` and of the same run with
                       --ui and the page open in chromium, alternating; prints each
@@ -250,15 +250,37 @@ def check_one_dof(browser, hapscene, scratch, screenshots):
         last = wait_for("the stream to show -K x with K = %.1f N/m" % stiffness, new_force, timeout_s=30)
         print("the stream shows the new force: %.4f N at x %.4f m (-K x = %.4f N; before, %.4f N)" %
               (last["force_N"], last["x_m"], -stiffness * last["x_m"], -before * last["x_m"]))
-        time.sleep(0.5)
-        if screenshots:
-            browser.screenshot(os.path.join(screenshots, "live-view.png"))
     finally:
         out, err = end_run(process)
     assert "live view " in out, out
     print(out.strip().splitlines()[-1] if out.strip() else "")
     with open(environment) as env:
         assert env.read() == open(os.path.join(SOURCE_DIR, "environments", "spring.json")).read(), "the file changed without save"
+
+
+def check_one_dof_sketch(browser, hapscene, scratch, screenshots):
+    """A 1-D scene is drawn, not only its trace: the wall's solid side and the texture's
+    fields under the force curve at rest, the handle now, each with its key; the ticks round."""
+    environment = os.path.join(scratch, "wall-texture.json")
+    with open(environment, "w") as out:
+        json.dump({"name": "wall and texture", "effects": [
+            {"type": "wall", "position": "10 mm", "stiffness": "300 N/m", "solid": "above"},
+            {"type": "texture", "width": "5 mm", "spacing": "5 mm", "damping": "2 N*s/m", "offset": "0 mm"}]}, out)
+    process, url = start_run(hapscene, environment, [])
+    with RunOutputOnFailure(process):
+        browser.open(url)
+        wait_for("the page to draw the scene", lambda: browser.evaluate(
+            "window.hapsceneView && window.hapsceneView.frames > 5"), timeout_s=60)
+        drawn = browser.evaluate("window.hapsceneView.drawn['plot-trace']")
+        for mark in ("solid", "field", "static", "handle", "commanded", "asked", "limit"):
+            assert mark in drawn, (mark, drawn)
+        curve = browser.evaluate("window.hapsceneView.scene.force_curve")
+        at_20mm = curve["output_N"][curve["x_m"].index(min(curve["x_m"], key=lambda x: abs(x - 0.02)))]
+        assert abs(at_20mm - (-3.0)) < 1e-9, at_20mm  # -K (x - xw) above the wall
+        check_plots_read(browser, "1-DOF scene")
+        if screenshots:
+            browser.screenshot(os.path.join(screenshots, "live-view.png"))
+        print("the 1-D scene is drawn: " + "/".join(drawn))
 
 
 def check_planar(browser, hapscene, scratch, screenshots):
@@ -413,6 +435,7 @@ def main():
     try:
         try:
             check_one_dof(browser, args.hapscene, scratch, args.screenshots)
+            check_one_dof_sketch(browser, args.hapscene, scratch, args.screenshots)
             check_planar(browser, args.hapscene, scratch, args.screenshots)
             check_script_fault(browser, args.hapscene, scratch)
             check_overruns(browser, args.hapscene, scratch)

@@ -4,6 +4,7 @@
 // located message, nothing changes), and saving that keeps the file's layout.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -109,6 +110,41 @@ TEST_CASE("live view: GET /api/scene lists the device, the effects and every par
   CHECK(center["unit"] == "m");
   CHECK(center["min"] == scene["device"]["workspace_min_m"]);
   CHECK(center["max"] == scene["device"]["workspace_max_m"]);
+}
+
+TEST_CASE("live view: GET /api/scene sketches a 1-D scene: the walls' solid sides, the textures' fields, the force at rest") {
+  test::ScratchFolder folder("live_sketch");
+  test::LiveRun<1> run(folder.write("sketch.json", R"({"effects": [
+    {"type": "wall", "position": "10 mm", "stiffness": "200 N/m", "solid": "below"},
+    {"type": "texture", "width": "5 mm", "spacing": "5 mm", "damping": "2 N*s/m", "offset": "0 mm"},
+    {"type": "spring", "stiffness": "50 N/m", "enabled": false}]})").string(), 1.0);
+  httplib::Client client = run.client();
+  const auto response = client.Get(run.with_token("/api/scene"));
+  REQUIRE(response);
+  const json scene = json::parse(response->body);
+  // The enabled walls and textures, in the file's order.
+  REQUIRE(scene["shapes"].size() == 2);
+  CHECK(scene["shapes"][0] == json{{"kind", "wall"}, {"position_m", 0.01}, {"solid", "below"}});
+  const json& fields = scene["shapes"][1]["fields_m"];
+  CHECK(scene["shapes"][1]["kind"] == "texture");
+  CHECK_FALSE(scene["shapes"][1].contains("more_fields"));
+  // 5 mm fields every 10 mm from 0, across [-50, 45] mm: [-50,-45], ..., [40, 45].
+  REQUIRE(fields.size() == 10);
+  CHECK(fields[5][0].get<double>() == doctest::Approx(0.0).epsilon(1e-9));
+  CHECK(fields[5][1].get<double>() == doctest::Approx(0.005).epsilon(1e-3));
+  for (const json& field : fields) {
+    CHECK(field[1].get<double>() - field[0].get<double>() == doctest::Approx(0.005).epsilon(0.02));
+  }
+  // The force at rest every 0.5 mm: the wall's -K (x - xw) below it, nothing above (the
+  // texture damps motion only), clamped at the device's 6 N.
+  const json& curve = scene["force_curve"];
+  REQUIRE(curve["x_m"].size() == 191);
+  for (std::size_t i = 0; i < curve["x_m"].size(); ++i) {
+    const double x_m = curve["x_m"][i].get<double>();
+    const double asked_N = x_m < 0.01 ? -200.0 * (x_m - 0.01) : 0.0;
+    CHECK(curve["force_N"][i].get<double>() == doctest::Approx(asked_N).epsilon(1e-12));
+    CHECK(curve["output_N"][i].get<double>() == doctest::Approx(std::min(asked_N, 6.0)).epsilon(1e-12));
+  }
 }
 
 TEST_CASE("live view: the stream is Server-Sent Events, 30 to 120 a second, carrying every tick once and in order") {
