@@ -21,6 +21,8 @@
     links: [],        // the device's links, as the newest event gave them
     ticks: {},        // per plot: the tick values on its axes, {x: [...], y: [...]}
     drawn: {},        // per plot: the names of the lines and marks drawn in the last frame
+    handSent: 0,      // POST /api/hand requests answered (the pointer taking the hand, or letting go)
+    hand: null,       // the last answer: {"hand": "pointer", "x_m", ...} or {"hand": "released"}
   };
 
   let scene = null;
@@ -341,6 +343,8 @@
   // The label of a tick: as many decimals as the step needs.
   const tickLabel = (v, step) => v.toFixed(Math.max(0, -Math.floor(Math.log10(step) + 1e-9)));
 
+  const frames = {};  // per canvas: the last frame's mapping from pixels back to data
+
   // A canvas sized to its box in device pixels, and a mapping from data to pixels.
   function frame(canvas, xRange, yRange) {
     const ratio = window.devicePixelRatio || 1;
@@ -374,6 +378,10 @@
     }
     view.ticks[canvas.id] = { x: xt.values, y: yt.values };
     view.drawn[canvas.id] = [];
+    // Pixels (CSS, from the canvas's corner) back to data, for the pointer.
+    const ix = (px) => xRange[0] + (px - left) / (w - left - right) * (xRange[1] - xRange[0]);
+    const iy = (py) => yRange[0] + (h - bottom - py) / (h - top - bottom) * (yRange[1] - yRange[0]);
+    frames[canvas.id] = { ix, iy };
     return { g, sx, sy, w, h, id: canvas.id };
   }
   // Notes what a plot drew, by its key's name.
@@ -542,7 +550,61 @@
     g.beginPath(); g.moveTo(hx, hy); g.lineTo(hx + ticks.ox[k] * pxPerN, hy - ticks.oy[k] * pxPerN); g.stroke();
   }
 
-  loadScene().then(() => { connect(); requestAnimationFrame(draw); }).catch((error) => {
+  // ---- the pointer takes the simulated hand (POST /api/hand) ----
+  // On a simulated device, pressing on the scene's plot (1-D: along the position axis;
+  // 2-D: in the plane) has the hand pull the handle there, following the pointer while it
+  // is held; letting go gives the hand back to its scripted motion. One request at a time,
+  // the newest position kept while one is under way.
+  let handBusy = false, handNext = null;
+  async function sendHand(body) {
+    if (handBusy) { handNext = body; return; }
+    handBusy = true;
+    try {
+      const response = await fetch(api('/api/hand'), { method: 'POST', body: JSON.stringify(body) });
+      view.hand = await response.json();
+      view.handSent++;
+    } catch (error) {
+      view.hand = { error: String(error) };
+    }
+    handBusy = false;
+    if (handNext) { const next = handNext; handNext = null; sendHand(next); }
+  }
+  function pointerTarget(event) {
+    const f = frames['plot-trace'];
+    if (!f) return null;
+    const r = event.currentTarget.getBoundingClientRect();
+    const lo = scene.device.workspace_min_m, hi = scene.device.workspace_max_m;
+    const clamp = (v, a, b) => Math.min(b, Math.max(a, v));
+    const x = f.ix(event.clientX - r.left) * 1e-3;
+    if (scene.axes === 1) return { x_m: clamp(x, lo, hi) };
+    return { x_m: clamp(x, lo[0], hi[0]), y_m: clamp(f.iy(event.clientY - r.top) * 1e-3, lo[1], hi[1]) };
+  }
+  function bindPointer() {
+    if (!scene.device.hand_pointer) return;
+    const canvas = $('plot-trace');
+    canvas.classList.add('takes-hand');
+    canvas.title = 'press and drag: the simulated hand pulls the handle to the pointer';
+    let held = false;
+    canvas.addEventListener('pointerdown', (event) => {
+      const target = pointerTarget(event);
+      if (!target) return;
+      held = true;
+      canvas.setPointerCapture(event.pointerId);
+      sendHand(target);
+    });
+    canvas.addEventListener('pointermove', (event) => {
+      if (!held) return;
+      const target = pointerTarget(event);
+      if (target) sendHand(target);
+    });
+    const letGo = () => { if (held) { held = false; sendHand({ release: true }); } };
+    canvas.addEventListener('pointerup', letGo);
+    canvas.addEventListener('pointercancel', letGo);
+    canvas.addEventListener('lostpointercapture', letGo);
+    window.addEventListener('blur', letGo);
+  }
+
+  loadScene().then(() => { bindPointer(); connect(); requestAnimationFrame(draw); }).catch((error) => {
     $('connection').textContent = String(error.message || error);
     $('connection').className = 'badge lost';
   });

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/base/axes.hpp"
+#include "engine/devices/hand_pointer.hpp"
 #include "engine/devices/kinematics.hpp"
 #include "engine/devices/link_health.hpp"
 
@@ -125,6 +126,9 @@ class DeviceOf : public DeviceStatus {
   virtual void write(const Command& command) noexcept = 0;
   // The simulator's true state, or null for a real device.
   virtual const SimulationTruthOf<N>* truth() const noexcept { return nullptr; }
+  // The mailbox through which the live view's pointer takes a simulated hand
+  // (hand_pointer.hpp), or null: a real device's hand is the user's own.
+  virtual HandPointerOf<N>* hand_pointer() const noexcept { return nullptr; }
 };
 
 // A 1-DOF device (the Hapkit, simulated, on a serial link or firmware-in-the-loop).

@@ -40,6 +40,8 @@ class HapkitPlant {
   double x_m() const noexcept { return x_m_; }
   double v_m_per_s() const noexcept { return v_m_per_s_; }
   double t_s() const noexcept { return t_s_; }
+  // The live view's pointer takes the hand while active (hand_pointer.hpp).
+  void follow(const HandPointerOf<1>* pointer) noexcept { hand_.follow(pointer); }
   double hand_force_N() const noexcept { return hand_force_N_; }
   // Where the hand pulls the handle now; NaN while it does not grip.
   double hand_target_m() const noexcept {

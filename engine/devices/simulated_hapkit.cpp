@@ -8,7 +8,9 @@
 namespace hapscene {
 
 SimulatedHapkit::SimulatedHapkit(const DeviceProfile& profile, const SimulationConfig& config)
-    : plant_(profile, config) {}
+    : plant_(profile, config) {
+  plant_.follow(&pointer_);
+}
 
 std::int32_t SimulatedHapkit::read() noexcept { return plant_.sensor_counts(); }
 

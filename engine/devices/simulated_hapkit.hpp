@@ -22,6 +22,7 @@ class SimulatedHapkit final : public Device, public SimulationTruth {
   void advance(double dt_s) noexcept override;
 
   const SimulationTruth* truth() const noexcept override { return this; }
+  HandPointerOf<1>* hand_pointer() const noexcept override { return &pointer_; }
   bool deadlines_matter() const noexcept override { return false; }
 
   // The true plant state, for observers and tests (the host only sees counts).
@@ -33,6 +34,7 @@ class SimulatedHapkit final : public Device, public SimulationTruth {
   double t_s() const noexcept { return plant_.t_s(); }
 
  private:
+  mutable HandPointerOf<1> pointer_;  // a mailbox the live view writes, the plant reads
   HapkitPlant plant_;
   double motor_force_N_{};  // held between writes
 };

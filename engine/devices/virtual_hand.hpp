@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/devices/hand_pointer.hpp"
+
 namespace hapscene {
 
 enum class HandMotion { none, hold, sweep, release, shake, path };
@@ -53,6 +55,9 @@ class VirtualHand {
   double added_mass_kg(double t_s) const noexcept {
     return gripping(t_s) ? config_.mass_kg : 0.0;
   }
+  // While `pointer` is active (the live view's user dragging), the hand grips and its
+  // reference is the pointer, still (hand_pointer.hpp). Null: the scripted motion only.
+  void follow(const HandPointerOf<1>* pointer) noexcept { pointer_ = pointer; }
 
  private:
   double sweep_phase_m(double t_s) const noexcept;
@@ -61,6 +66,7 @@ class VirtualHand {
 
   HandConfig config_;
   double start_x_m_;
+  const HandPointerOf<1>* pointer_{};
 };
 
 }  // namespace hapscene

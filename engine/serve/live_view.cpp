@@ -5,6 +5,7 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <algorithm>
@@ -25,6 +26,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/object_reader.hpp"
 #include "engine/base/file_replace.hpp"
 #include "engine/base/json_source.hpp"
 #include "engine/harness/planar_report.hpp"
@@ -315,7 +317,9 @@ struct LiveViewOf<N>::Impl {
       : address(where),
         path(std::move(environment_path)),
         tap(kTapCapacity, live_stride(scene.rate_hz), scene.rate_hz),
-        period_s(scene.period_s) {
+        period_s(scene.period_s),
+        workspace_min_m(scene.safety.workspace_min_m),
+        workspace_max_m(scene.safety.workspace_max_m) {
     base_dir = std::filesystem::path(path).parent_path().string();
     if (base_dir.empty()) base_dir = ".";
     text = environment_text_of(path);
@@ -375,9 +379,73 @@ struct LiveViewOf<N>::Impl {
     json out = scene_json;
     out["unsaved"] = text != file_text;
     out["device"]["links"] = link_names;
+    out["device"]["hand_pointer"] = pointer != nullptr;  // POST /api/hand takes the simulated hand
     std::lock_guard lock(clients_mutex);
     out["script_faults"] = fault_history;
     return out;
+  }
+
+  // POST /api/hand: on a simulated device, the pointer takes the hand toward a point of the
+  // workspace ({"x_m": X}, and "y_m" on a 2-DOF device), or lets it go ({"release": true}).
+  void hand(const std::string& request_body, httplib::Response& res) {
+    if (pointer == nullptr) {
+      error_response(res, 409, "the device is not simulated: the hand on it is yours");
+      return;
+    }
+    std::string form = "{\"x_m\": X";
+    for (int i = 1; i < N; ++i) form += std::string(", \"") + kAxisNames[i] + "_m\": " + static_cast<char>(std::toupper(kAxisNames[i][0]));
+    form += "} or {\"release\": true}";
+    json body;
+    try {
+      body = json::parse(request_body);
+    } catch (const json::exception&) {
+      error_response(res, 400, "request: expected a JSON object " + form);
+      return;
+    }
+    if (!body.is_object()) {
+      error_response(res, 400, "request: expected a JSON object " + form);
+      return;
+    }
+    if (body.contains("release")) {
+      if (body.size() != 1 || body["release"] != true) {
+        error_response(res, 400, "request: expected {\"release\": true} alone");
+        return;
+      }
+      pointer->release();
+      res.set_content(json{{"hand", "released"}}.dump(), "application/json");
+      return;
+    }
+    if (body.size() != static_cast<std::size_t>(N)) {
+      error_response(res, 400, "request: expected a JSON object " + form);
+      return;
+    }
+    Axes<N> x_m{};
+    json shown = json::object();
+    for (int i = 0; i < N; ++i) {
+      const std::string key = std::string(kAxisNames[i]) + "_m";
+      const auto found = body.find(key);
+      if (found == body.end() || !found->is_number() || !std::isfinite(found->get<double>())) {
+        error_response(res, 400, "request: \"" + key + "\" must be a finite number of metres (" + form + ")");
+        return;
+      }
+      const double value_m = found->get<double>();
+      const double low_m = component(workspace_min_m, i);
+      const double high_m = component(workspace_max_m, i);
+      if (value_m < low_m || value_m > high_m) {
+        error_response(res, 400, key + ": " + format_number(value_m) + " m is outside the workspace [" +
+                                     format_number(low_m) + ", " + format_number(high_m) + "] m");
+        return;
+      }
+      if constexpr (N == 1) {
+        x_m = value_m;
+      } else {
+        x_m[i] = value_m;
+      }
+      shown[key] = value_m;
+    }
+    pointer->take(x_m);
+    shown["hand"] = "pointer";
+    res.set_content(shown.dump(), "application/json");
   }
 
   // POST /api/params.
@@ -777,6 +845,9 @@ struct LiveViewOf<N>::Impl {
   std::uint64_t dropped_events_total{};
 
   std::vector<std::string> link_names;  // the device's boards (set before serving)
+  HandPointerOf<N>* pointer{};           // a simulated device's hand, for POST /api/hand (set before serving)
+  Axes<N> workspace_min_m{};             // where the pointer may take the hand: the device's workspace
+  Axes<N> workspace_max_m{};
   std::vector<json> fault_history;      // the run's script faults (the last kLiveClientQueue), with clients_mutex
 
   // The pump thread's own.
@@ -808,6 +879,7 @@ LiveViewOf<N>::~LiveViewOf() {
 template <int N>
 void LiveViewOf<N>::stop() {
   Impl& s = *impl_;
+  if (s.pointer != nullptr) s.pointer->release();  // the scripted hand again, whatever a page left
   // The streams' last event, when the run is over: the pump sends it within two periods.
   for (int i = 0; i < 20 && s.tap.finished() && !s.ended.load() && s.pump_thread.joinable(); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -846,12 +918,13 @@ void LiveViewOf<N>::stop() {
 }
 
 template <int N>
-void LiveViewOf<N>::start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, const DeviceStatus* device) {
+void LiveViewOf<N>::start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, const DeviceOf<N>* device) {
   Impl& s = *impl_;
   s.watcher = watcher;
   s.monitor = monitor;
   s.tap.set_device(device);
   if (device != nullptr) s.link_names = device->link_names();
+  if (device != nullptr) s.pointer = device->hand_pointer();
   httplib::Server& server = s.server;
   // Checked before routing and before any body is read: the token, then the endpoint
   // (anything else is answered with its body unread, and the connection closed), then
@@ -870,7 +943,8 @@ void LiveViewOf<N>::start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, con
       return refuse(403, "forbidden: the token is missing or wrong (open the URL `hapscene run --ui` printed)");
     }
     const bool get = req.path == "/" || req.path == "/api/scene" || req.path == "/api/stream";
-    const bool post = req.path == "/api/params" || req.path == "/api/save" || req.path == "/api/validate";
+    const bool post = req.path == "/api/params" || req.path == "/api/save" || req.path == "/api/validate" ||
+                      req.path == "/api/hand";
     if (!get && !post) return refuse(404, "not found: " + req.path);
     if (req.method != (get ? "GET" : "POST")) return refuse(405, req.method + " " + req.path + ": expected " + (get ? "GET" : "POST"));
     const bool has_body = req.has_header("Content-Length") || req.has_header("Transfer-Encoding");
@@ -910,6 +984,7 @@ void LiveViewOf<N>::start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, con
   post("/api/params", [&s](const std::string& body, httplib::Response& res) { s.change(body, res); });
   post("/api/save", [&s](const std::string&, httplib::Response& res) { s.save(res); });
   post("/api/validate", [&s](const std::string&, httplib::Response& res) { s.validate(res); });
+  post("/api/hand", [&s](const std::string& body, httplib::Response& res) { s.hand(body, res); });
   // httplib's own answers (a malformed request: 400) carry a JSON error too.
   server.set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request&, httplib::Response& res) {
     if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;

@@ -64,7 +64,7 @@ class LiveViewOf {
   // Starts serving; parameter changes go to `watcher` (not null), the loop's timing is
   // read from `monitor` (may be null), the link counters of `device` (may be null) are
   // taken by the tap on the loop's thread. Before the run starts.
-  void start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, const DeviceStatus* device = nullptr);
+  void start(ReloadWatcherOf<N>* watcher, LoopMonitor* monitor, const DeviceOf<N>* device = nullptr);
 
   // Ends the streams (after their last event, "event: end", when the run has finished)
   // and stops serving, within half a second whatever the clients do; after it, nothing

@@ -105,6 +105,12 @@ class Browser:
             self.send("Input.dispatchMouseEvent",
                       {"type": kind, "x": x, "y": y, "button": "left", "clickCount": 1 if kind != "mouseMoved" else 0})
 
+    def mouse(self, kind, x, y):
+        """One mouse event: "mousePressed", "mouseMoved" (with the left button held) or "mouseReleased"."""
+        self.send("Input.dispatchMouseEvent", {"type": kind, "x": x, "y": y, "button": "left",
+                                               "buttons": 1 if kind != "mouseReleased" else 0,
+                                               "clickCount": 1 if kind != "mouseMoved" else 0})
+
     def screenshot(self, path):
         data = self.send("Page.captureScreenshot", {"format": "png"})["data"]
         with open(path, "wb") as out:
@@ -278,6 +284,28 @@ def check_one_dof_sketch(browser, hapscene, scratch, screenshots):
         at_20mm = curve["output_N"][curve["x_m"].index(min(curve["x_m"], key=lambda x: abs(x - 0.02)))]
         assert abs(at_20mm - (-3.0)) < 1e-9, at_20mm  # -K (x - xw) above the wall
         check_plots_read(browser, "1-DOF scene")
+
+        # Feel it without hardware: press on the plot at -30 mm, drag to -20 mm; the hand
+        # takes the handle there; let go, and the hand's sweep has it again.
+        box = browser.evaluate("""(() => {
+            const r = document.getElementById('plot-trace').getBoundingClientRect();
+            return {left: r.left, top: r.top, width: r.width, height: r.height};
+        })()""")
+        lo, hi = -50.0, 45.0  # the Hapkit's workspace, mm
+        at = lambda mm: box["left"] + 52 + (mm - lo) / (hi - lo) * (box["width"] - 62)
+        middle = box["top"] + box["height"] / 2
+        browser.mouse("mousePressed", at(-30.0), middle)
+        wait_for("the hand to take the handle to -30 mm", lambda: browser.evaluate(
+            "window.hapsceneView.last.x_m < -0.027 && window.hapsceneView.last.x_m"), timeout_s=30)
+        for mm in (-28.0, -25.0, -22.0, -20.0):
+            browser.mouse("mouseMoved", at(mm), middle)
+            time.sleep(0.05)
+        followed = wait_for("the handle to follow the pointer to -20 mm", lambda: browser.evaluate(
+            "Math.abs(window.hapsceneView.last.x_m + 0.020) < 0.002 && window.hapsceneView.last.x_m"), timeout_s=30)
+        browser.mouse("mouseReleased", at(-20.0), middle)
+        wait_for("the hand to be let go", lambda: browser.evaluate(
+            "window.hapsceneView.hand && window.hapsceneView.hand.hand === 'released'"), timeout_s=30)
+        print("the pointer took the hand: the handle followed to %.1f mm, then was let go" % (followed * 1e3))
         if screenshots:
             browser.screenshot(os.path.join(screenshots, "live-view.png"))
         print("the 1-D scene is drawn: " + "/".join(drawn))

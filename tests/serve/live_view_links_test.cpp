@@ -69,6 +69,12 @@ TEST_CASE("live view: --device hil shows the board's link counters, live") {
   httplib::Client client = run.client();
   const json scene = json::parse(client.Get(run.with_token("/api/scene"))->body);
   CHECK(scene["device"]["links"] == json::array({"simulated board"}));
+  // The board's hand is not the page's to move (the live view's pointer: simulated devices).
+  CHECK(scene["device"]["hand_pointer"] == false);
+  const auto hand = client.Post(run.with_token("/api/hand"), R"({"x_m": 0.0})", "application/json");
+  REQUIRE(hand);
+  CHECK(hand->status == 409);
+  CHECK(json::parse(hand->body)["error"] == "the device is not simulated: the hand on it is yours");
   const std::vector<json> links = links_of(run.stream_for(4.0));
   REQUIRE(links.size() > 20);
   REQUIRE(links[2].size() == 1);

@@ -168,6 +168,10 @@ std::size_t PlanarHand::path_segment(double t_s) const noexcept {
 }
 
 Vec2 PlanarHand::reference_m(double t_s) const noexcept {
+  if (pointer_ != nullptr) {
+    const HandPointerOf<2>::Target target = pointer_->read();
+    if (target.active) return target.x_m;
+  }
   Vec2 p{}, v{};
   switch (config_.motion) {
     case PlanarHandMotion::none: return start_m_;
@@ -193,6 +197,7 @@ Vec2 PlanarHand::reference_m(double t_s) const noexcept {
 }
 
 Vec2 PlanarHand::reference_velocity_m_per_s(double t_s) const noexcept {
+  if (pointer_ != nullptr && pointer_->read().active) return Vec2{};
   Vec2 p{}, v{};
   switch (config_.motion) {
     case PlanarHandMotion::shake: {
@@ -213,6 +218,7 @@ Vec2 PlanarHand::reference_velocity_m_per_s(double t_s) const noexcept {
 }
 
 bool PlanarHand::gripping(double t_s) const noexcept {
+  if (pointer_ != nullptr && pointer_->read().active) return true;
   switch (config_.motion) {
     case PlanarHandMotion::none: return false;
     case PlanarHandMotion::release: return t_s < config_.release_s;

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "engine/base/axes.hpp"
+#include "engine/devices/hand_pointer.hpp"
 
 namespace hapscene {
 
@@ -81,6 +82,9 @@ class PlanarHand {
   // reference velocity changes at once; a waypoint; a release), or infinity. The plant ends
   // its integration steps there so that no step straddles a jump.
   double next_break_s(double t_s) const noexcept;
+  // While `pointer` is active (the live view's user dragging), the hand grips and its
+  // reference is the pointer, still (hand_pointer.hpp). Null: the scripted motion only.
+  void follow(const HandPointerOf<2>* pointer) noexcept { pointer_ = pointer; }
 
   const PlanarHandConfig& config() const noexcept { return config_; }
 
@@ -94,6 +98,7 @@ class PlanarHand {
   double next_polyline_corner_s(double t_s) const noexcept;
 
   PlanarHandConfig config_;
+  const HandPointerOf<2>* pointer_{};
   Vec2 start_m_;
   std::vector<Vec2> points_;
   std::vector<double> distance_m_;  // along the polyline to each point

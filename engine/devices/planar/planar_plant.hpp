@@ -172,6 +172,8 @@ class PlanarPlant {
 
   const PlanarPlantParameters& parameters() const noexcept { return parameters_; }
   const PlanarSimulationConfig& config() const noexcept { return config_; }
+  // The live view's pointer takes the hand while active (hand_pointer.hpp).
+  void follow(const HandPointerOf<2>* pointer) noexcept { hand_.follow(pointer); }
   const PlanarHand& hand() const noexcept { return hand_; }
   const PlanarMassModel& mass_model() const noexcept { return model_; }
 

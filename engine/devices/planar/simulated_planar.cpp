@@ -92,7 +92,9 @@ Vec2 planar_joint_angles_at(const PlanarProfile& profile, const Vec2& handle_m) 
 }
 
 SimulatedPlanar::SimulatedPlanar(const PlanarProfile& profile, const PlanarSimulationConfig& config)
-    : model_(compile_planar_model(profile)), plant_(planar_plant_parameters(profile), config) {}
+    : model_(compile_planar_model(profile)), plant_(planar_plant_parameters(profile), config) {
+  plant_.follow(&pointer_);
+}
 
 PlanarReading SimulatedPlanar::read() noexcept { return planar_reading_for(model_, plant_.q_rad()); }
 

@@ -34,6 +34,7 @@ class SimulatedPlanar final : public DeviceOf<2>, public SimulationTruthOf<2> {
   void write(const PlanarMotorCommand& command) noexcept override;
   void advance(double dt_s) noexcept override { plant_.advance(dt_s); }
   const SimulationTruthOf<2>* truth() const noexcept override { return this; }
+  HandPointerOf<2>* hand_pointer() const noexcept override { return &pointer_; }
   bool deadlines_matter() const noexcept override { return false; }
 
   Vec2 x_m() const noexcept override { return plant_.handle_m(); }
@@ -44,6 +45,7 @@ class SimulatedPlanar final : public DeviceOf<2>, public SimulationTruthOf<2> {
   const PlanarPlant& plant() const noexcept { return plant_; }
 
  private:
+  mutable HandPointerOf<2> pointer_;  // a mailbox the live view writes, the plant reads
   PlanarModel model_;
   PlanarPlant plant_;
   Vec2 joint_torque_N_m_{};
