@@ -92,7 +92,7 @@ TEST_CASE("live view hand: a bad request is refused with what is wrong, and the 
   const std::string object = R"({"x_m": X, "y_m": Y} or {"release": true})";
   const std::string form = "expected a JSON object " + object;
   const std::string not_metres = " must be a finite number of metres (" + object + ")";
-  for (const auto& [body, message] : {
+  for (const std::pair<std::string, std::string>& request : {
            std::pair<std::string, std::string>{"not json", "request: " + form},
            {"[0.01, 0.1]", "request: " + form},
            {R"({"x_m": 0.01})", "request: " + form},
@@ -101,10 +101,10 @@ TEST_CASE("live view hand: a bad request is refused with what is wrong, and the 
            {R"({"x_m": 1e999, "y_m": 0.1})", "request: " + form},  // out of a double's range: not JSON we read
            {R"({"release": false})", R"(request: expected {"release": true} alone)"},
            {R"({"release": true, "x_m": 0})", R"(request: expected {"release": true} alone)"}}) {
-    CAPTURE(body);
-    const HandAnswer answer = post_hand(run, body);
+    CAPTURE(request.first);
+    const HandAnswer answer = post_hand(run, request.first);
     CHECK(answer.status == 400);
-    CHECK(answer.body["error"] == message);
+    CHECK(answer.body["error"] == request.second);
   }
   // Outside the workspace, named with its bounds.
   const HandAnswer outside = post_hand(run, R"({"x_m": 0.5, "y_m": 0.1})");
