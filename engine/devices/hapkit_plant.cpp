@@ -84,6 +84,7 @@ double HapkitPlant::coulomb_direction(double driving_N) const noexcept {
 }
 
 void HapkitPlant::substep(double h_s, double motor_force_N) noexcept {
+  hand_.refresh_pointer();
   switch (config_.integrator) {
     case PlantIntegrator::semi_implicit_euler: euler_substep(h_s, motor_force_N); break;
     case PlantIntegrator::rk4: rk4_substep(h_s, motor_force_N); break;

@@ -45,7 +45,7 @@ class HapkitPlant {
   double hand_force_N() const noexcept { return hand_force_N_; }
   // Where the hand pulls the handle now; NaN while it does not grip.
   double hand_target_m() const noexcept {
-    return config_.hand.motion != HandMotion::none && hand_.gripping(t_s_) ? hand_.reference_m(t_s_) : std::nan("");
+    return hand_.gripping(t_s_) ? hand_.reference_m(t_s_) : std::nan("");  // (a hand of motion none never grips)
   }
   // Sensor readings that could not be formed (a non-finite or absurd position), answered
   // with the last good reading.

@@ -27,10 +27,7 @@ std::size_t VirtualHand::path_segment(double t_s) const noexcept {
 }
 
 double VirtualHand::reference_m(double t_s) const noexcept {
-  if (pointer_ != nullptr) {
-    const HandPointerOf<1>::Target target = pointer_->read();
-    if (target.active) return target.x_m;
-  }
+  if (pointer_now_.active) return pointer_now_.x_m;
   switch (config_.motion) {
     case HandMotion::none: return start_x_m_;
     case HandMotion::hold:
@@ -57,7 +54,7 @@ double VirtualHand::reference_m(double t_s) const noexcept {
 }
 
 double VirtualHand::reference_velocity_m_per_s(double t_s) const noexcept {
-  if (pointer_ != nullptr && pointer_->read().active) return 0.0;
+  if (pointer_now_.active) return 0.0;
   switch (config_.motion) {
     case HandMotion::sweep: {
       const double length_m = config_.sweep_max_m - config_.sweep_min_m;
@@ -80,7 +77,7 @@ double VirtualHand::reference_velocity_m_per_s(double t_s) const noexcept {
 }
 
 bool VirtualHand::gripping(double t_s) const noexcept {
-  if (pointer_ != nullptr && pointer_->read().active) return true;
+  if (pointer_now_.active) return true;
   switch (config_.motion) {
     case HandMotion::none: return false;
     case HandMotion::release: return t_s < config_.release_s;

@@ -58,6 +58,11 @@ class VirtualHand {
   // While `pointer` is active (the live view's user dragging), the hand grips and its
   // reference is the pointer, still (hand_pointer.hpp). Null: the scripted motion only.
   void follow(const HandPointerOf<1>* pointer) noexcept { pointer_ = pointer; }
+  // Reads the pointer once for the plant's next step: every call until the next refresh
+  // sees the same target (a take or release mid-step cannot tear the step).
+  void refresh_pointer() noexcept {
+    if (pointer_ != nullptr) pointer_now_ = pointer_->read();
+  }
 
  private:
   double sweep_phase_m(double t_s) const noexcept;
@@ -67,6 +72,7 @@ class VirtualHand {
   HandConfig config_;
   double start_x_m_;
   const HandPointerOf<1>* pointer_{};
+  HandPointerOf<1>::Target pointer_now_{};  // the pointer as the step in progress saw it
 };
 
 }  // namespace hapscene

@@ -317,9 +317,7 @@ struct LiveViewOf<N>::Impl {
       : address(where),
         path(std::move(environment_path)),
         tap(kTapCapacity, live_stride(scene.rate_hz), scene.rate_hz),
-        period_s(scene.period_s),
-        workspace_min_m(scene.safety.workspace_min_m),
-        workspace_max_m(scene.safety.workspace_max_m) {
+        period_s(scene.period_s) {
     base_dir = std::filesystem::path(path).parent_path().string();
     if (base_dir.empty()) base_dir = ".";
     text = environment_text_of(path);
@@ -389,7 +387,7 @@ struct LiveViewOf<N>::Impl {
   // workspace ({"x_m": X}, and "y_m" on a 2-DOF device), or lets it go ({"release": true}).
   void hand(const std::string& request_body, httplib::Response& res) {
     if (pointer == nullptr) {
-      error_response(res, 409, "the device is not simulated: the hand on it is yours");
+      error_response(res, 409, "this device's hand is not the page's to move (only --device sim's is): on a real device it is yours");
       return;
     }
     std::string form = "{\"x_m\": X";
@@ -419,6 +417,22 @@ struct LiveViewOf<N>::Impl {
       error_response(res, 400, "request: expected a JSON object " + form);
       return;
     }
+    // The workspace of the version running, as GET /api/scene gives it to the page.
+    Axes<N> workspace_min_m{};
+    Axes<N> workspace_max_m{};
+    {
+      std::lock_guard lock(doc_mutex);
+      const json& device = scene_json["device"];
+      if constexpr (N == 1) {
+        workspace_min_m = device["workspace_min_m"].get<double>();
+        workspace_max_m = device["workspace_max_m"].get<double>();
+      } else {
+        for (int i = 0; i < N; ++i) {
+          workspace_min_m[i] = device["workspace_min_m"][static_cast<std::size_t>(i)].get<double>();
+          workspace_max_m[i] = device["workspace_max_m"][static_cast<std::size_t>(i)].get<double>();
+        }
+      }
+    }
     Axes<N> x_m{};
     json shown = json::object();
     for (int i = 0; i < N; ++i) {
@@ -430,7 +444,7 @@ struct LiveViewOf<N>::Impl {
       }
       const double value_m = found->get<double>();
       const double low_m = component(workspace_min_m, i);
-      const double high_m = component(workspace_max_m, i);
+      const double high_m = component(workspace_max_m, i);  // the running version's (what the page shows)
       if (value_m < low_m || value_m > high_m) {
         error_response(res, 400, key + ": " + format_number(value_m) + " m is outside the workspace [" +
                                      format_number(low_m) + ", " + format_number(high_m) + "] m");
@@ -846,8 +860,6 @@ struct LiveViewOf<N>::Impl {
 
   std::vector<std::string> link_names;  // the device's boards (set before serving)
   HandPointerOf<N>* pointer{};           // a simulated device's hand, for POST /api/hand (set before serving)
-  Axes<N> workspace_min_m{};             // where the pointer may take the hand: the device's workspace
-  Axes<N> workspace_max_m{};
   std::vector<json> fault_history;      // the run's script faults (the last kLiveClientQueue), with clients_mutex
 
   // The pump thread's own.
@@ -879,7 +891,6 @@ LiveViewOf<N>::~LiveViewOf() {
 template <int N>
 void LiveViewOf<N>::stop() {
   Impl& s = *impl_;
-  if (s.pointer != nullptr) s.pointer->release();  // the scripted hand again, whatever a page left
   // The streams' last event, when the run is over: the pump sends it within two periods.
   for (int i = 0; i < 20 && s.tap.finished() && !s.ended.load() && s.pump_thread.joinable(); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -915,6 +926,8 @@ void LiveViewOf<N>::stop() {
     s.server.stop();
     s.server_thread.join();
   }
+  // The scripted hand again, whatever a page left (no request can come any more).
+  if (s.pointer != nullptr) s.pointer->release();
 }
 
 template <int N>

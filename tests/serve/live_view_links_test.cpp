@@ -74,7 +74,7 @@ TEST_CASE("live view: --device hil shows the board's link counters, live") {
   const auto hand = client.Post(run.with_token("/api/hand"), R"({"x_m": 0.0})", "application/json");
   REQUIRE(hand);
   CHECK(hand->status == 409);
-  CHECK(json::parse(hand->body)["error"] == "the device is not simulated: the hand on it is yours");
+  CHECK(json::parse(hand->body)["error"] == "this device's hand is not the page's to move (only --device sim's is): on a real device it is yours");
   const std::vector<json> links = links_of(run.stream_for(4.0));
   REQUIRE(links.size() > 20);
   REQUIRE(links[2].size() == 1);

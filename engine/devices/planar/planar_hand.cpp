@@ -168,10 +168,7 @@ std::size_t PlanarHand::path_segment(double t_s) const noexcept {
 }
 
 Vec2 PlanarHand::reference_m(double t_s) const noexcept {
-  if (pointer_ != nullptr) {
-    const HandPointerOf<2>::Target target = pointer_->read();
-    if (target.active) return target.x_m;
-  }
+  if (pointer_now_.active) return pointer_now_.x_m;
   Vec2 p{}, v{};
   switch (config_.motion) {
     case PlanarHandMotion::none: return start_m_;
@@ -197,7 +194,7 @@ Vec2 PlanarHand::reference_m(double t_s) const noexcept {
 }
 
 Vec2 PlanarHand::reference_velocity_m_per_s(double t_s) const noexcept {
-  if (pointer_ != nullptr && pointer_->read().active) return Vec2{};
+  if (pointer_now_.active) return Vec2{};
   Vec2 p{}, v{};
   switch (config_.motion) {
     case PlanarHandMotion::shake: {
@@ -218,7 +215,7 @@ Vec2 PlanarHand::reference_velocity_m_per_s(double t_s) const noexcept {
 }
 
 bool PlanarHand::gripping(double t_s) const noexcept {
-  if (pointer_ != nullptr && pointer_->read().active) return true;
+  if (pointer_now_.active) return true;
   switch (config_.motion) {
     case PlanarHandMotion::none: return false;
     case PlanarHandMotion::release: return t_s < config_.release_s;

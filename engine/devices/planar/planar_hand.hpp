@@ -85,6 +85,11 @@ class PlanarHand {
   // While `pointer` is active (the live view's user dragging), the hand grips and its
   // reference is the pointer, still (hand_pointer.hpp). Null: the scripted motion only.
   void follow(const HandPointerOf<2>* pointer) noexcept { pointer_ = pointer; }
+  // Reads the pointer once for the plant's next step: every call until the next refresh
+  // sees the same target (a take or release mid-step cannot tear the step).
+  void refresh_pointer() noexcept {
+    if (pointer_ != nullptr) pointer_now_ = pointer_->read();
+  }
 
   const PlanarHandConfig& config() const noexcept { return config_; }
 
@@ -99,6 +104,7 @@ class PlanarHand {
 
   PlanarHandConfig config_;
   const HandPointerOf<2>* pointer_{};
+  HandPointerOf<2>::Target pointer_now_{};  // the pointer as the step in progress saw it
   Vec2 start_m_;
   std::vector<Vec2> points_;
   std::vector<double> distance_m_;  // along the polyline to each point

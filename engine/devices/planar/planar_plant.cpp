@@ -380,6 +380,7 @@ bool PlanarPlant::integrate(double t_s, double h_s, const Friction& friction) no
 //   through the pass's ends).
 // The rest of the substep follows from that state.
 void PlanarPlant::substep(double h_s) noexcept {
+  hand_.refresh_pointer();
   hand_force_N_ = hand_.force_N(t_s_, pose_.handle_m, handle_velocity_m_per_s());
   constexpr int kPasses = 10;
   double done_s = 0.0;
