@@ -19,6 +19,7 @@
 #include <optional>
 #include <mutex>
 #include <random>
+#include <stdexcept>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -62,29 +63,34 @@ struct JobState {
   std::condition_variable done_wake;
   bool done{};
   std::optional<T> result;
-  std::exception_ptr error;
+  std::optional<std::string> error;  // what `work` threw: its message
 };
 
 // Runs `work` (a load, a validate: seconds, maybe) on a thread of its own and waits for
 // it until it is done or `stopping` is set; then it is abandoned (nullopt): its thread
 // finishes alone on the copies it captured, and the process ends with std::_Exit
 // (abandoned_live_view_jobs()). So no handler keeps the view from stopping. `work`
-// must capture only copies. Rethrows what `work` throws.
+// must capture only copies. Throws std::runtime_error with the message of what `work`
+// threw: only the text crosses threads, never the exception object (whose reference count
+// lives in the uninstrumented C++ runtime: ThreadSanitizer saw its release on the job's
+// thread race with the handler's read of its message).
 template <class T, class Work>
 std::optional<T> run_job(Work work, const std::atomic<bool>& stopping) {
   if (stopping.load()) return std::nullopt;
   auto state = std::make_shared<JobState<T>>();
   std::thread([state, work = std::move(work)]() mutable {
     std::optional<T> result;
-    std::exception_ptr error;
+    std::optional<std::string> error;
     try {
       result.emplace(work());
+    } catch (const std::exception& thrown) {
+      error = thrown.what();
     } catch (...) {
-      error = std::current_exception();
+      error = "an unknown error";
     }
     std::lock_guard lock(state->mutex);
     state->result = std::move(result);
-    state->error = error;
+    state->error = std::move(error);
     state->done = true;
     state->done_wake.notify_all();
   }).detach();
@@ -96,7 +102,7 @@ std::optional<T> run_job(Work work, const std::atomic<bool>& stopping) {
     }
     state->done_wake.wait_for(lock, std::chrono::milliseconds(20));
   }
-  if (state->error) std::rethrow_exception(state->error);
+  if (state->error) throw std::runtime_error(*state->error);
   return std::move(state->result);
 }
 
