@@ -80,6 +80,8 @@ TEST_CASE("cli: test fails a spec whose script faults, printing the message") {
   const std::string spec = folder.write("faulting.test.json",
                                         R"({"environment": "faulting.lua", "forces": [{"x": "5 mm", "force": "-0.5 N"}]})");
   const auto outcome = run_cli("test " + spec);
+  // (CI's AddressSanitizer stage once saw FAIL without this message: the output says why.)
+  INFO("stdout: " << outcome.out << "\nstderr: " << outcome.err);
   CHECK(outcome.exit_code == 1);
   CHECK(outcome.out.find("FAIL " + spec) != std::string::npos);
   CHECK(outcome.out.find("/environment: script fault: ") != std::string::npos);
