@@ -14,6 +14,7 @@
 #include "engine/base/errors.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/cli/option_definitions.hpp"
+#include "engine/effects/effect_keys.hpp"
 #include "engine/harness/open_loop.hpp"
 #include "engine/harness/planar_open_loop.hpp"
 #include "python/interruptible.hpp"
@@ -24,44 +25,32 @@ namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// A value as Python shows it: floats, bools, (x, y) tuples.
-py::object value_object(double value) { return py::float_(value); }
-py::object value_object(bool value) { return py::bool_(value); }
-py::object value_object(const Vec2& value) { return py::make_tuple(value[0], value[1]); }
-
-// One compiled effect as a dict: its type and the parameters it was compiled with, in SI
-// (the names carry the units). Every effect type of either axis count goes through the
-// same list of fields, so a new type with these fields shows them without a change here.
+// One compiled effect as a dict: its type and the values it was compiled with, in SI
+// (the names carry the units), as its declaration lists them
+// (engine/effects/effect_keys.hpp): numbers as floats, vectors as (x, y) tuples, choices
+// and flags as bools. A new effect type shows its keys without a change here.
 template <typename Effect>
 py::dict effect_dict(const Effect& e) {
   py::dict d;
   d["type"] = Effect::kType;
-#define HAPSCENE_FIELD(member)                                \
-  if constexpr (requires { e.member; }) {                    \
-    if constexpr (!std::is_same_v<std::decay_t<decltype(e.member)>, std::string>) d[#member] = value_object(e.member); \
-  }
-  HAPSCENE_FIELD(stiffness_N_per_m)
-  HAPSCENE_FIELD(damping_N_s_per_m)
-  HAPSCENE_FIELD(center_m)
-  HAPSCENE_FIELD(position_m)
-  HAPSCENE_FIELD(point_m)
-  HAPSCENE_FIELD(normal)
-  HAPSCENE_FIELD(min_m)
-  HAPSCENE_FIELD(max_m)
-  HAPSCENE_FIELD(radius_m)
-  HAPSCENE_FIELD(width_m)
-  HAPSCENE_FIELD(spacing_m)
-  HAPSCENE_FIELD(offset_m)
-  HAPSCENE_FIELD(direction)
-  HAPSCENE_FIELD(solid_above)
-  HAPSCENE_FIELD(solid_inside)
-  HAPSCENE_FIELD(mirror)
-#undef HAPSCENE_FIELD
-  if constexpr (requires { e.bands.width_m; }) {
-    d["width_m"] = e.bands.width_m;
-    d["spacing_m"] = e.bands.spacing_m;
-    d["offset_m"] = e.bands.offset_m;
-    d["damping_N_s_per_m"] = e.bands.damping_N_s_per_m;
+  if constexpr (requires { Effect::keys(); }) {
+    for (const KeyOf<Effect>& bound : Effect::keys()) {
+      const EffectKey& key = bound.key;
+      if (key.field.empty()) continue;
+      const std::string field(key.field);
+      if (const bool* flag = read_flag(bound, e)) {
+        d[field.c_str()] = py::bool_(*flag);
+      } else if (const double* numbers = read_numbers(bound, e)) {
+        const int count = component_count(key, Effect::kAxes);
+        if (count == 1) {
+          d[field.c_str()] = py::float_(numbers[0]);
+        } else {
+          py::tuple values(static_cast<std::size_t>(count));
+          for (int i = 0; i < count; ++i) values[static_cast<std::size_t>(i)] = py::float_(numbers[i]);
+          d[field.c_str()] = values;
+        }
+      }
+    }
   }
   if constexpr (requires { e.program; }) {
     d["name"] = e.program->display_name;
@@ -320,6 +309,47 @@ LoadedScene loads_scene(const py::handle& source, const py::object& base_dir_val
   return s;
 }
 
+// Every built-in effect type's declaration (engine/effects/effect_keys.hpp), for tools
+// that build forms or check files: [{"type", "axes", "description", "keys": [...]}].
+py::list effect_types() {
+  static constexpr const char* kForms[] = {"number", "vector", "direction", "choice", "flag", "points", "friction", "refused"};
+  py::list out;
+  const auto add = [&](const EffectDeclaration& declaration) {
+    py::list keys;
+    for (const EffectKey& key : declaration.keys) {
+      if (key.form == KeyForm::refused) continue;
+      py::dict k;
+      k["name"] = std::string(key.name);
+      k["form"] = kForms[static_cast<int>(key.form)];
+      k["quantity"] = std::string(quantity_name(key.quantity));
+      k["unit"] = std::string(si_unit(key.quantity));
+      k["required"] = key.required;
+      if (key.form == KeyForm::number || key.form == KeyForm::vector) {
+        k["min"] = key.range.min;
+        k["max"] = key.range.max;
+      }
+      if (!key.required && !key.fallback_from.empty()) k["default_from"] = std::string(key.fallback_from);
+      else if (!key.required && (key.form == KeyForm::number || key.form == KeyForm::vector)) k["default"] = key.fallback_si;
+      if (key.form == KeyForm::choice) k["choices"] = py::make_tuple(std::string(key.choices[0]), std::string(key.choices[1]));
+      k["slidable"] = key.slidable;
+      k["field"] = key.field.empty() ? py::object(py::none()) : py::object(py::str(std::string(key.field)));
+      k["description"] = std::string(key.description);
+      keys.append(k);
+    }
+    py::dict d;
+    d["type"] = std::string(declaration.type);
+    d["axes"] = declaration.axes;
+    d["description"] = std::string(declaration.description);
+    d["keys"] = keys;
+    out.append(d);
+  };
+#define HAPSCENE_PYTHON_EFFECT_TYPES(N) \
+  for (const EffectDeclaration& declaration : SceneParts<N>::Effects::kDeclarations) add(declaration);
+  HAPSCENE_FOR_EACH_AXES(HAPSCENE_PYTHON_EFFECT_TYPES)
+#undef HAPSCENE_PYTHON_EFFECT_TYPES
+  return out;
+}
+
 LoadedScene scene_argument(const py::handle& value, const std::string& what) {
   if (py::isinstance<LoadedScene>(value)) return value.cast<LoadedScene>();
   return load_scene(path_text(value, what));
@@ -362,6 +392,10 @@ the file again.)")
                (s.axes == 1 ? "" : "es") + ">";
       });
 
+  m.def("effect_types", &effect_types,
+        "Every built-in effect type of every number of axes as the engine declares it: its \"type\", \"axes\", "
+        "\"description\" and \"keys\" (each key's name, form, quantity and SI unit, whether it is required, its "
+        "range, default, whether the live view slides it, and the name of its compiled value in Scene.effects).");
   m.def("load", [](const py::object& path) { return load_scene(path_text(path, "hapscene.load")); }, py::arg("path"),
         R"(load(path) -> Scene
 

@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
 """Writes hapscene's JSON Schemas (draft 2020-12) into this folder.
 
-    python3 schemas/generate_schemas.py [OUTPUT_DIR]
+    python3 schemas/generate_schemas.py [OUTPUT_DIR] [--hapscene BINARY]
 
 The schemas describe what the loaders accept (engine/load, engine/devices/profile.cpp,
 engine/devices/planar/planar_profile.cpp, engine/harness/*test_spec*.cpp) and what
 `hapscene validate --report` writes (engine/harness/report.cpp, planar_report.cpp). They are
 written from this script so the quantity forms, the ranges and the shared parts stay alike
 in every file; the ctest test `json_schemas` checks the committed files equal its output.
+The built-in effects' schemas are not written here: the program writes them from the
+effects' declarations (`hapscene schema effects`, engine/effects/effect_keys.hpp), and this
+script places them (BINARY: build/hapscene by default).
 
 A schema checks the shape of a file: the keys, their types, enumerations, whole numbers,
 the unit of a quantity written as a string ("10 mm" where a length goes), and the range of
@@ -17,6 +20,7 @@ unit, min below max, a polygon that crosses itself, what a script does), and say
 import json
 import pathlib
 import re
+import subprocess
 import sys
 
 DRAFT = "https://json-schema.org/draft/2020-12/schema"
@@ -178,30 +182,19 @@ def script_effect(axes):
         description=f"a Lua script effect ({axes}-D): exactly one of \"file\" and \"source\"")
 
 
-def effects_1d():
-    return {
-        "spring": closed({"type": {"const": "spring"}, "enabled": BOOLEAN,
-                          "stiffness": quantity("stiffness", **STIFFNESS),
-                          "center": quantity("length", **POSITION)},
-                         required=["type", "stiffness"], description="F = -K (x - center)"),
-        "wall": closed({"type": {"const": "wall"}, "enabled": BOOLEAN,
-                        "position": quantity("length", **POSITION),
-                        "stiffness": quantity("stiffness", **STIFFNESS),
-                        "solid": {"enum": ["above", "below"]}},
-                       required=["type", "position", "stiffness", "solid"],
-                       description="F = -K (x - position) on its solid side"),
-        "damper": closed({"type": {"const": "damper"}, "enabled": BOOLEAN,
-                          "damping": quantity("damping", **DAMPING)},
-                         required=["type", "damping"], description="F = -B v"),
-        "texture": closed({"type": {"const": "texture"}, "enabled": BOOLEAN,
-                           "width": quantity("length", minimum=1e-6, maximum=1000),
-                           "damping": quantity("damping", **DAMPING),
-                           "spacing": quantity("length", **LENGTH),
-                           "offset": quantity("length", **POSITION),
-                           "mirror": BOOLEAN},
-                          required=["type", "width", "damping"], description="damping bands"),
-        "script": script_effect(1),
-    }
+def builtin_effects(hapscene):
+    """The built-in effects' schemas, as the program writes them from their declarations:
+    {"effect_1d_spring": {...}, "effect_2d_box": {...}, ...}."""
+    out = subprocess.run([str(hapscene), "schema", "effects"], check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def effects_of(builtins, axes):
+    """The effect forms of one N: the built-ins, in the program's order, then "script"."""
+    prefix = f"effect_{axes}d_"
+    effects = {name[len(prefix):]: schema for name, schema in builtins.items() if name.startswith(prefix)}
+    effects["script"] = script_effect(axes)
+    return effects
 
 
 def point(description="[x, y] in m (or strings with a unit)", **component):
@@ -210,47 +203,6 @@ def point(description="[x, y] in m (or strings with a unit)", **component):
 
 def direction(description):
     return vector(quantity("plain", minimum=-1e6, maximum=1e6), description + " (not the zero vector)")
-
-
-def effects_2d():
-    solid = {"enum": ["inside", "outside"]}
-    return {
-        "spring": closed({"type": {"const": "spring"}, "enabled": BOOLEAN,
-                          "stiffness": quantity("stiffness", **STIFFNESS),
-                          "center": point()},
-                         required=["type", "stiffness"], description="F = -K (p - center)"),
-        "damper": closed({"type": {"const": "damper"}, "enabled": BOOLEAN,
-                          "damping": quantity("damping", **DAMPING)},
-                         required=["type", "damping"], description="F = -B v"),
-        "texture": closed({"type": {"const": "texture"}, "enabled": BOOLEAN,
-                           "width": quantity("length", minimum=1e-6, maximum=1000),
-                           "damping": quantity("damping", **DAMPING),
-                           "spacing": quantity("length", **LENGTH),
-                           "offset": quantity("length", **POSITION),
-                           "direction": direction("the direction across the bands")},
-                          required=["type", "width", "damping", "direction"], description="damping bands"),
-        "wall": closed({"type": {"const": "wall"}, "enabled": BOOLEAN,
-                        "point": point(), "normal": direction("points out of the solid side"),
-                        "stiffness": quantity("stiffness", **STIFFNESS)},
-                       required=["type", "point", "normal", "stiffness"], description="a half-plane wall"),
-        "box": closed({"type": {"const": "box"}, "enabled": BOOLEAN,
-                       "min": point(), "max": point(),
-                       "stiffness": quantity("stiffness", **STIFFNESS), "solid": solid},
-                      required=["type", "min", "max", "stiffness", "solid"], description="an axis-aligned box"),
-        "circle": closed({"type": {"const": "circle"}, "enabled": BOOLEAN,
-                          "center": point(), "radius": quantity("length", **POSITIVE_LENGTH),
-                          "stiffness": quantity("stiffness", **STIFFNESS), "solid": solid},
-                         required=["type", "center", "radius", "stiffness", "solid"], description="a circle"),
-        "polygon": closed({"type": {"const": "polygon"}, "enabled": BOOLEAN,
-                           "points": {"type": "array", "items": point(), "minItems": 3, "maxItems": 10000},
-                           "stiffness": quantity("stiffness", **STIFFNESS), "solid": solid,
-                           "friction": closed({"static": quantity("plain", minimum=0, maximum=10),
-                                               "dynamic": quantity("plain", minimum=0, maximum=10)},
-                                              required=["static", "dynamic"])},
-                          required=["type", "points", "stiffness", "solid"],
-                          description="a simple polygon (3 to 10000 points)"),
-        "script": script_effect(2),
-    }
 
 
 def effect_list(effects, axes):
@@ -298,7 +250,7 @@ def validate_block(axes):
     return closed(common, description="thresholds of hapscene validate (docs/reference/validate.md)")
 
 
-def environment_form(axes):
+def environment_form(axes, effects):
     safety = {
         "max_force": quantity("force", **POSITIVE_FORCE, description="at most the device's"),
         "slew_limit": quantity("force_rate", **POSITIVE_SLEW, description="at most the device's"),
@@ -318,17 +270,17 @@ def environment_form(axes):
         "safety": closed(safety, description="limits only safer than the device's"),
         "velocity": closed({"estimator": {"enum": ["hapkit2019", "hapkit2013", "difference", "lowpass"]},
                             "cutoff": quantity("frequency", minimum=0, maximum=1e6, exclusive_min=True)}),
-        "effects": effect_list(effects_2d() if axes == 2 else effects_1d(), axes),
+        "effects": effect_list(effects, axes),
         "validate": validate_block(axes),
     }, required=["effects"], description=f"a {axes}-DOF environment")
 
 
-def environment_schema(capstan_names, planar_names):
-    defs = {"environment_1d": environment_form(1), "environment_2d": environment_form(2)}
-    for name, effect in effects_1d().items():
-        defs[f"effect_1d_{name}"] = effect
-    for name, effect in effects_2d().items():
-        defs[f"effect_2d_{name}"] = effect
+def environment_schema(capstan_names, planar_names, builtins):
+    effects = {axes: effects_of(builtins, axes) for axes in (1, 2)}
+    defs = {"environment_1d": environment_form(1, effects[1]), "environment_2d": environment_form(2, effects[2])}
+    for axes in (1, 2):
+        for name, effect in effects[axes].items():
+            defs[f"effect_{axes}d_{name}"] = effect
     body = {
         "type": "object",
         # Which form follows from "device": a shipped planar profile is 2-D, a shipped
@@ -730,10 +682,10 @@ def shipped_profile_names(source_dir):
     return capstan, planar
 
 
-def schemas(source_dir):
+def schemas(source_dir, hapscene):
     capstan, planar = shipped_profile_names(source_dir)
     return {
-        "environment.schema.json": environment_schema(capstan, planar),
+        "environment.schema.json": environment_schema(capstan, planar, builtin_effects(hapscene)),
         "device-profile.schema.json": profile_schema(),
         "test-spec.schema.json": spec_schema(),
         "validate-report.schema.json": report_schema(),
@@ -742,9 +694,15 @@ def schemas(source_dir):
 
 def main():
     here = pathlib.Path(__file__).resolve().parent
-    out_dir = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else here
+    args = sys.argv[1:]
+    hapscene = here.parent / "build" / "hapscene"
+    if "--hapscene" in args:
+        at = args.index("--hapscene")
+        hapscene = pathlib.Path(args[at + 1])
+        del args[at:at + 2]
+    out_dir = pathlib.Path(args[0]) if args else here
     out_dir.mkdir(parents=True, exist_ok=True)
-    for name, schema in schemas(here.parent).items():
+    for name, schema in schemas(here.parent, hapscene).items():
         (out_dir / name).write_text(json.dumps(schema, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
 
 

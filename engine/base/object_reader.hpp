@@ -11,21 +11,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/base/range.hpp"
 #include "engine/base/units.hpp"
 
 namespace hapscene {
-
-// What values a number may take.
-enum class Bound { any, non_negative, positive };
-
-// A finite range [min, max] (SI) of a physical key, or (min, max] with min_excluded.
-// Out-of-range values are refused naming the key: "must be in [0, 10000000] N/m, got
-// 1e+308 N/m" (below a lower bound of 0, the Bound messages: "must be >= 0, got -5 N/m").
-struct Range {
-  double min{};
-  double max{};
-  bool min_excluded{};
-};
 
 class ObjectReader {
  public:

@@ -4,7 +4,7 @@
 // generous: far beyond anything a Hapkit-sized device can render or be, yet small enough
 // that every product the engine forms (stiffness x length, damping x speed) stays finite,
 // so no absurd value from a file reaches the tick.
-#include "engine/base/object_reader.hpp"
+#include "engine/base/range.hpp"
 
 namespace hapscene::ranges {
 
@@ -32,5 +32,12 @@ inline constexpr Range kDuration_s{0.0, 60.0};
 inline constexpr Range kPositiveDuration_s{0.0, 60.0, true};
 // Filter cut-offs: up to 1 MHz, ten times the highest tick rate.
 inline constexpr Range kCutoff_Hz{0.0, 1e6, true};
+
+// A friction coefficient: 10 is far beyond rubber on rubber (about 1 to 2).
+inline constexpr Range kFrictionCoefficient{0.0, 10.0};
+// A direction's components before normalising (any scale, finite and far from overflow).
+inline constexpr Range kDirectionComponent{-1e6, 1e6};
+// A circle's radius: positive, within the range of positions.
+inline constexpr Range kRadius_m{0.0, 1000.0, true};
 
 }  // namespace hapscene::ranges

@@ -285,6 +285,9 @@ constexpr BuiltinCommand kBuiltins[] = {
     {"version", "", "the version (also --version)"},
     {"completion", "bash", "print the bash completion script"},
     {"man", "[--markdown]", "print the man page (roff; --markdown: the command reference as Markdown)"},
+    {"schema", "effects [--markdown]",
+     "print the JSON Schema of every built-in effect, written from the engine's declarations (--markdown: the "
+     "reference page)"},
 };
 
 }  // namespace

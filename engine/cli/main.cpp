@@ -15,6 +15,7 @@
 #include "engine/cli/help_text.hpp"
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/standard_output.hpp"
+#include "engine/load/effect_schema.hpp"
 
 namespace {
 
@@ -35,7 +36,7 @@ std::string unknown_command(const std::string& command) {
          (suggestion.empty() ? std::string() : " (did you mean \"" + suggestion + "\"?)");
 }
 
-// help, version, completion and man: what the command line says about itself.
+// help, version, completion, man and schema: what the command line says about itself.
 std::optional<int> builtin(const std::vector<std::string>& args) {
   const std::string& command = args[0];
   if (command == "help" || command == "--help" || command == "-h") {
@@ -73,6 +74,16 @@ std::optional<int> builtin(const std::vector<std::string>& args) {
     const bool markdown = args.size() == 2 && args[1] == "--markdown";
     if (args.size() > 1 && !markdown) throw hapscene::InputError("hapscene man: takes no arguments but --markdown");
     write_out(markdown ? hapscene::command_reference_markdown(HAPSCENE_VERSION) : hapscene::man_page(HAPSCENE_VERSION));
+    return hapscene::kExitOk;
+  }
+  if (command == "schema") {
+    // schema effects: the built-in effects' JSON Schema, from their declarations;
+    // --markdown: the same as the documentation's reference page.
+    const bool markdown = args.size() == 3 && args[2] == "--markdown";
+    if (args.size() < 2 || args[1] != "effects" || (args.size() > 2 && !markdown)) {
+      throw hapscene::InputError("hapscene schema: expected hapscene schema effects [--markdown]");
+    }
+    write_out(markdown ? hapscene::effect_reference_markdown() : hapscene::effect_schemas().dump(2) + "\n");
     return hapscene::kExitOk;
   }
   return std::nullopt;

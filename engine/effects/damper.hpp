@@ -1,18 +1,21 @@
 #pragma once
 // The Hapkit lab damper: F = -B v.
 #include "engine/effects/effect_input.hpp"
+#include "engine/effects/effect_keys.hpp"
 
 namespace hapscene {
-
-class ObjectReader;
 
 struct Damper {
   static constexpr const char* kType = "damper";
   static constexpr Needs kNeeds{.velocity = true};
+  static constexpr int kAxes = 1;
+  static constexpr const char* kDescription = "F = -B v";
 
   double damping_N_s_per_m{};
 
-  static Damper parse(ObjectReader& reader);
+  static constexpr auto keys() {
+    return std::array{KeyOf<Damper>{effect_keys::damping(), [](Damper& e) { return &e.damping_N_s_per_m; }}};
+  }
 
   double force_N(const EffectInput& in) const noexcept { return -damping_N_s_per_m * in.v_m_per_s; }
 

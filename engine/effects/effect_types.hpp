@@ -1,9 +1,10 @@
 #pragma once
-// The one list of effect types. A new built-in effect is a header in this folder (a
-// struct with kType, kNeeds, parse(), can_act_within() and force_N(input), parsed in
-// lab_effects.cpp or a file of its own) and one entry in BuiltInEffects: the Effect
-// variant, the scene's EffectBank, add_effect and the loader's table of "type" names
-// all follow from that entry.
+// The one list of 1-D effect types. A new built-in effect is a header in this folder (a
+// struct with its declaration, engine/effects/effect_keys.hpp, can_act_within() and
+// force_N(input)) and one entry in BuiltInEffects: the Effect variant, the scene's
+// EffectBank, the loader's table of "type" names, its parser, the sliders, Python and the
+// schema all follow from that entry.
+#include <array>
 #include <tuple>
 #include <type_traits>
 #include <variant>
@@ -12,6 +13,8 @@
 #include "engine/effects/damper.hpp"
 #include "engine/effects/effect_groups.hpp"
 #include "engine/effects/effect_input.hpp"
+#include "engine/effects/effect_keys.hpp"
+#include "engine/effects/magnet.hpp"
 #include "engine/effects/script_effect.hpp"
 #include "engine/effects/spring.hpp"
 #include "engine/effects/texture.hpp"
@@ -28,11 +31,14 @@ struct EffectTypeList {
   // One effect of any of the types, plus scripts (which run in the Lua layer, not here).
   using Variant = std::variant<Types..., ScriptEffect>;
 
+  // Each type's declaration (engine/effects/effect_keys.hpp), in the order of the list.
+  static constexpr std::array<EffectDeclaration, sizeof...(Types)> kDeclarations{declaration_of<Types>()...};
+
   // A scene's built-in effects grouped by type, compiled once at load: the tick loops
   // over each group as a plain array, with no per-effect dispatch, so a scene pays only
-  // for the groups it has (an empty group costs a comparison). Within a group effects
-  // keep their order in the file; the groups add up in the order of the list, then the
-  // scene adds its scripts.
+  // for the groups it has (an empty group costs a bit test, EffectGroups::present).
+  // Within a group effects keep their order in the file; the groups add up in the order
+  // of the list, then the scene adds its scripts.
   struct Bank : EffectGroups<Types...> {
     // What a run keeps of these effects: nothing (the 1-D lab effects are fields). A list
     // of shapes keeps their proxies here (engine/effects/planar/planar_effect_types.hpp).
@@ -60,6 +66,7 @@ struct EffectTypeList {
       // Scenes have a few effects of a type: a vectorised loop's set-up cost more than
       // it saved (about 10 instructions a tick for one spring), so the loop stays scalar
       // (the empty asm hides the pointer's stride from the vectoriser; it emits nothing).
+      if (!this->template has<T>()) return;
       for (const T* e = this->template group<T>().data(), *end = e + this->template group<T>().size(); e != end; ++e) {
         *force_N += e->force_N(input);
         asm("" : "+r"(e));
@@ -75,7 +82,7 @@ template <typename... Types>
 inline constexpr bool kHoldsScripts<std::variant<Types...>> = (std::is_same_v<Types, ScriptEffect> || ...);
 
 // The built-in effects of 1-DOF scenes, in the order the tick adds them up.
-using BuiltInEffects = EffectTypeList<1, Spring, Wall, Damper, Texture>;
+using BuiltInEffects = EffectTypeList<1, Spring, Wall, Damper, Texture, MagnetOf<1>>;
 
 // One effect as written in an environment file; the forces of all effects add up.
 using Effect = BuiltInEffects::Variant;

@@ -10,14 +10,15 @@
 #include <cstdint>
 
 #include "engine/effects/effect_input.hpp"
+#include "engine/effects/effect_keys.hpp"
 
 namespace hapscene {
-
-class ObjectReader;
 
 struct Texture {
   static constexpr const char* kType = "texture";
   static constexpr Needs kNeeds{.velocity = true};
+  static constexpr int kAxes = 1;
+  static constexpr const char* kDescription = "damping bands";
 
   double width_m{};
   double spacing_m{};
@@ -46,7 +47,18 @@ struct Texture {
     period_end_m = period_m - 1e-9 * period_m;
   }
 
-  static Texture parse(ObjectReader& reader);
+  static constexpr auto keys() {
+    return std::array{
+        KeyOf<Texture>{effect_keys::band_width(), [](Texture& e) { return &e.width_m; }},
+        KeyOf<Texture>{effect_keys::damping("B within a field"), [](Texture& e) { return &e.damping_N_s_per_m; }},
+        KeyOf<Texture>{effect_keys::band_spacing(), [](Texture& e) { return &e.spacing_m; }},
+        KeyOf<Texture>{effect_keys::band_offset(), [](Texture& e) { return &e.offset_m; }},
+        KeyOf<Texture>{key("mirror", KeyForm::flag).or_default(0.0).as("mirror")
+                           .says("the fields below the offset mirror those above"),
+                       nullptr, [](Texture& e) { return &e.mirror; }},
+    };
+  }
+  static void finish_parse(ObjectReader&, Texture& texture) noexcept { texture.derive_period(); }
 
   bool in_field(double x_m) const noexcept {
     const double phase_m = mirror ? std::abs(x_m - offset_m) : x_m - offset_m;

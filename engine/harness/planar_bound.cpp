@@ -1,6 +1,7 @@
 #include "engine/harness/planar_bound.hpp"
 
 #include <cmath>
+#include <tuple>
 #include <numbers>
 
 #include "engine/base/errors.hpp"
@@ -75,6 +76,17 @@ PoseJudged pose_bound_at(const PlanarScene& scene, const Vec2& p, PlanarPoseBoun
   return PoseJudged::bounded;
 }
 
+// The largest stiffness among `group`'s effects, when their type's declared gain is a
+// stiffness (engine/effects/effect_keys.hpp), into *stiffest.
+template <typename T>
+void stiffest_of(const std::vector<T>& group, double* stiffest) {
+  static constexpr auto keys = T::keys();
+  for (const KeyOf<T>& key : keys) {
+    if (!key.key.gain || key.key.quantity != Quantity::stiffness_N_per_m) continue;
+    for (const T& e : group) *stiffest = std::fmax(*stiffest, *read_numbers(key, e));
+  }
+}
+
 }  // namespace
 
 bool planar_pose_bound_at(const PlanarScene& scene, const Vec2& p_m, PlanarPoseBound* out) {
@@ -101,13 +113,8 @@ PlanarStiffnessBound planar_stiffness_bound(const PlanarScene& scene, int grid) 
       result.poses.push_back(pose);
     }
   }
-  for (const PlanarSpring& spring : scene.bank.group<PlanarSpring>()) {
-    result.stiffest_N_per_m = std::fmax(result.stiffest_N_per_m, spring.stiffness_N_per_m);
-  }
-  for (const PlanarWall& e : scene.bank.group<PlanarWall>()) result.stiffest_N_per_m = std::fmax(result.stiffest_N_per_m, e.stiffness_N_per_m);
-  for (const PlanarBox& e : scene.bank.group<PlanarBox>()) result.stiffest_N_per_m = std::fmax(result.stiffest_N_per_m, e.stiffness_N_per_m);
-  for (const PlanarCircle& e : scene.bank.group<PlanarCircle>()) result.stiffest_N_per_m = std::fmax(result.stiffest_N_per_m, e.stiffness_N_per_m);
-  for (const PlanarPolygon& e : scene.bank.group<PlanarPolygon>()) result.stiffest_N_per_m = std::fmax(result.stiffest_N_per_m, e.stiffness_N_per_m);
+  // The stiffest built-in effect: every type whose declared gain is a stiffness.
+  std::apply([&](const auto&... groups) { (stiffest_of(groups, &result.stiffest_N_per_m), ...); }, scene.bank.groups);
   return result;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "engine/base/format.hpp"
 #include "engine/devices/planar/planar_model.hpp"
@@ -35,6 +36,17 @@ double stored_J(const PlanarScene& scene, const std::vector<PlanarShapeGeometry>
   for (const PlanarSpring& spring : scene.bank.group<PlanarSpring>()) {
     energy_J += clamped_spring_J(spring.stiffness_N_per_m, norm(x_m - spring.center_m), limit_N);
   }
+  // Fields that declare a potential (a magnet), unclamped.
+  std::apply(
+      [&](const auto&... groups) {
+        const auto add = [&](const auto& group) {
+          for (const auto& e : group) {
+            if constexpr (requires { e.potential_J(x_m); }) energy_J += e.potential_J(x_m);
+          }
+        };
+        (add(groups), ...);
+      },
+      scene.bank.groups);
   if (scripts != nullptr) energy_J += scripts->at_J(x_m);
   return energy_J;
 }

@@ -9,7 +9,7 @@
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/base/units.hpp"
-#include "engine/effects/planar/planar_reader.hpp"
+#include "engine/effects/vector_reader.hpp"
 #include "engine/harness/pace.hpp"
 #include "engine/harness/planar_checks.hpp"
 #include "engine/harness/planar_open_loop.hpp"

@@ -13,30 +13,16 @@
 namespace hapscene {
 namespace {
 
-// The key and unit of a built-in effect's gain, for "(spring): stiffness 0 N/m".
-struct Gain {
-  const char* key;
-  const char* unit;
-};
-Gain gain_of(const Spring&) { return {"stiffness", "N/m"}; }
-Gain gain_of(const Wall&) { return {"stiffness", "N/m"}; }
-Gain gain_of(const Damper&) { return {"damping", "N*s/m"}; }
-Gain gain_of(const Texture&) { return {"damping", "N*s/m"}; }
-Gain gain_of(const PlanarSpring&) { return {"stiffness", "N/m"}; }
-Gain gain_of(const PlanarDamper&) { return {"damping", "N*s/m"}; }
-Gain gain_of(const PlanarTexture&) { return {"damping", "N*s/m"}; }
-Gain gain_of(const PlanarWall&) { return {"stiffness", "N/m"}; }
-Gain gain_of(const PlanarBox&) { return {"stiffness", "N/m"}; }
-Gain gain_of(const PlanarCircle&) { return {"stiffness", "N/m"}; }
-Gain gain_of(const PlanarPolygon&) { return {"stiffness", "N/m"}; }
-
 // An effect of either dimension whose gain is zero does nothing anywhere: its warning, or
 // empty. (A built-in effect that cannot act even in an unbounded workspace has a zero gain.)
 template <typename Type, typename Bound>
 std::string zero_gain_warning(const Type& effect, const Bound& unbounded_low, const Bound& unbounded_high) {
   if (effect.can_act_within(unbounded_low, unbounded_high)) return "";
-  const Gain gain = gain_of(effect);
-  return std::string("(") + Type::kType + "): " + gain.key + " 0 " + gain.unit + ", so the " + Type::kType +
+  // The gain, as the type declares it (engine/effects/effect_keys.hpp).
+  constexpr const EffectKey* gain = gain_key(declaration_of<Type>());
+  static_assert(gain != nullptr, "a built-in effect declares the key whose zero leaves it idle");
+  return std::string("(") + Type::kType + "): " + std::string(gain->name) + " 0 " + std::string(si_unit(gain->quantity)) +
+         ", so the " + Type::kType +
          " never acts (\"enabled\": false leaves an effect out without a warning)";
 }
 

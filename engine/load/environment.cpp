@@ -16,8 +16,9 @@
 #include "engine/base/physical_ranges.hpp"
 #include "engine/base/type_hint.hpp"
 #include "engine/devices/planar/planar_profile.hpp"
+#include "engine/effects/declared_parse.hpp"
 #include "engine/effects/planar/planar_effect_types.hpp"
-#include "engine/effects/planar/planar_reader.hpp"
+#include "engine/effects/vector_reader.hpp"
 #include "engine/load/effect_warnings.hpp"
 #include "engine/load/validate_block.hpp"
 
@@ -44,7 +45,7 @@ EffectType effect_type() {
                       if constexpr (std::is_same_v<T, ScriptEffect>) {
                         return Effect{T::parse(reader, *budget)};
                       } else {
-                        return Effect{T::parse(reader)};
+                        return Effect{parse_declared<T>(reader)};
                       }
                     }};
 }

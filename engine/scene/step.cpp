@@ -21,7 +21,7 @@ void add_effect(SceneOf<N>* scene, typename SceneParts<N>::Effects::Variant effe
           scene->needs |= e.needs;
         } else {
           if (!e.can_act_within(min_m, max_m)) return;
-          scene->bank.template group<Type>().push_back(e);
+          scene->bank.append(e);
           scene->needs |= Type::kNeeds;
         }
       },

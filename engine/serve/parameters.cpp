@@ -10,62 +10,12 @@
 #include "engine/base/format.hpp"
 #include "engine/harness/planar_bound.hpp"
 #include "engine/harness/planar_shape_list.hpp"
+#include "engine/effects/effect_keys.hpp"
 #include "engine/harness/validate.hpp"
 #include "engine/serve/json_text_edit.hpp"
 
 namespace hapscene {
 namespace {
-
-// A key of a built-in effect: its quantity, and its default when the file leaves it out
-// ("" default_from: required; "width": the width's value).
-struct KeySpec {
-  const char* key;
-  Quantity quantity;
-  bool vector;              // [x, y] in 2-D
-  bool has_default;
-  double fallback;
-  const char* default_from; // another key whose value is the default
-};
-
-struct TypeSpec {
-  const char* type;
-  std::vector<KeySpec> keys;
-};
-
-constexpr Quantity kLength = Quantity::length_m;
-constexpr Quantity kStiffness = Quantity::stiffness_N_per_m;
-constexpr Quantity kDamping = Quantity::damping_N_s_per_m;
-
-// The numeric keys of the built-in effects (engine/effects/lab_effects.cpp and
-// engine/effects/planar/planar_parse.cpp read the same).
-const std::vector<TypeSpec>& type_specs(int axes) {
-  static const std::vector<TypeSpec> capstan{
-      {"spring", {{"stiffness", kStiffness, false, false, 0, ""}, {"center", kLength, false, true, 0, ""}}},
-      {"wall", {{"position", kLength, false, false, 0, ""}, {"stiffness", kStiffness, false, false, 0, ""}}},
-      {"damper", {{"damping", kDamping, false, false, 0, ""}}},
-      {"texture",
-       {{"width", kLength, false, false, 0, ""},
-        {"damping", kDamping, false, false, 0, ""},
-        {"spacing", kLength, false, true, 0, "width"},
-        {"offset", kLength, false, true, 0, ""}}},
-  };
-  static const std::vector<TypeSpec> planar{
-      {"spring", {{"stiffness", kStiffness, false, false, 0, ""}, {"center", kLength, true, true, 0, ""}}},
-      {"damper", {{"damping", kDamping, false, false, 0, ""}}},
-      {"texture",
-       {{"width", kLength, false, false, 0, ""},
-        {"damping", kDamping, false, false, 0, ""},
-        {"spacing", kLength, false, true, 0, "width"},
-        {"offset", kLength, false, true, 0, ""}}},
-      {"wall", {{"point", kLength, true, false, 0, ""}, {"stiffness", kStiffness, false, false, 0, ""}}},
-      {"box", {{"min", kLength, true, false, 0, ""}, {"max", kLength, true, false, 0, ""},
-               {"stiffness", kStiffness, false, false, 0, ""}}},
-      {"circle", {{"center", kLength, true, false, 0, ""}, {"radius", kLength, false, false, 0, ""},
-                  {"stiffness", kStiffness, false, false, 0, ""}}},
-      {"polygon", {{"stiffness", kStiffness, false, false, 0, ""}}},
-  };
-  return axes == 1 ? capstan : planar;
-}
 
 // A JSON number, or a string with a unit of `quantity`, in SI (NaN when it is neither).
 double si_value(const nlohmann::json& value, Quantity quantity) {
@@ -232,14 +182,15 @@ void set_pose_bounded_stiffness(const PlanarScene& scene, const PlanarShapeGeome
                                 pose.x_m[0] * 1e3, pose.x_m[1] * 1e3, where.c_str());
 }
 
-// The slider's range for a value of `quantity` on axis `axis` (-1: not a component).
+// The slider's range for a value of `quantity` on axis `axis` (-1: not a component). A
+// length is a size (0 to the workspace's width) when `size`, else a place in the workspace.
 template <int N>
-void set_range(const Limits<N>& limits, const std::string& key, int axis, LiveParameter* p) {
+void set_range(const Limits<N>& limits, bool size, int axis, LiveParameter* p) {
   const int a = axis < 0 ? 0 : axis;
   const double span_m = limits.high_m[a] - limits.low_m[a];
   switch (p->quantity) {
     case Quantity::length_m:
-      if (key == "width" || key == "spacing" || key == "radius") {
+      if (size) {
         p->min = 0.0;
         p->max = span_m;
         p->range_from = "0 to the workspace's width";
@@ -370,14 +321,18 @@ std::vector<LiveParameter> live_parameters(const nlohmann::json& document, const
         p.quantity = param.has_unit ? param.quantity : Quantity::dimensionless;
         p.value = param.value_si;
         p.written = param.overridden;
-        set_range(limits, param.name, -1, &p);
+        // A script's lengths named as the built-in sizes are sizes too.
+        const bool size = param.name == "width" || param.name == "spacing" || param.name == "radius";
+        set_range(limits, size, -1, &p);
         out.push_back(std::move(p));
       }
       continue;
     }
-    const auto& specs = type_specs(N);
-    const auto spec = std::find_if(specs.begin(), specs.end(), [&](const TypeSpec& s) { return type == s.type; });
-    if (spec == specs.end()) continue;
+    // The type's declaration (engine/effects/effect_keys.hpp): its slidable keys.
+    const auto& declarations = SceneParts<N>::Effects::kDeclarations;
+    const auto declaration = std::find_if(declarations.begin(), declarations.end(),
+                                          [&](const EffectDeclaration& d) { return type == d.type; });
+    if (declaration == declarations.end()) continue;
     // 2-D: this effect's shape in the scene (null: not a shape, or disabled).
     const PlanarShapeGeometry* shape = nullptr;
     if constexpr (N > 1) {
@@ -395,28 +350,31 @@ std::vector<LiveParameter> live_parameters(const nlohmann::json& document, const
         }
       }
     }
-    for (const KeySpec& key : spec->keys) {
-      const bool written = effect.contains(key.key);
-      const int components = key.vector && N > 1 ? N : 1;
+    for (const EffectKey& key : declaration->keys) {
+      if (!key.slidable) continue;
+      const std::string name(key.name);
+      const bool written = effect.contains(name);
+      const int components = component_count(key, N);
       for (int axis = 0; axis < components; ++axis) {
         LiveParameter p;
         p.effect = index;
         p.type = type;
         p.quantity = key.quantity;
         p.written = written;
-        const int shown_axis = key.vector && N > 1 ? axis : -1;
-        p.parameter = shown_axis < 0 ? std::string(key.key) : std::string(key.key) + "/" + std::to_string(axis);
-        p.label = axis_label(key.key, shown_axis);
+        const int shown_axis = components > 1 ? axis : -1;
+        p.parameter = shown_axis < 0 ? name : name + "/" + std::to_string(axis);
+        p.label = axis_label(name, shown_axis);
+        const std::string from(key.fallback_from);
         if (written) {
-          const nlohmann::json& value = effect[key.key];
+          const nlohmann::json& value = effect[name];
           p.value = shown_axis < 0 ? si_value(value, key.quantity)
                                    : (value.is_array() && value.size() > static_cast<std::size_t>(axis)
                                           ? si_value(value[static_cast<std::size_t>(axis)], key.quantity)
                                           : std::nan(""));
-        } else if (key.default_from[0] != '\0' && effect.contains(key.default_from)) {
-          p.value = si_value(effect[key.default_from], key.quantity);
+        } else if (!from.empty() && effect.contains(from)) {
+          p.value = si_value(effect[from], key.quantity);
         } else {
-          p.value = key.fallback;
+          p.value = key.fallback_si;
         }
         if (!std::isfinite(p.value)) continue;
         if constexpr (N > 1) {
@@ -424,7 +382,8 @@ std::vector<LiveParameter> live_parameters(const nlohmann::json& document, const
             set_pose_bounded_stiffness(scene, shape, &p);
           }
         }
-        if (!p.bound_pose) set_range(limits, key.key, shown_axis, &p);
+        // A length whose range starts at zero is a size (a width, a radius), else a place.
+        if (!p.bound_pose) set_range(limits, key.range.min >= 0.0, shown_axis, &p);
         if (p.bound_pose && std::isfinite(p.value)) p.max = std::max(p.max, p.value);  // holds the value
         out.push_back(std::move(p));
       }

@@ -133,7 +133,7 @@ TEST_CASE("planar effect types: the table, the bank and its proxies") {
   std::vector<std::string_view> names;
   for (const PlanarEffectType& type : planar_effect_types()) names.push_back(type.name);
   CHECK(names ==
-        std::vector<std::string_view>{"spring", "wall", "box", "circle", "polygon", "damper", "texture", "script"});
+        std::vector<std::string_view>{"spring", "wall", "box", "circle", "polygon", "damper", "texture", "magnet", "script"});
 
   PlanarEffectBank bank;
   PlanarBuiltInEffects::add(bank, parse_effect(R"({"type": "spring", "stiffness": 100, "center": [0, 0.12]})"));

@@ -6,6 +6,7 @@
 #include "engine/base/json_source.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/base/type_hint.hpp"
+#include "engine/effects/declared_parse.hpp"
 
 namespace hapscene {
 namespace {
@@ -16,7 +17,7 @@ constexpr PlanarEffectType planar_effect_type() {
                             if constexpr (std::is_same_v<T, ScriptEffect>) {
                               return PlanarEffect{T::parse(reader, *budget, 2)};
                             } else {
-                              return PlanarEffect{T::parse(reader)};
+                              return PlanarEffect{parse_declared<T>(reader)};
                             }
                           }};
 }

@@ -1,10 +1,11 @@
 #pragma once
 // The list of 2-D built-in effect types (the 1-D list: engine/effects/effect_types.hpp),
-// for scenes of two axes (SceneParts<2>). A type is a
-// struct with kType, kNeeds, kUsesProxy, parse(ObjectReader&), can_act_within(min, max),
+// for scenes of two axes (SceneParts<2>). A type is a struct with its declaration
+// (engine/effects/effect_keys.hpp), kNeeds, kUsesProxy, can_act_within(min, max),
 // open_loop_force_N(input) and either force_N(input) (a field) or force_N(input, state)
 // (a shape with a proxy, kUsesProxy). The variant, the bank, its per-run proxy states and
 // the table of "type" names follow from the list.
+#include <array>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -17,6 +18,8 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "engine/effects/effect_groups.hpp"
+#include "engine/effects/effect_keys.hpp"
+#include "engine/effects/magnet.hpp"
 #include "engine/effects/planar/planar_fields.hpp"
 #include "engine/effects/planar/planar_input.hpp"
 #include "engine/effects/planar/planar_shapes.hpp"
@@ -32,6 +35,9 @@ struct PlanarEffectTypeList {
   // One effect of any of the types, plus 2-D scripts (which run in the Lua layer, not
   // in the bank: the tick adds them after it, as in 1-D).
   using Variant = std::variant<Types..., ScriptEffect>;
+
+  // Each type's declaration (engine/effects/effect_keys.hpp), in the order of the list.
+  static constexpr std::array<EffectDeclaration, sizeof...(Types)> kDeclarations{declaration_of<Types>()...};
 
   // A scene's 2-D effects grouped by type (in the order of the list; within a group in
   // the order of the file). The shapes' proxies live outside, in the run: one
@@ -70,6 +76,7 @@ struct PlanarEffectTypeList {
     template <typename T>
     [[gnu::always_inline]] void add_group_N(const PlanarInput& input, PlanarProxyState** proxy,
                                             Vec2* force_N) const noexcept {
+      if (!this->template has<T>()) return;
       for (const T& e : this->template group<T>()) {
         if constexpr (T::kUsesProxy) {
           *force_N += e.force_N(input, *(*proxy)++);
@@ -90,7 +97,8 @@ struct PlanarEffectTypeList {
 
 // The 2-D built-in effects, in the order the tick adds them up.
 using PlanarBuiltInEffects =
-    PlanarEffectTypeList<PlanarSpring, PlanarWall, PlanarBox, PlanarCircle, PlanarPolygon, PlanarDamper, PlanarTexture>;
+    PlanarEffectTypeList<PlanarSpring, PlanarWall, PlanarBox, PlanarCircle, PlanarPolygon, PlanarDamper, PlanarTexture,
+                         MagnetOf<2>>;
 using PlanarEffect = PlanarBuiltInEffects::Variant;
 using PlanarEffectBank = PlanarBuiltInEffects::Bank;
 

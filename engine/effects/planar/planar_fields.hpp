@@ -9,22 +9,29 @@
 //            1-D texture's rule for edges (engine/effects/texture.hpp: positions within
 //            a billionth of a period of an edge count as on it); there F = -B v, else 0.
 #include "engine/base/axes.hpp"
+#include "engine/effects/effect_keys.hpp"
 #include "engine/effects/planar/planar_input.hpp"
 #include "engine/effects/texture.hpp"
 
 namespace hapscene {
 
-class ObjectReader;
-
 struct PlanarSpring {
   static constexpr const char* kType = "spring";
   static constexpr Needs kNeeds{};
   static constexpr bool kUsesProxy = false;
+  static constexpr int kAxes = 2;
+  static constexpr const char* kDescription = "F = -K (p - center)";
 
   double stiffness_N_per_m{};
   Vec2 center_m{};
 
-  static PlanarSpring parse(ObjectReader& reader);
+  static constexpr auto keys() {
+    return std::array{
+        KeyOf<PlanarSpring>{effect_keys::stiffness(), [](PlanarSpring& e) { return &e.stiffness_N_per_m; }},
+        KeyOf<PlanarSpring>{effect_keys::place_or_origin("center", "center_m", KeyForm::vector),
+                            [](PlanarSpring& e) { return e.center_m.value; }},
+    };
+  }
 
   Vec2 force_N(const PlanarInput& in) const noexcept {
     return Vec2{{-stiffness_N_per_m * (in.x_m[0] - center_m[0]), -stiffness_N_per_m * (in.x_m[1] - center_m[1])}};
@@ -37,10 +44,15 @@ struct PlanarDamper {
   static constexpr const char* kType = "damper";
   static constexpr Needs kNeeds{.velocity = true};
   static constexpr bool kUsesProxy = false;
+  static constexpr int kAxes = 2;
+  static constexpr const char* kDescription = "F = -B v";
 
   double damping_N_s_per_m{};
 
-  static PlanarDamper parse(ObjectReader& reader);
+  static constexpr auto keys() {
+    return std::array{
+        KeyOf<PlanarDamper>{effect_keys::damping(), [](PlanarDamper& e) { return &e.damping_N_s_per_m; }}};
+  }
 
   Vec2 force_N(const PlanarInput& in) const noexcept {
     return Vec2{{-damping_N_s_per_m * in.v_m_per_s[0], -damping_N_s_per_m * in.v_m_per_s[1]}};
@@ -53,11 +65,24 @@ struct PlanarTexture {
   static constexpr const char* kType = "texture";
   static constexpr Needs kNeeds{.velocity = true};
   static constexpr bool kUsesProxy = false;
+  static constexpr int kAxes = 2;
+  static constexpr const char* kDescription = "damping bands";
 
   Texture bands;      // width, spacing, offset, damping and period along the direction
   Vec2 direction{};   // unit vector
 
-  static PlanarTexture parse(ObjectReader& reader);
+  static constexpr auto keys() {
+    return std::array{
+        KeyOf<PlanarTexture>{effect_keys::band_width(), [](PlanarTexture& e) { return &e.bands.width_m; }},
+        KeyOf<PlanarTexture>{effect_keys::damping("B within a field"),
+                             [](PlanarTexture& e) { return &e.bands.damping_N_s_per_m; }},
+        KeyOf<PlanarTexture>{effect_keys::band_spacing(), [](PlanarTexture& e) { return &e.bands.spacing_m; }},
+        KeyOf<PlanarTexture>{effect_keys::band_offset(), [](PlanarTexture& e) { return &e.bands.offset_m; }},
+        KeyOf<PlanarTexture>{effect_keys::direction("direction", "the direction across the bands"),
+                             [](PlanarTexture& e) { return e.direction.value; }},
+    };
+  }
+  static void finish_parse(ObjectReader&, PlanarTexture& texture) noexcept { texture.bands.derive_period(); }
 
   bool in_band(const Vec2& x_m) const noexcept {
     return bands.in_field(x_m[0] * direction[0] + x_m[1] * direction[1]);

@@ -13,14 +13,19 @@
 //   solid, else x: where the closed-loop proxy rests when the handle came in from outside
 //   the shortest way. The formulas are written out per shape below, in the order they are
 //   computed, so a script can reproduce them to the bit.
+#include <vector>
+
 #include "engine/base/axes.hpp"
+#include "engine/effects/effect_keys.hpp"
 #include "engine/effects/planar/planar_input.hpp"
 #include "engine/effects/planar/polygon_outline.hpp"
 #include "engine/effects/planar/proxy_state.hpp"
 
 namespace hapscene {
 
-class ObjectReader;
+// Most points a polygon may have: bounds the load's work (the grid and the crossing
+// check) and the memory of one effect.
+inline constexpr int kMaxPolygonPoints = 10000;
 
 // F = K (proxy - x) per component, the shapes' force law.
 inline Vec2 proxy_force_N(double stiffness_N_per_m, const Vec2& proxy_m, const Vec2& x_m) noexcept {
@@ -37,12 +42,26 @@ struct PlanarWall {
   static constexpr const char* kType = "wall";
   static constexpr Needs kNeeds{};
   static constexpr bool kUsesProxy = true;
+  static constexpr int kAxes = 2;
+  static constexpr const char* kDescription = "a half-plane wall";
 
   Vec2 point_m{};
   Vec2 normal{};  // unit: the normal as written divided by sqrt(nx nx + ny ny)
   double stiffness_N_per_m{};
 
-  static PlanarWall parse(ObjectReader& reader);
+  static constexpr auto keys() {
+    return std::array{
+        KeyOf<PlanarWall>{effect_keys::refused("position", "is a key of the 1-D wall: a 2-D wall takes \"point\": [x, y] and "
+                                                           "\"normal\": [nx, ny]")},
+        KeyOf<PlanarWall>{effect_keys::place("point", "point_m", KeyForm::vector, "a point of the wall's line"),
+                          [](PlanarWall& e) { return e.point_m.value; }},
+        KeyOf<PlanarWall>{effect_keys::direction("normal", "points out of the solid side"),
+                          [](PlanarWall& e) { return e.normal.value; }},
+        KeyOf<PlanarWall>{effect_keys::stiffness(), [](PlanarWall& e) { return &e.stiffness_N_per_m; }},
+        KeyOf<PlanarWall>{effect_keys::refused("solid", "is a key of the 1-D wall: a 2-D wall is solid on the side its "
+                                                        "normal points away from")},
+    };
+  }
 
   double depth_m(const Vec2& x_m) const noexcept {
     return (point_m[0] - x_m[0]) * normal[0] + (point_m[1] - x_m[1]) * normal[1];
@@ -76,6 +95,8 @@ struct PlanarBox {
   static constexpr const char* kType = "box";
   static constexpr Needs kNeeds{};
   static constexpr bool kUsesProxy = true;
+  static constexpr int kAxes = 2;
+  static constexpr const char* kDescription = "an axis-aligned box";
 
   Vec2 min_m{};
   Vec2 max_m{};
@@ -83,7 +104,21 @@ struct PlanarBox {
   bool solid_inside{true};
   PolygonOutline outline;  // built by make()
 
-  static PlanarBox parse(ObjectReader& reader);
+  static constexpr auto keys() {
+    return std::array{
+        KeyOf<PlanarBox>{effect_keys::place("min", "min_m", KeyForm::vector, "the lowest corner"),
+                         [](PlanarBox& e) { return e.min_m.value; }},
+        KeyOf<PlanarBox>{effect_keys::place("max", "max_m", KeyForm::vector, "the highest corner, above min on every axis"),
+                         [](PlanarBox& e) { return e.max_m.value; }, nullptr, nullptr, &check_max_above_min},
+        KeyOf<PlanarBox>{effect_keys::stiffness(), [](PlanarBox& e) { return &e.stiffness_N_per_m; }},
+        KeyOf<PlanarBox>{effect_keys::solid("inside", "outside", "solid_inside"), nullptr,
+                         [](PlanarBox& e) { return &e.solid_inside; }},
+    };
+  }
+  static void check_max_above_min(ObjectReader& reader, const PlanarBox& box);
+  static void finish_parse(ObjectReader&, PlanarBox& box) {
+    box = make(box.min_m, box.max_m, box.stiffness_N_per_m, box.solid_inside);
+  }
   // A box with its outline (min < max in both axes).
   static PlanarBox make(const Vec2& min_m, const Vec2& max_m, double stiffness_N_per_m, bool solid_inside);
 
@@ -118,13 +153,26 @@ struct PlanarCircle {
   static constexpr const char* kType = "circle";
   static constexpr Needs kNeeds{};
   static constexpr bool kUsesProxy = true;
+  static constexpr int kAxes = 2;
+  static constexpr const char* kDescription = "a circle";
 
   Vec2 center_m{};
   double radius_m{};
   double stiffness_N_per_m{};
   bool solid_inside{true};
 
-  static PlanarCircle parse(ObjectReader& reader);
+  static constexpr auto keys() {
+    return std::array{
+        KeyOf<PlanarCircle>{effect_keys::place("center", "center_m", KeyForm::vector),
+                            [](PlanarCircle& e) { return e.center_m.value; }},
+        KeyOf<PlanarCircle>{key("radius", KeyForm::number, Quantity::length_m, ranges::kRadius_m)
+                                .needed().slides().as("radius_m"),
+                            [](PlanarCircle& e) { return &e.radius_m; }},
+        KeyOf<PlanarCircle>{effect_keys::stiffness(), [](PlanarCircle& e) { return &e.stiffness_N_per_m; }},
+        KeyOf<PlanarCircle>{effect_keys::solid("inside", "outside", "solid_inside"), nullptr,
+                            [](PlanarCircle& e) { return &e.solid_inside; }},
+    };
+  }
 
   Vec2 open_loop_proxy_m(const Vec2& x_m) const noexcept;
   Vec2 open_loop_force_N(const PlanarInput& in) const noexcept {
@@ -141,12 +189,33 @@ struct PlanarPolygon {
   static constexpr const char* kType = "polygon";
   static constexpr Needs kNeeds{};
   static constexpr bool kUsesProxy = true;
+  static constexpr int kAxes = 2;
+  static constexpr const char* kDescription = "a simple polygon (3 to 10000 points)";
 
-  PolygonOutline outline;
+  PolygonOutline outline;  // built by finish_parse
   double stiffness_N_per_m{};
   FrictionCoefficients friction;
+  std::vector<Vec2> points_m;  // as written
+  bool solid_inside{true};
 
-  static PlanarPolygon parse(ObjectReader& reader);
+  static constexpr auto keys() {
+    return std::array{
+        KeyOf<PlanarPolygon>{key("points", KeyForm::points, Quantity::length_m, ranges::kPosition_m)
+                                 .needed().items(3, kMaxPolygonPoints).says("the corners of a simple outline, in order"),
+                             nullptr, nullptr, &read_points},
+        KeyOf<PlanarPolygon>{effect_keys::stiffness(), [](PlanarPolygon& e) { return &e.stiffness_N_per_m; }},
+        KeyOf<PlanarPolygon>{effect_keys::solid("inside", "outside", "solid_inside"), nullptr,
+                             [](PlanarPolygon& e) { return &e.solid_inside; }},
+        KeyOf<PlanarPolygon>{key("friction", KeyForm::friction, Quantity::dimensionless, ranges::kFrictionCoefficient)
+                                 .says("Coulomb friction on the edges, dynamic at most static"),
+                             nullptr, nullptr, &read_friction_key},
+    };
+  }
+  static void read_points(ObjectReader& reader, PlanarPolygon& polygon);
+  static void read_friction_key(ObjectReader& reader, PlanarPolygon& polygon);
+  static void finish_parse(ObjectReader&, PlanarPolygon& polygon) {
+    polygon.outline = PolygonOutline(polygon.points_m, polygon.solid_inside);
+  }
 
   Vec2 open_loop_proxy_m(const Vec2& x_m) const noexcept { return outline.open_loop_proxy(x_m); }
   Vec2 open_loop_force_N(const PlanarInput& in) const noexcept {

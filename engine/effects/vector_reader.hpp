@@ -1,30 +1,22 @@
 #pragma once
-// Reading the 2-D forms of an environment's effects: vectors [x, y] (each a number in SI
-// or a string with a unit, "10 mm"), directions, point lists, a shape's solid side and
-// friction. Errors carry the file and the JSON pointer down to the component:
+// Reading the vector forms of an environment's effects, for the kinds with more than one
+// axis (today the planar one): vectors [x, y] (each a number in SI or a string with a unit,
+// "10 mm"), directions, point lists, a shape's solid side and friction. Errors carry the file and the JSON pointer down to the component:
 // "env.json: /effects/2/center/1: must be in [-1000, 1000] m, got 5000 m".
 #include <string_view>
 #include <vector>
 
 #include "engine/base/axes.hpp"
 #include "engine/base/object_reader.hpp"
+#include "engine/base/physical_ranges.hpp"
 #include "engine/effects/planar/proxy_state.hpp"
 
 namespace hapscene {
 
-namespace ranges {
-// A friction coefficient: 10 is far beyond rubber on rubber (about 1 to 2).
-inline constexpr Range kFrictionCoefficient{0.0, 10.0};
-// A direction's components before normalising (any scale, finite and far from overflow).
-inline constexpr Range kDirectionComponent{-1e6, 1e6};
-// A circle's radius: positive, within the range of positions.
-inline constexpr Range kRadius_m{0.0, 1000.0, true};
-}  // namespace ranges
-
-// Most points a polygon may have: bounds the load's work (the grid and the crossing
-// check) and the memory of one effect.
-inline constexpr std::size_t kMaxPolygonPoints = 10000;
-
+// A vector of `count` components [x, y, ...] of `quantity`, each within `component`, into
+// out[0 .. count); false (out untouched) when the key is absent.
+bool read_components(ObjectReader& reader, std::string_view key, Quantity quantity, Range component, int count,
+                     double* out);
 // A required vector [x, y] of `quantity`, each component within `component`.
 Vec2 read_vector(ObjectReader& reader, std::string_view key, Quantity quantity, Range component);
 // The same, or `fallback` when the key is absent.

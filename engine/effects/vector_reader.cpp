@@ -1,4 +1,4 @@
-#include "engine/effects/planar/planar_reader.hpp"
+#include "engine/effects/vector_reader.hpp"
 
 #include <cmath>
 #include <string>
@@ -15,46 +15,68 @@ namespace {
   throw InputError(located_message(reader.file(), pointer, message));
 }
 
-// "[x, y] of lengths in m (or strings with a unit)": what a vector key takes, for messages.
-std::string vector_form(Quantity quantity) {
-  const std::string unit(si_unit(quantity));
-  if (unit.empty()) return "a 2-D vector [x, y] of numbers";
-  return "a 2-D vector [x, y] of " + std::string(quantity_name(quantity)) + "s in " + unit +
-         " (or strings with a unit)";
+// "[x, y]": the form of a vector of `count` components, for messages.
+std::string bracket_form(int count) {
+  std::string form = "[";
+  for (int i = 0; i < count; ++i) form += std::string(i ? ", " : "") + kAxisNames[i];
+  return form + "]";
 }
 
-// Reads one [x, y] value found at `pointer` (its components at pointer/0 and pointer/1).
-Vec2 vector_at(const ObjectReader& parent, const nlohmann::json& value,
-               const std::string& pointer, Quantity quantity, Range component) {
-  if (!value.is_array() || value.size() != 2) {
+// "a 2-D vector [x, y] of lengths in m (or strings with a unit)": what a vector key takes.
+std::string vector_form(Quantity quantity, int count) {
+  const std::string unit(si_unit(quantity));
+  const std::string head = "a " + std::to_string(count) + "-D vector " + bracket_form(count) + " of ";
+  if (unit.empty()) return head + "numbers";
+  return head + std::string(quantity_name(quantity)) + "s in " + unit + " (or strings with a unit)";
+}
+
+// Reads one [x, y] value found at `pointer` (its components at pointer/0, pointer/1, ...)
+// into out[0 .. count).
+void vector_at(const ObjectReader& parent, const nlohmann::json& value, const std::string& pointer,
+               Quantity quantity, Range component, int count, double* out) {
+  if (!value.is_array() || value.size() != static_cast<std::size_t>(count)) {
     std::string got = json_type_name(value);
     if (value.is_array()) got = "an array of " + std::to_string(value.size());
-    std::string message = "expected " + vector_form(quantity) + ", got " + got;
-    // A 1-D scene's form of the key (a single number or string) in a 2-D scene.
-    if (value.is_number() || value.is_string()) message += " (a 1-D form: a 2-D scene takes [x, y])";
+    std::string message = "expected " + vector_form(quantity, count) + ", got " + got;
+    // A 1-D scene's form of the key (a single number or string) in a scene of more axes.
+    if (value.is_number() || value.is_string()) {
+      message += " (a 1-D form: a " + std::to_string(count) + "-D scene takes " + bracket_form(count) + ")";
+    }
     fail_at(parent, pointer, message);
   }
-  const nlohmann::json pair = nlohmann::json::object({{"0", value[0]}, {"1", value[1]}});
-  ObjectReader holder(pair, pointer, parent.file(), parent.base_dir());
+  nlohmann::json components = nlohmann::json::object();
+  for (int i = 0; i < count; ++i) components[std::to_string(i)] = value[static_cast<std::size_t>(i)];
+  ObjectReader holder(components, pointer, parent.file(), parent.base_dir());
+  for (int i = 0; i < count; ++i) out[i] = holder.quantity(std::to_string(i), quantity, component);
+}
+
+Vec2 vector_at(const ObjectReader& parent, const nlohmann::json& value, const std::string& pointer,
+               Quantity quantity, Range component) {
   Vec2 result;
-  result[0] = holder.quantity("0", quantity, component);
-  result[1] = holder.quantity("1", quantity, component);
+  vector_at(parent, value, pointer, quantity, component, 2, result.value);
   return result;
 }
 
 }  // namespace
 
-Vec2 read_vector(ObjectReader& reader, std::string_view key, Quantity quantity, Range component) {
+bool read_components(ObjectReader& reader, std::string_view key, Quantity quantity, Range component, int count,
+                     double* out) {
   const nlohmann::json* value = reader.get(key);
-  if (value == nullptr) reader.fail_missing(key);
-  return vector_at(reader, *value, reader.pointer_to(key), quantity, component);
+  if (value == nullptr) return false;
+  vector_at(reader, *value, reader.pointer_to(key), quantity, component, count, out);
+  return true;
+}
+
+Vec2 read_vector(ObjectReader& reader, std::string_view key, Quantity quantity, Range component) {
+  Vec2 result;
+  if (!read_components(reader, key, quantity, component, 2, result.value)) reader.fail_missing(key);
+  return result;
 }
 
 Vec2 read_vector_or(ObjectReader& reader, std::string_view key, Quantity quantity, Vec2 fallback,
                     Range component) {
-  const nlohmann::json* value = reader.get(key);
-  if (value == nullptr) return fallback;
-  return vector_at(reader, *value, reader.pointer_to(key), quantity, component);
+  Vec2 result;
+  return read_components(reader, key, quantity, component, 2, result.value) ? result : fallback;
 }
 
 Vec2 read_direction(ObjectReader& reader, std::string_view key) {
