@@ -9,57 +9,18 @@
 //            1-D texture's rule for edges (engine/effects/texture.hpp: positions within
 //            a billionth of a period of an edge count as on it); there F = -B v, else 0.
 #include "engine/base/axes.hpp"
+#include "engine/effects/damper.hpp"
 #include "engine/effects/effect_keys.hpp"
 #include "engine/effects/planar/planar_input.hpp"
+#include "engine/effects/spring.hpp"
 #include "engine/effects/texture.hpp"
 
 namespace hapscene {
 
-struct PlanarSpring {
-  static constexpr const char* kType = "spring";
-  static constexpr Needs kNeeds{};
-  static constexpr bool kUsesProxy = false;
-  static constexpr int kAxes = 2;
-  static constexpr const char* kDescription = "F = -K (p - center)";
-
-  double stiffness_N_per_m{};
-  Vec2 center_m{};
-
-  static constexpr auto keys() {
-    return std::array{
-        KeyOf<PlanarSpring>{effect_keys::stiffness(), [](PlanarSpring& e) { return &e.stiffness_N_per_m; }},
-        KeyOf<PlanarSpring>{effect_keys::place_or_origin("center", "center_m", KeyForm::vector),
-                            [](PlanarSpring& e) { return e.center_m.value; }},
-    };
-  }
-
-  Vec2 force_N(const PlanarInput& in) const noexcept {
-    return Vec2{{-stiffness_N_per_m * (in.x_m[0] - center_m[0]), -stiffness_N_per_m * (in.x_m[1] - center_m[1])}};
-  }
-  Vec2 open_loop_force_N(const PlanarInput& in) const noexcept { return force_N(in); }
-  bool can_act_within(const Vec2&, const Vec2&) const noexcept { return stiffness_N_per_m != 0.0; }
-};
-
-struct PlanarDamper {
-  static constexpr const char* kType = "damper";
-  static constexpr Needs kNeeds{.velocity = true};
-  static constexpr bool kUsesProxy = false;
-  static constexpr int kAxes = 2;
-  static constexpr const char* kDescription = "F = -B v";
-
-  double damping_N_s_per_m{};
-
-  static constexpr auto keys() {
-    return std::array{
-        KeyOf<PlanarDamper>{effect_keys::damping(), [](PlanarDamper& e) { return &e.damping_N_s_per_m; }}};
-  }
-
-  Vec2 force_N(const PlanarInput& in) const noexcept {
-    return Vec2{{-damping_N_s_per_m * in.v_m_per_s[0], -damping_N_s_per_m * in.v_m_per_s[1]}};
-  }
-  Vec2 open_loop_force_N(const PlanarInput& in) const noexcept { return force_N(in); }
-  bool can_act_within(const Vec2&, const Vec2&) const noexcept { return damping_N_s_per_m != 0.0; }
-};
+// The spring and the damper are the same law in every N (engine/effects/spring.hpp,
+// engine/effects/damper.hpp).
+using PlanarSpring = SpringOf<2>;
+using PlanarDamper = DamperOf<2>;
 
 struct PlanarTexture {
   static constexpr const char* kType = "texture";
