@@ -75,12 +75,6 @@ struct EffectTypeList {
   };
 };
 
-// Whether an effect variant can hold script effects (the 1-DOF list's does).
-template <typename Variant>
-inline constexpr bool kHoldsScripts = false;
-template <typename... Types>
-inline constexpr bool kHoldsScripts<std::variant<Types...>> = (std::is_same_v<Types, ScriptEffect> || ...);
-
 // The built-in effects of 1-DOF scenes, in the order the tick adds them up.
 using BuiltInEffects = EffectTypeList<1, Spring, Wall, Damper, Texture, MagnetOf<1>>;
 

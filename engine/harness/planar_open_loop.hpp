@@ -20,11 +20,6 @@ namespace hapscene {
 using PlanarOpenLoopScan = OpenLoopScanOf<2>;
 using PlanarOpenLoop = OpenLoopOf<2>;
 
-// "x 12.00 mm, y 130.00 mm, v (0, 0) m/s, t 0 s": a point, for messages.
-inline std::string describe_planar_point(const Vec2& x_m, const Vec2& v_m_per_s, double t_s) {
-  return describe_point(x_m, v_m_per_s, t_s);
-}
-
 // The grid step of 2-D validate's open-loop scan for script faults (docs/reference/
 // validate.md, "Validation in 2-D"), as test specs' region and fault scans use (kPlanarSpecGridStep_m).
 inline constexpr double kPlanarFaultScanStep_m = 1e-3;

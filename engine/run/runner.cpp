@@ -243,9 +243,7 @@ RunSummaryOf<N> run_scene(const SceneOf<N>& initial_scene, std::type_identity_t<
   summary.scene_name = hot_swap.scene().name;
   std::size_t script_index = 0;
   for (const auto& effect : hot_swap.scene().effects) {
-    const ScriptEffect* script = nullptr;
-    if constexpr (kHoldsScripts<typename SceneParts<N>::Effects::Variant>) script = std::get_if<ScriptEffect>(&effect);
-    if (script != nullptr) {
+    if (const ScriptEffect* script = std::get_if<ScriptEffect>(&effect)) {
       const ScriptInstance& instance = *state.scripts[script_index++];
       summary.scripts.push_back(ScriptReport{script->program->display_name, instance.disabled(),
                                              std::string(instance.fault_message()),

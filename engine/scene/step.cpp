@@ -34,12 +34,10 @@ ScriptList make_script_instances(const SceneOf<N>& scene) {
   // One sandboxed instance per script effect, in scene order (ScriptEffect::instance_index).
   ScriptList scripts;
   scripts.reserve(scene.script_count);
-  if constexpr (kHoldsScripts<typename SceneParts<N>::Effects::Variant>) {
-    for (const auto& effect : scene.effects) {
-      if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
-        scripts.push_back(ScriptInstance::create(*script->program));
-        scripts.back()->reset();
-      }
+  for (const auto& effect : scene.effects) {
+    if (const auto* script = std::get_if<ScriptEffect>(&effect)) {
+      scripts.push_back(ScriptInstance::create(*script->program));
+      scripts.back()->reset();
     }
   }
   return scripts;

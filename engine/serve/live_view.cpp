@@ -31,16 +31,17 @@
 #include "engine/base/file_replace.hpp"
 #include "engine/base/json_source.hpp"
 #include "engine/harness/planar_report.hpp"
-#include "engine/harness/planar_shape_list.hpp"
 #include "engine/harness/planar_validate.hpp"
 #include "engine/harness/report.hpp"
 #include "engine/harness/validate.hpp"
 #include "engine/load/environment.hpp"
-#include "engine/serve/capstan_sketch.hpp"
 #include "engine/serve/connection_gate.hpp"
+#include "engine/serve/live_job.hpp"
+#include "engine/serve/live_requests.hpp"
 #include "engine/serve/parameters.hpp"
 #include "engine/serve/stream_tap.hpp"
 #include "engine/serve/ui_assets.hpp"
+#include "engine/serve/version_description.hpp"
 
 namespace hapscene {
 namespace {
@@ -51,84 +52,6 @@ using Clock = std::chrono::steady_clock;
 // The ring between the loop and the pump: 16384 samples (16 s at 1 kHz); the pump empties
 // it 50 times a second.
 constexpr std::size_t kTapCapacity = 1u << 14;
-// The largest request body taken, however it is sent (a parameter change is ~100 bytes).
-constexpr std::size_t kMaxRequestBodyBytes = std::size_t{1} << 16;
-
-std::atomic<std::uint64_t> g_abandoned_jobs{0};
-
-// The state a job's thread shares with the handler waiting for it (either may go first).
-template <class T>
-struct JobState {
-  std::mutex mutex;
-  std::condition_variable done_wake;
-  bool done{};
-  std::optional<T> result;
-  std::optional<std::string> error;  // what `work` threw: its message
-};
-
-// Runs `work` (a load, a validate: seconds, maybe) on a thread of its own and waits for
-// it until it is done or `stopping` is set; then it is abandoned (nullopt): its thread
-// finishes alone on the copies it captured, and the process ends with std::_Exit
-// (abandoned_live_view_jobs()). So no handler keeps the view from stopping. `work`
-// must capture only copies. Throws std::runtime_error with the message of what `work`
-// threw: only the text crosses threads, never the exception object (whose reference count
-// lives in the uninstrumented C++ runtime: ThreadSanitizer saw its release on the job's
-// thread race with the handler's read of its message).
-template <class T, class Work>
-std::optional<T> run_job(Work work, const std::atomic<bool>& stopping) {
-  if (stopping.load()) return std::nullopt;
-  auto state = std::make_shared<JobState<T>>();
-  std::thread([state, work = std::move(work)]() mutable {
-    std::optional<T> result;
-    std::optional<std::string> error;
-    try {
-      result.emplace(work());
-    } catch (const std::exception& thrown) {
-      error = thrown.what();
-    } catch (...) {
-      error = "an unknown error";
-    }
-    std::lock_guard lock(state->mutex);
-    state->result = std::move(result);
-    state->error = std::move(error);
-    state->done = true;
-    state->done_wake.notify_all();
-  }).detach();
-  std::unique_lock lock(state->mutex);
-  while (!state->done) {
-    if (stopping.load()) {
-      ++g_abandoned_jobs;
-      return std::nullopt;
-    }
-    state->done_wake.wait_for(lock, std::chrono::milliseconds(20));
-  }
-  if (state->error) throw std::runtime_error(*state->error);
-  return std::move(state->result);
-}
-
-// 128 random bits as hex, from the system's random source.
-std::string new_token() {
-  std::random_device source;
-  std::string token;
-  static const char* kHex = "0123456789abcdef";
-  for (int i = 0; i < 8; ++i) {
-    const unsigned int word = source();
-    for (int k = 0; k < 4; ++k) token.push_back(kHex[(word >> (4 * k)) & 0xf]);
-  }
-  return token;
-}
-
-// Compares without an early exit, so the time taken says nothing about the token.
-bool same_token(const std::string& given, const std::string& token) {
-  if (given.size() != token.size()) return false;
-  unsigned char difference = 0;
-  for (std::size_t i = 0; i < token.size(); ++i) difference |= static_cast<unsigned char>(given[i] ^ token[i]);
-  return difference == 0;
-}
-
-json axes_json(double value) { return value; }
-json axes_json(const Vec2& value) { return json::array({value[0], value[1]}); }
-
 // The first overrun limit passed, in the terminal's words ("" when none was).
 std::string overrun_text(const LoopMonitor& monitor) {
   if (monitor.overrun_kind() == OverrunFault::none) return {};
@@ -179,37 +102,6 @@ std::filesystem::file_time_type stamp_of(const std::string& path) {
   return error ? std::filesystem::file_time_type{} : stamp;
 }
 
-void error_response(httplib::Response& res, int status, const std::string& message) {
-  res.status = status;
-  res.set_content(json{{"error", message}}.dump(), "application/json");
-}
-
-// Reads a request's body into `body`, at most kMaxRequestBodyBytes however it is sent
-// (Content-Length, chunked, or until the connection ends): false, with the response
-// set (413 or 400) and the connection to be closed, when it is larger or cannot be read.
-// A request with neither a length nor chunks (`curl -X POST`) has an empty body.
-bool read_body(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader,
-               std::string* body) {
-  if (!req.has_header("Content-Length") && !req.has_header("Transfer-Encoding")) return true;
-  bool too_large = false;
-  const bool read = reader([&](const char* data, std::size_t length) {
-    if (body->size() + length > kMaxRequestBodyBytes) {
-      too_large = true;
-      return false;
-    }
-    body->append(data, length);
-    return true;
-  });
-  if (read && !too_large) return true;
-  GatedServer::close_after_response();
-  if (too_large) {
-    error_response(res, 413, "request body: larger than " + std::to_string(kMaxRequestBodyBytes) + " bytes");
-  } else {
-    error_response(res, 400, "request body: could not be read whole");
-  }
-  return false;
-}
-
 // A client of /api/stream: its events waiting to be written, and what it missed.
 struct StreamClient {
   std::deque<std::string> queue;
@@ -219,101 +111,9 @@ struct StreamClient {
 
 }  // namespace
 
-std::uint64_t abandoned_live_view_jobs() noexcept { return g_abandoned_jobs.load(); }
-
 std::uint64_t live_stride(double rate_hz) {
   return static_cast<std::uint64_t>(std::max(1.0, std::ceil(rate_hz / kLiveMaxTicksPerSecond)));
 }
-
-// A version of the environment as the page sees it: its parameters and GET /api/scene's
-// body (without the run's state).
-struct VersionDescription {
-  std::vector<LiveParameter> parameters;
-  json scene_json;
-};
-
-// Loads a version of the environment from text, as a reload loads the file.
-template <int N>
-std::unique_ptr<LoadedSceneOf<N>> load_version(const std::string& text, const std::string& path,
-                                               const std::string& base_dir) {
-  if constexpr (N == 1) {
-    return make_loaded_scene<1>(load_environment_text(text, path, base_dir));
-  } else {
-    return make_loaded_scene<2>(load_planar_environment_text(text, path, base_dir));
-  }
-}
-
-// The description of `text` compiled as `scene`; `stride`: the stream's.
-template <int N>
-VersionDescription describe_version(const SceneOf<N>& scene, const std::string& text, const std::string& path,
-                                    std::uint64_t stride) {
-  const json document = json::parse(text);
-  VersionDescription out;
-  out.parameters = live_parameters<N>(document, scene);
-  json device{{"name", scene.device.name},
-              {"max_force_N", scene.safety.max_force_N},
-              {"slew_limit_N_per_s", scene.safety.slew_limit_N_per_s},
-              {"soft_start_s", scene.safety.soft_start_s},
-              {"workspace_min_m", axes_json(scene.safety.workspace_min_m)},
-              {"workspace_max_m", axes_json(scene.safety.workspace_max_m)}};
-  json effects = json::array();
-  if (document.contains("effects") && document["effects"].is_array()) {
-    for (std::size_t i = 0; i < document["effects"].size(); ++i) {
-      const json& effect = document["effects"][i];
-      json item{{"effect", i}};
-      item["type"] = effect.is_object() && effect.contains("type") ? effect["type"] : json(nullptr);
-      item["enabled"] = !(effect.is_object() && effect.contains("enabled") && effect["enabled"] == false);
-      if (effect.is_object() && effect.contains("file")) item["file"] = effect["file"];
-      effects.push_back(item);
-    }
-  }
-  json shapes = json::array();
-  json force_curve = nullptr;
-  std::string force_curve_note;
-  if constexpr (N == 1) {
-    shapes = capstan_shapes_json(scene);
-    force_curve = static_force_curve_json(scene, &force_curve_note);
-  } else {
-    for (const PlanarShapeGeometry& shape : planar_shape_list(scene)) {
-      json s{{"kind", planar_shape_kind_name(shape.kind)}, {"solid_inside", shape.solid_inside}};
-      if (shape.kind == PlanarShapeKind::wall) {
-        s["point_m"] = axes_json(shape.point_m);
-        s["normal"] = axes_json(shape.normal);
-      } else if (shape.kind == PlanarShapeKind::circle) {
-        s["center_m"] = axes_json(shape.center_m);
-        s["radius_m"] = shape.radius_m;
-      } else {
-        json points = json::array();
-        for (const Vec2& p : shape.points_m) points.push_back(axes_json(p));
-        s["points_m"] = points;
-      }
-      shapes.push_back(s);
-    }
-  }
-  json params = json::array();
-  for (const LiveParameter& p : out.parameters) params.push_back(parameter_to_json(p));
-  out.scene_json = json{{"name", scene.name},
-                        {"file", path},
-                        {"axes", N},
-                        {"rate_hz", scene.rate_hz},
-                        {"device", device},
-                        {"stream", {{"events_per_s", kLiveEventsPerSecond}, {"stride", stride}}},
-                        {"effects", effects},
-                        {"parameters", params},
-                        {"shapes", shapes}};
-  if constexpr (N == 1) {
-    out.scene_json["force_curve"] = force_curve;
-    if (!force_curve_note.empty()) out.scene_json["force_curve_note"] = force_curve_note;
-  }
-  return out;
-}
-
-// A version loaded and described (on a job's thread).
-template <int N>
-struct PreparedVersion {
-  std::unique_ptr<LoadedSceneOf<N>> loaded;
-  VersionDescription description;
-};
 
 template <int N>
 struct LiveViewOf<N>::Impl {
