@@ -111,14 +111,15 @@ const SceneOf<N>& compiled(const LoadedScene& s) {
 
 // Script faults and what the points mean, as the CLI prints them on stderr: here Python
 // warnings (hapscene.ScriptFaultWarning), one per line.
-void warn_lines(const ScriptBehaviour& behaviour, double t_s, const ScriptFaultLog& faults) {
+// `among`: where the points were, as the CLI's probe says it ("in the workspace", "in the grid").
+void warn_lines(const ScriptBehaviour& behaviour, double t_s, const ScriptFaultLog& faults, std::string_view among) {
   const py::object warn = py::module_::import("warnings").attr("warn");
   const py::object category = py::module_::import("hapscene").attr("ScriptFaultWarning");
   if (!behaviour.static_field()) {
     warn(printf_string("note: %s; each point is from fresh instances at t = %g s", behaviour.note.c_str(), t_s),
          category, 2);
   }
-  for (const std::string& line : faults.lines()) warn(line, category, 2);
+  for (const std::string& line : faults.report_lines(among)) warn(line, category, 2);
 }
 
 void check_points(std::size_t points) {
@@ -166,7 +167,7 @@ py::dict probe_capstan(const LoadedScene& s, const Array& x, double v_m_per_s, d
       faults = open_loop.faults();
     });
   }
-  warn_lines(behaviour, t_s, faults);
+  warn_lines(behaviour, t_s, faults, "in the workspace");
   py::dict out;
   out["x_m"] = array_like(x, x_m);
   out["v_m_per_s"] = array_like(x, v);
@@ -202,7 +203,7 @@ py::dict probe_planar(const LoadedScene& s, const Array& x, const Array& y, cons
       faults = open_loop.faults();
     });
   }
-  warn_lines(behaviour, t_s, faults);
+  warn_lines(behaviour, t_s, faults, "in the grid");
   static const char* kNames[8] = {"x_m",       "y_m",       "vx_m_per_s", "vy_m_per_s",
                                   "force_x_N", "force_y_N", "output_x_N", "output_y_N"};
   py::dict out;

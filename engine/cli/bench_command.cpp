@@ -522,11 +522,7 @@ int bench_command(std::vector<std::string> args) {
   for (const auto& loop : call_loops) collect(loop.get(), "the Lua springs' force calls");
   for (std::size_t i = 0; i < scenes.size(); ++i) collect(environments[i].lua_vm.get(), scenes[i].name + ", Lua, VM only");
   flush_out();
-  for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
-  if (faults.omitted()) {
-    std::fprintf(stderr, "... and script faults with other messages (only the %zu first are shown)\n",
-                 ScriptFaultLog::kMaxMessages);
-  }
+  for (const std::string& line : faults.report_lines()) std::fprintf(stderr, "%s\n", line.c_str());
   if (!faults.empty()) {
     std::fprintf(stderr, "hapscene bench: a script faulted and was disabled; its rows timed 0 N, not the script\n");
   }

@@ -108,11 +108,7 @@ int plot_planar(const Arguments& arguments, const std::string& file, const PlotT
     std::fprintf(stderr, "note: %s: %s; the figure shows the force field only\n", scenario.name.c_str(),
                  scenario.description.c_str());
   }
-  for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
-  if (faults.omitted()) {
-    std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the workspace are shown)\n",
-                 ScriptFaultLog::kMaxMessages);
-  }
+  for (const std::string& line : faults.report_lines("in the workspace")) std::fprintf(stderr, "%s\n", line.c_str());
   // A script fault, or a non-finite force the run's safety stage zeroed, is a fault seen.
   return faults.empty() && run.summary.safety.nonfinite_faults == 0 ? kExitOk : kExitFailure;
 }
@@ -167,11 +163,7 @@ int plot_command(std::vector<std::string> args) {
     if (too_slow.empty() && check.name == "pace" && !check.pass) too_slow = check.detail;
   }
   if (!too_slow.empty()) std::fprintf(stderr, "pace: %s\n", too_slow.c_str());
-  for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
-  if (faults.omitted()) {
-    std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the workspace are shown)\n",
-                 ScriptFaultLog::kMaxMessages);
-  }
+  for (const std::string& line : faults.report_lines("in the workspace")) std::fprintf(stderr, "%s\n", line.c_str());
   return faults.empty() && too_slow.empty() ? kExitOk : kExitFailure;
 }
 

@@ -292,10 +292,8 @@ int probe_environment(const Arguments& arguments, const SceneOf<N>& scene, const
                  t_s);
   }
   const ScriptFaultLog& faults = open_loop.faults();
-  for (const std::string& fault : faults.lines()) std::fprintf(stderr, "%s\n", fault.c_str());
-  if (faults.omitted()) {
-    std::fprintf(stderr, "... and script faults with other messages (only the %zu first in the %s are shown)\n",
-                 ScriptFaultLog::kMaxMessages, N == 1 ? "workspace" : "grid");
+  for (const std::string& line : faults.report_lines(N == 1 ? "in the workspace" : "in the grid")) {
+    std::fprintf(stderr, "%s\n", line.c_str());
   }
   return faults.empty() ? kExitOk : kExitFailure;
 }

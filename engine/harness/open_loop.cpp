@@ -143,6 +143,15 @@ void ScriptFaultLog::collect(const ScriptList& scripts, const std::string& where
   }
 }
 
+std::vector<std::string> ScriptFaultLog::report_lines(std::string_view among) const {
+  std::vector<std::string> out = lines_;
+  if (omitted_) {
+    out.push_back("... and script faults with other messages (only the " + std::to_string(kMaxMessages) + " first" +
+                  (among.empty() ? std::string() : " " + std::string(among)) + " are shown)");
+  }
+  return out;
+}
+
 void ScriptFaultLog::merge(const ScriptFaultLog& other) {
   for (std::size_t i = 0; i < other.messages_.size(); ++i) insert(other.messages_[i], other.lines_[i], other.keys_[i]);
   omitted_ = omitted_ || other.omitted_;

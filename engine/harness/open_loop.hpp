@@ -20,6 +20,7 @@
 // with CheckInterrupted when its thread was asked to stop (stop_request.hpp).
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/harness/scan_pace.hpp"
@@ -45,9 +46,10 @@ class ScriptFaultLog {
   static constexpr std::size_t kMaxMessages = 20;
 
   const std::vector<std::string>& lines() const { return lines_; }
-  // Whether a message was left out because kMaxMessages others were kept (not how many
-  // times: that would depend on the order of the calls).
-  bool omitted() const { return omitted_; }
+  // What a command prints of them, one line each: lines(), then, when some were omitted,
+  // "... and script faults with other messages (only the 20 first `among` are shown)"
+  // (`among`: "in the workspace", "in the grid", or empty).
+  std::vector<std::string> report_lines(std::string_view among = {}) const;
   const std::vector<std::string>& messages() const { return messages_; }
   bool empty() const { return lines_.empty(); }
 
@@ -58,7 +60,8 @@ class ScriptFaultLog {
   std::vector<std::string> messages_;  // the bare messages, for deduplication
   std::vector<std::string> lines_;     // message plus where
   std::vector<double> keys_;
-  bool omitted_{};
+  bool omitted_{};  // a message was left out because kMaxMessages others were kept (not
+                    // how many times: that would depend on the order of the calls)
 };
 
 // What the script effects of a scene do beyond a fixed function of (x, v).

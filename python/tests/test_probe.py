@@ -88,3 +88,16 @@ def test_script_faults_are_warnings(tmp_path):
     faulted = expected["x_m"] > 0.01
     assert faulted.any() and np.isnan(got["force_N"][faulted]).all() and np.isnan(got["output_N"][faulted]).all()
     assert not np.isnan(got["force_N"][~faulted]).any()
+
+
+def test_a_flood_of_distinct_faults_is_bounded_as_the_cli_bounds_it(tmp_path):
+    env = tmp_path / "distinct.lua"
+    env.write_text("function force(s)\n  if s.x > 0.001 then error(\"at \" .. math.floor(s.x * 1000 + 0.3) .. \" mm\") end\n"
+                   "  return 0\nend\n")
+    cli = run_cli("probe", env, "--x", "-10mm:40mm:0.25mm", check_code=1)
+    _, expected = read_csv(cli.stdout)
+    with pytest.warns(hapscene.ScriptFaultWarning) as warned:
+        hapscene.load(env).probe(expected["x_m"])
+    lines = [str(w.message) for w in warned]
+    assert lines == cli.stderr.splitlines()
+    assert len(lines) == 21 and lines[-1].startswith("... and script faults with other messages (only the 20 first")
