@@ -215,5 +215,11 @@ int library_index(lua_State* L);
 // lua_CFunction: after the chunk ran, checks force/reset/needs/params and sets up `s`
 // and the stack slots. Failures are stored in vm->load_error.
 int finish_load(lua_State* L);
+// Stores the first load error (printf-style) in vm->load_error; it is thrown as an
+// InputError once the Lua call returns. Never raises.
+void set_load_error(ScriptVm* vm, const char* format, ...) __attribute__((format(printf, 2, 3)));
+// Shapes (script_shapes.cpp): checks the optional `shapes` list (at `index`) and stores
+// it in vm->shapes; false, with vm->load_error set, on the first bad entry.
+bool check_shapes(lua_State* L, int index, ScriptVm* vm);
 
 }  // namespace hapscene::detail
