@@ -313,7 +313,6 @@ LoadedScene loads_scene(const py::handle& source, const py::object& base_dir_val
 // Every built-in effect type's declaration (engine/effects/effect_keys.hpp), for tools
 // that build forms or check files: [{"type", "axes", "description", "keys": [...]}].
 py::list effect_types() {
-  static constexpr const char* kForms[] = {"number", "vector", "direction", "choice", "flag", "points", "friction", "refused"};
   py::list out;
   const auto add = [&](const EffectDeclaration& declaration) {
     py::list keys;
@@ -321,7 +320,7 @@ py::list effect_types() {
       if (key.form == KeyForm::refused) continue;
       py::dict k;
       k["name"] = std::string(key.name);
-      k["form"] = kForms[static_cast<int>(key.form)];
+      k["form"] = std::string(form_name(key.form));
       k["quantity"] = std::string(quantity_name(key.quantity));
       k["unit"] = std::string(si_unit(key.quantity));
       k["required"] = key.required;

@@ -39,6 +39,21 @@ enum class KeyForm {
   refused,    // a key of another form of the effect: refused, `description` says why
 };
 
+// The form's name, as tools show it ("number", "vector", ...).
+constexpr std::string_view form_name(KeyForm form) {
+  switch (form) {
+    case KeyForm::number: return "number";
+    case KeyForm::vector: return "vector";
+    case KeyForm::direction: return "direction";
+    case KeyForm::choice: return "choice";
+    case KeyForm::flag: return "flag";
+    case KeyForm::points: return "points";
+    case KeyForm::friction: return "friction";
+    case KeyForm::refused: return "refused";
+  }
+  return "";
+}
+
 // One key of an effect, as every tool sees it. Built from key() and the setters below
 // (each returns a changed copy), so a declaration reads as a sentence:
 //   key("radius", KeyForm::number, Quantity::length_m, ranges::kRadius_m).needed().slides().as("radius_m")

@@ -353,9 +353,8 @@ namespace {
 // A user's file: its warnings go to stderr at every load, whatever the command (scenes a
 // command builds from its own text, such as the bench's, keep theirs in the scene).
 template <int N>
-const EnvironmentOf<N>& print_warnings(const EnvironmentOf<N>& loaded) {
+void print_warnings(const EnvironmentOf<N>& loaded) {
   for (const std::string& warning : loaded.scene.load_warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
-  return loaded;
 }
 
 // The folder relative paths in a file are taken from.
@@ -390,7 +389,9 @@ EnvironmentOf<N> compile_environment_of(std::string_view json_text, const std::s
 
 template <int N>
 EnvironmentOf<N> load_environment_of(const std::string& path) {
-  return print_warnings(compile_environment_of<N>(environment_text_of(path), path, base_dir_of(path)));
+  EnvironmentOf<N> loaded = compile_environment_of<N>(environment_text_of(path), path, base_dir_of(path));
+  print_warnings(loaded);
+  return loaded;  // moved, not copied
 }
 
 AnyEnvironment compile_any_environment(std::string_view json_text, const std::string& display_name,

@@ -93,7 +93,7 @@ void HilHapkit::substep(double h_s, bool move_plant, bool host_receives) noexcep
 }
 
 std::string HilHapkit::report() const {
-  std::string lines = board_report(link_, static_cast<std::int64_t>(start_cycle_ * 125 / 2)) + world_.report();
+  std::string lines = board_report(link_, SimulatedBoard::cycles_to_ns(start_cycle_)) + world_.report();
   if (board_.lost()) {
     lines += "  FAULT            " + board_.failure() + ": zero force commanded, run stopped\n";
   }

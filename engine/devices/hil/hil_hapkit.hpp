@@ -91,7 +91,7 @@ class HilHapkit final : public Device, public SimulationTruth {
   // The host's time: the board's (simulated) in lock-step, the wall clock's while paced;
   // never backwards across the switch.
   std::int64_t now_ns() const noexcept;
-  std::int64_t board_ns() const noexcept { return static_cast<std::int64_t>(board_.cycle() * 125 / 2); }
+  std::int64_t board_ns() const noexcept { return SimulatedBoard::cycles_to_ns(board_.cycle()); }
   // Runs the board for one substep of h_s, then moves the plant with its motor force;
   // in lock-step the host's link then receives what the board sent (`host_receives`).
   void substep(double h_s, bool move_plant, bool host_receives) noexcept;

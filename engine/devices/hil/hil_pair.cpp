@@ -58,7 +58,7 @@ HilPair::~HilPair() {
 // Simulated time from joint 1's board's cycle counter (62.5 ns per cycle at 16 MHz); both
 // boards run to the same cycle.
 std::int64_t HilPair::now_ns() const noexcept {
-  return static_cast<std::int64_t>(joints_[0].board.cycle() * 125 / 2);
+  return SimulatedBoard::cycles_to_ns(joints_[0].board.cycle());
 }
 
 PlanarReading HilPair::read() noexcept { return pair_.read(now_ns()); }
@@ -104,7 +104,7 @@ Vec2 HilPair::motor_force_N() const noexcept {
 
 std::string HilPair::report() const {
   std::string lines = pair_.report({"simulated board 1", "simulated board 2"},
-                                   static_cast<std::int64_t>(start_cycle_ * 125 / 2));
+                                   SimulatedBoard::cycles_to_ns(start_cycle_));
   for (std::size_t i = 0; i < 2; ++i) {
     if (joints_[i].board.lost()) {
       lines += "  FAULT            joint " + std::to_string(i + 1) + "'s board: " + joints_[i].board.failure() +

@@ -45,6 +45,8 @@ class SimulatedBoard {
   void start_run_until(std::uint64_t cycle) noexcept;
   void finish_run() noexcept;
   std::uint64_t cycle() const noexcept { return cycle_; }
+  // A count of the 16 MHz clock's cycles as board time: 62.5 ns each.
+  static std::int64_t cycles_to_ns(std::uint64_t cycles) noexcept { return static_cast<std::int64_t>(cycles * 125 / 2); }
 
   // The MR sensor output as the ADC will convert it (clamped to 0..1023 counts).
   void set_sensor_counts(std::int32_t counts) noexcept { sensor_counts_ = counts; }
