@@ -60,7 +60,8 @@ class Scene:
 def effect_types() -> list[dict[str, Any]]:
     """Every built-in effect type of every number of axes as the engine declares it:
     "type", "axes", "description" and "keys" (name, form, quantity, unit, required, min,
-    max, default or default_from, choices, slidable, field, description)."""
+    min_excluded, max, min_items and max_items of points, default or default_from,
+    choices, slidable, field, description)."""
     ...
 
 def load(path: PathLike) -> Scene:

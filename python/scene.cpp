@@ -324,12 +324,20 @@ py::list effect_types() {
       k["quantity"] = std::string(quantity_name(key.quantity));
       k["unit"] = std::string(si_unit(key.quantity));
       k["required"] = key.required;
-      if (key.form == KeyForm::number || key.form == KeyForm::vector) {
+      const bool numbers = key.form == KeyForm::number || key.form == KeyForm::vector || key.form == KeyForm::points ||
+                           key.form == KeyForm::friction;
+      if (numbers) {
         k["min"] = key.range.min;
+        k["min_excluded"] = key.range.min_excluded;
         k["max"] = key.range.max;
+      }
+      if (key.form == KeyForm::points) {
+        k["min_items"] = key.min_items;
+        k["max_items"] = key.max_items;
       }
       if (!key.required && !key.fallback_from.empty()) k["default_from"] = std::string(key.fallback_from);
       else if (!key.required && (key.form == KeyForm::number || key.form == KeyForm::vector)) k["default"] = key.fallback_si;
+      else if (!key.required && key.form == KeyForm::flag) k["default"] = key.fallback_si != 0.0;
       if (key.form == KeyForm::choice) k["choices"] = py::make_tuple(std::string(key.choices[0]), std::string(key.choices[1]));
       k["slidable"] = key.slidable;
       k["field"] = key.field.empty() ? py::object(py::none()) : py::object(py::str(std::string(key.field)));

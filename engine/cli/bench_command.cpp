@@ -450,9 +450,11 @@ int bench_command(std::vector<std::string> args) {
     if (e.baseline) {
       // The like-for-like row: the sketch called out of line (row 2), in the same rounds.
       const double sketch_call_ns = row_costs[2].median_ns;
-      const double ratio = sketch_call_ns > 0.0 ? builtin_cost.median_ns / sketch_call_ns : 0.0;
+      const bool measured = sketch_call_ns > 0.0 && builtin_cost.median_ns > 0.0;
+      const double ratio = measured ? builtin_cost.median_ns / sketch_call_ns : 0.0;
       std::snprintf(goal, sizeof goal, "%s: built-in %.2fx the lab sketch called out of line (goal <= %.1fx): %s",
-                    scene.name.c_str(), ratio, kBuiltinSketchGoalRatio, ratio <= kBuiltinSketchGoalRatio ? "met" : "NOT met");
+                    scene.name.c_str(), ratio, kBuiltinSketchGoalRatio,
+                    !measured ? "not measured" : ratio <= kBuiltinSketchGoalRatio ? "met" : "NOT met");
       goals.push_back(goal);
     }
     if (e.lua) {

@@ -84,11 +84,30 @@ void read_declared_key(ObjectReader& reader, const KeyOf<E>& bound, const std::a
   if (bound.check != nullptr) bound.check(reader, effect);
 }
 
+// What the reader does not do, refused when the declaration is compiled: a direction or a
+// default taken from another key's value on a vector of more than one axis.
+template <typename E>
+constexpr bool readable_declaration() {
+  for (const KeyOf<E>& bound : E::keys()) {
+    const EffectKey& key = bound.key;
+    if (key.form == KeyForm::direction && E::kAxes < 2) return false;
+    if (key.form == KeyForm::vector && E::kAxes > 1 && !key.fallback_from.empty()) return false;
+    if ((key.form == KeyForm::number || key.form == KeyForm::vector || key.form == KeyForm::direction) &&
+        bound.numbers == nullptr) {
+      return false;
+    }
+    if ((key.form == KeyForm::choice || key.form == KeyForm::flag) && bound.flag == nullptr) return false;
+    if ((key.form == KeyForm::points || key.form == KeyForm::friction) && bound.read == nullptr) return false;
+  }
+  return true;
+}
+
 }  // namespace detail
 
 // The effect of type E that `reader`'s object declares (throws InputError at the key).
 template <typename E>
 E parse_declared(ObjectReader& reader) {
+  static_assert(detail::readable_declaration<E>(), "a key of this declaration has a form the reader cannot read");
   static constexpr auto keys = E::keys();
   E effect{};
   for (const KeyOf<E>& key : keys) detail::read_declared_key(reader, key, keys, effect);

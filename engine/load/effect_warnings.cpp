@@ -290,7 +290,8 @@ std::string planar_unit_slip_hint(const Type& e, const nlohmann::json& written, 
 
 // A 2-D effect with a gain that still cannot act: its solid beyond the workspace box, or
 // (a cage) the workspace wholly inside its free part, with a unit-slip hint where one
-// fits. Fields act everywhere.
+// fits. A field acts wherever its reach meets the workspace box (the damper and the
+// texture everywhere; a magnet may lie beyond it).
 // The 2-D spring's centre: as spring_warning, against the box round the device's workspace.
 std::string planar_spring_warning(const PlanarSpring& spring, const nlohmann::json& written, const PlanarScene& scene) {
   Vec2 low_m;
@@ -313,7 +314,10 @@ std::string planar_placement_warning(const Type& e, const nlohmann::json& writte
   if constexpr (std::is_same_v<Type, PlanarSpring>) {
     return planar_spring_warning(e, written, scene);
   } else if constexpr (!Type::kUsesProxy) {
-    return "";
+    // A field acts wherever its reach meets the workspace box (a magnet beyond it does not).
+    if (e.can_act_within(scene.safety.workspace_min_m, scene.safety.workspace_max_m)) return "";
+    return std::string("(") + Type::kType + "): its reach lies wholly outside " + planar_workspace_text(scene) +
+           ", so the " + Type::kType + " never acts";
   } else {
     if (e.can_act_within(scene.safety.workspace_min_m, scene.safety.workspace_max_m)) return "";
     const std::string workspace = planar_workspace_text(scene);
@@ -334,9 +338,14 @@ std::string planar_placement_warning(const Type& e, const nlohmann::json& writte
 std::string inert_effect_warning(const Effect& effect, const nlohmann::json& written, const Scene& scene) {
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   return effect_warning(effect, -kInfinity, kInfinity, [&](const auto& e) -> std::string {
-    if constexpr (std::is_same_v<std::decay_t<decltype(e)>, Wall>) return wall_warning(e, written, scene);
-    if constexpr (std::is_same_v<std::decay_t<decltype(e)>, Spring>) return spring_warning(e, written, scene);
-    return "";
+    using Type = std::decay_t<decltype(e)>;
+    if constexpr (std::is_same_v<Type, Wall>) return wall_warning(e, written, scene);
+    if constexpr (std::is_same_v<Type, Spring>) return spring_warning(e, written, scene);
+    // Any other effect that the workspace keeps from acting (a magnet beyond it).
+    if (e.can_act_within(scene.safety.workspace_min_m, scene.safety.workspace_max_m)) return "";
+    return std::string("(") + Type::kType + "): its reach lies wholly outside the workspace " +
+           interval(scene.safety.workspace_min_m, scene.safety.workspace_max_m) + ", so the " + Type::kType +
+           " never acts";
   });
 }
 

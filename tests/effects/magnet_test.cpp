@@ -114,3 +114,21 @@ TEST_CASE("magnet: loaded from a file in a 1-D and a 2-D scene, with units") {
   CHECK(two.center_m == Vec2{{0.0, 0.12}});
   CHECK(two.radius_m == doctest::Approx(0.01));
 }
+
+TEST_CASE("magnet: one whose reach lies wholly beyond the workspace is warned about at load, in 1-D and 2-D") {
+  const Environment capstan = compile_environment(
+      R"({"effects": [{"type": "magnet", "center": 0.2, "radius": "4 mm", "stiffness": 500}]})", "far.json");
+  REQUIRE(capstan.scene.load_warnings.size() == 1);
+  CHECK(capstan.scene.load_warnings[0] ==
+        "far.json: /effects/0 (magnet): its reach lies wholly outside the workspace [-0.05, 0.045] m, so the magnet "
+        "never acts");
+  const PlanarEnvironment planar = compile_planar_environment(
+      R"({"device": "haplink", "effects": [{"type": "magnet", "center": [0.5, 0.5], "radius": 0.01, "stiffness": 400}]})",
+      "far.json");
+  REQUIRE(planar.scene.load_warnings.size() == 1);
+  CHECK(planar.scene.load_warnings[0].find("(magnet): its reach lies wholly outside the workspace [") != std::string::npos);
+  // Within reach: no warning.
+  CHECK(compile_environment(R"({"effects": [{"type": "magnet", "center": 0.047, "radius": "4 mm", "stiffness": 500}]})",
+                            "near.json")
+            .scene.load_warnings.empty());
+}
