@@ -47,6 +47,14 @@ class ObjectReader {
   // The raw value, or nullptr when absent. Marks the key as read.
   const nlohmann::json* get(std::string_view key);
   bool has(std::string_view key) const;
+  // A required sub-object "key", read by `parse(ObjectReader&)` (absent: fail_missing).
+  template <typename Parse>
+  auto part(std::string_view key, Parse parse) {
+    const nlohmann::json* value = get(key);
+    if (value == nullptr) fail_missing(key);
+    ObjectReader reader(*value, pointer_to(key), file());
+    return parse(reader);
+  }
 
   // Refuses any key that was never read, suggesting the nearest expected key.
   void finish() const;

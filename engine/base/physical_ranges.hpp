@@ -37,6 +37,12 @@ inline constexpr Range kCutoff_Hz{0.0, 1e6, true};
 inline constexpr Range kFrictionCoefficient{0.0, 10.0};
 // A direction's components before normalising (any scale, finite and far from overflow).
 inline constexpr Range kDirectionComponent{-1e6, 1e6};
+// Device profiles: a sensor's slope in degrees per count (its magnitude: at least 1e-6),
+// a motor constant, and the sensor's noise in counts.
+inline constexpr Range kDegPerCountMagnitude{1e-6, 10.0};
+inline constexpr Range kMotorConstant_N_m{1e-6, 100.0};
+inline constexpr Range kNoise_counts{0.0, 1000.0};
+
 // A circle's radius: positive, within the range of positions.
 inline constexpr Range kRadius_m{0.0, 1000.0, true};
 

@@ -19,7 +19,6 @@ constexpr double kHandStiffness_N_per_m = 2000.0;  // stiff: the handle keeps th
 constexpr double kHandDamping_N_s_per_m = 10.0;
 constexpr double kReferenceRate_Hz = 100000.0;
 constexpr double kFineStep_s = 1e-6;               // the fine integrator's step
-constexpr double kMinTimedRun_s = 0.02;            // repeat a case until this much CPU time
 
 // A simulated trajectory at the ticks: the true position and the force held after it.
 struct Trajectory {
@@ -97,7 +96,7 @@ double timed_simulate(const DeviceProfile& profile, const AccuracyCase& c, Traje
   using Clock = std::chrono::steady_clock;
   double best_s = INFINITY;
   double total_s = 0.0;
-  for (int repeat = 0; repeat < 20 && (repeat < 3 || total_s < kMinTimedRun_s); ++repeat) {
+  for (int repeat = 0; repeat < 20 && (repeat < 3 || total_s < kAccuracyMinTimedRun_s); ++repeat) {
     const auto begin = Clock::now();
     simulate(profile, c.scenario, c.rate_hz, c.integrator, c.substeps, out);
     const double run_s = std::chrono::duration<double>(Clock::now() - begin).count();

@@ -17,6 +17,9 @@
 
 namespace hapscene {
 
+// Each case is repeated until its runs took this much CPU time in all (1-D and 2-D).
+inline constexpr double kAccuracyMinTimedRun_s = 0.02;
+
 enum class AccuracyScenario { release, wall };
 
 struct AccuracyCase {

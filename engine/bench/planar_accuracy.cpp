@@ -6,6 +6,7 @@
 #include <map>
 #include <utility>
 
+#include "engine/bench/accuracy.hpp"
 #include "engine/devices/planar/simulated_planar.hpp"
 
 namespace hapscene {
@@ -15,16 +16,15 @@ constexpr double kSpring_N_per_m = 200.0;
 const Vec2 kReleaseOffset_m{{0.008, -0.005}};
 constexpr double kCircleRadius_m = 0.015;
 constexpr double kHandSpeed_m_per_s = 0.1;
-constexpr double kWall_N_per_m = 1000.0;
+constexpr double kPlanarWall_N_per_m = 1000.0;
 constexpr double kWallDistance_m = 0.01;
-constexpr double kWallDepth_m = 0.01;
-constexpr double kMinTimedRun_s = 0.02;  // repeat a case until this much CPU time
+constexpr double kPlanarWallDepth_m = 0.01;
 
 double duration_of(PlanarAccuracyScenario scenario) {
   switch (scenario) {
     case PlanarAccuracyScenario::release: return 1.0;
     case PlanarAccuracyScenario::circle: return 1.5;
-    case PlanarAccuracyScenario::wall: return 2.0 * (kWallDistance_m + kWallDepth_m) / kHandSpeed_m_per_s + 0.2;
+    case PlanarAccuracyScenario::wall: return 2.0 * (kWallDistance_m + kPlanarWallDepth_m) / kHandSpeed_m_per_s + 0.2;
   }
   return 1.0;
 }
@@ -67,8 +67,8 @@ Setup scenario_setup(const PlanarPlantExample& device, PlanarAccuracyScenario sc
       hand.circle_radius_m = kCircleRadius_m;
       break;
     case PlanarAccuracyScenario::wall: {
-      const double in_s = (kWallDistance_m + kWallDepth_m) / kHandSpeed_m_per_s;
-      const Vec2 deep = s.home_m + (kWallDistance_m + kWallDepth_m) * wall_direction();
+      const double in_s = (kWallDistance_m + kPlanarWallDepth_m) / kHandSpeed_m_per_s;
+      const Vec2 deep = s.home_m + (kWallDistance_m + kPlanarWallDepth_m) * wall_direction();
       hand.motion = PlanarHandMotion::path;
       hand.stiffness_N_per_m = 2000.0;
       hand.damping_N_s_per_m = 10.0;
@@ -90,13 +90,13 @@ Vec2 rendered_force_N(PlanarAccuracyScenario scenario, const Vec2& home_m, const
     case PlanarAccuracyScenario::wall: {
       const Vec2 normal = -wall_direction();
       const double depth = dot(home_m + kWallDistance_m * wall_direction() - p_m, normal);
-      return depth > 0.0 ? kWall_N_per_m * depth * normal : Vec2{};
+      return depth > 0.0 ? kPlanarWall_N_per_m * depth * normal : Vec2{};
     }
   }
   return Vec2{};
 }
 
-struct Trajectory {
+struct PlanarTrajectory {
   std::vector<Vec2> handle_m;
   bool finite{true};
 };
@@ -104,7 +104,7 @@ struct Trajectory {
 // The loop with an ideal sensor and drive: the force from the true handle position, J^T F
 // at that pose, held for the tick.
 void simulate(const PlanarPlantExample& device, PlanarAccuracyScenario scenario, double rate_hz,
-              PlanarIntegrator integrator, int substeps, Trajectory* out) {
+              PlanarIntegrator integrator, int substeps, PlanarTrajectory* out) {
   const Setup s = scenario_setup(device, scenario, integrator, substeps);
   PlanarPlant plant(s.parameters, s.config);
   const auto ticks = static_cast<std::size_t>(std::llround(duration_of(scenario) * rate_hz));
@@ -144,15 +144,15 @@ std::vector<PlanarAccuracyResult> run_planar_accuracy(const PlanarPlantExample& 
                                                       const std::vector<PlanarAccuracyCase>& cases,
                                                       const PlanarAccuracyOptions& options) {
   using Clock = std::chrono::steady_clock;
-  std::map<std::pair<int, double>, Trajectory> fine_runs;
+  std::map<std::pair<int, double>, PlanarTrajectory> fine_runs;
   std::vector<PlanarAccuracyResult> results;
-  Trajectory run;
+  PlanarTrajectory run;
   for (const PlanarAccuracyCase& c : cases) {
     const auto key = std::make_pair(static_cast<int>(c.scenario), c.rate_hz);
     auto fine = fine_runs.find(key);
     if (fine == fine_runs.end()) {
       const int substeps = std::max(1, static_cast<int>(std::ceil(1.0 / (c.rate_hz * options.fine_step_s) - 1e-9)));
-      Trajectory t;
+      PlanarTrajectory t;
       simulate(device, c.scenario, c.rate_hz, PlanarIntegrator::rk4, substeps, &t);
       fine = fine_runs.emplace(key, std::move(t)).first;
     }
@@ -160,7 +160,7 @@ std::vector<PlanarAccuracyResult> run_planar_accuracy(const PlanarPlantExample& 
     r.which = c;
     double best_s = INFINITY, total_s = 0.0;
     const int repeats = options.timed ? 20 : 1;
-    for (int repeat = 0; repeat < repeats && (repeat < 3 || total_s < kMinTimedRun_s); ++repeat) {
+    for (int repeat = 0; repeat < repeats && (repeat < 3 || total_s < kAccuracyMinTimedRun_s); ++repeat) {
       const auto begin = Clock::now();
       simulate(device, c.scenario, c.rate_hz, c.integrator, c.substeps, &run);
       const double run_s = std::chrono::duration<double>(Clock::now() - begin).count();

@@ -15,13 +15,9 @@ namespace {
 // Ranges of the profile's own numbers (docs/reference/devices.md); the
 // shared ones are in physical_ranges.hpp. Each is far wider than any desktop haptic device
 // and keeps the kinematics and the simulated plant finite.
-constexpr double kMaxDegPerCount = 10.0;  // |slope|: at least 1e-6 deg per count
-constexpr double kMinDegPerCount = 1e-6;
 constexpr Range kAngleOffset_deg{-3600.0, 3600.0};   // ten turns
 constexpr Range kRadius_m{1e-4, 1.0};                // 0.1 mm to 1 m
-constexpr Range kMotorConstant_N_m{1e-6, 100.0};
-constexpr Range kMass_kg{1e-4, 100.0};               // 0.1 g to 100 kg at the handle
-constexpr Range kNoise_counts{0.0, 1000.0};
+constexpr Range kHandleMass_kg{1e-4, 100.0};         // 0.1 g to 100 kg at the handle
 
 SensorModel parse_sensor(ObjectReader& reader) {
   SensorModel sensor;
@@ -29,7 +25,7 @@ SensorModel parse_sensor(ObjectReader& reader) {
   sensor.counts_to_deg_slope = reader.quantity("counts_to_deg_slope", Quantity::dimensionless);
   if (sensor.counts_to_deg_slope == 0.0) reader.fail("counts_to_deg_slope", "must not be 0");
   const double slope_magnitude = std::abs(sensor.counts_to_deg_slope);
-  if (slope_magnitude < kMinDegPerCount || slope_magnitude > kMaxDegPerCount) {
+  if (slope_magnitude < ranges::kDegPerCountMagnitude.min || slope_magnitude > ranges::kDegPerCountMagnitude.max) {
     reader.fail("counts_to_deg_slope", "must be in [-10, -1e-06] or [1e-06, 10] (deg/count), got " +
                                            format_number(sensor.counts_to_deg_slope));
   }
@@ -57,7 +53,7 @@ DriveModel parse_drive(ObjectReader& reader) {
   drive.sector_radius_m = reader.quantity("sector_radius", Quantity::length_m, kRadius_m);
   drive.duty_law = reader.choice("duty_law", {"sqrt", "linear"}, "sqrt") == "linear" ? DutyLaw::linear : DutyLaw::sqrt;
   drive.motor_constant_N_m =
-      reader.quantity("motor_constant", Quantity::dimensionless, kMotorConstant_N_m);
+      reader.quantity("motor_constant", Quantity::dimensionless, ranges::kMotorConstant_N_m);
   drive.duty_max = reader.quantity("duty_max", Quantity::dimensionless, Bound::positive);
   if (drive.duty_max > 1.0) reader.fail("duty_max", "must be <= 1");
   drive.direction_sign = static_cast<int>(reader.integer("direction_sign", -1, 1));
@@ -87,7 +83,7 @@ DeviceLimits parse_limits(ObjectReader& reader) {
 
 PlantModel parse_plant(ObjectReader& reader) {
   PlantModel plant;
-  plant.mass_kg = reader.quantity("mass", Quantity::mass_kg, kMass_kg);
+  plant.mass_kg = reader.quantity("mass", Quantity::mass_kg, kHandleMass_kg);
   plant.viscous_N_s_per_m =
       reader.quantity("viscous", Quantity::damping_N_s_per_m, ranges::kDamping_N_s_per_m);
   plant.coulomb_N = reader.quantity("coulomb", Quantity::force_N, ranges::kForce_N);
@@ -96,18 +92,9 @@ PlantModel parse_plant(ObjectReader& reader) {
   plant.end_stop_stiffness_N_per_m =
       reader.quantity("end_stop_stiffness", Quantity::stiffness_N_per_m, ranges::kPositiveStiffness_N_per_m);
   plant.sensor_noise_counts =
-      reader.quantity("sensor_noise_counts", Quantity::dimensionless, kNoise_counts);
+      reader.quantity("sensor_noise_counts", Quantity::dimensionless, ranges::kNoise_counts);
   reader.finish();
   return plant;
-}
-
-// Reads a sub-object "key" of `parent` with `parse`.
-template <typename Parse>
-auto parse_part(ObjectReader& parent, std::string_view key, Parse parse) {
-  const nlohmann::json* value = parent.get(key);
-  if (value == nullptr) parent.fail_missing(key);
-  ObjectReader reader(*value, parent.pointer_to(key), parent.file());
-  return parse(reader);
 }
 
 bool looks_like_path(const std::string& name_or_path) {
@@ -130,10 +117,10 @@ DeviceProfile parse_device_profile(std::string_view json_text, const std::string
   profile.name = reader.string("name");
   profile.source = display_name;
   reader.string_or("description", "");  // for people: checked to be text, not kept
-  profile.sensor = parse_part(reader, "sensor", parse_sensor);
-  profile.drive = parse_part(reader, "drive", parse_drive);
-  profile.limits = parse_part(reader, "limits", parse_limits);
-  profile.plant = parse_part(reader, "plant", parse_plant);
+  profile.sensor = reader.part("sensor", parse_sensor);
+  profile.drive = reader.part("drive", parse_drive);
+  profile.limits = reader.part("limits", parse_limits);
+  profile.plant = reader.part("plant", parse_plant);
   reader.finish();
   return profile;
 }

@@ -6,6 +6,7 @@
 #include <memory>
 #include <numbers>
 
+#include "engine/base/format.hpp"
 #include "engine/devices/planar/simulated_planar.hpp"
 #include "engine/harness/planar_shape_list.hpp"
 
@@ -19,12 +20,6 @@ constexpr double kPressSpeed_m_per_s = 0.02;   // into the shape and out
 constexpr double kPressDepth_m = 0.010;
 constexpr double kPressHold_s = 0.5;
 constexpr double kSettle_s = 0.3;              // after the path, before the run ends
-
-std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
-  char text[256];
-  std::snprintf(text, sizeof text, pattern, a, b, c);
-  return text;
-}
 
 // Length of a polyline from `start` through `points`.
 double path_length_m(const Vec2& start_m, const std::vector<Vec2>& points_m) {
@@ -82,8 +77,8 @@ PlanarScenario build_planar_scenario(PlanarScenarioKind kind, const PlanarScene&
         points.push_back(Vec2{{rightward ? hand.sweep_max_m[0] : hand.sweep_min_m[0], y}});
       }
       travel_m = path_length_m(s.start_m, points);
-      s.description = format("a raster of 7 rows over the middle 80 %% of the workspace at %g mm/s",
-                             speed_m_per_s * 1e3);
+      s.description = printf_string("a raster of 7 rows over the middle 80 %% of the workspace at %g mm/s",
+                                    speed_m_per_s * 1e3);
       break;
     }
     case PlanarScenarioKind::line: {
@@ -93,8 +88,8 @@ PlanarScenario build_planar_scenario(PlanarScenarioKind kind, const PlanarScene&
       hand.line_to_m = Vec2{{high[0] - margin[0], middle[1]}};
       hand.line_back_and_forth = true;
       travel_m = path_length_m(s.start_m, {hand.line_from_m, hand.line_to_m, hand.line_from_m});
-      s.description = format("across the workspace at y = %.1f mm and back at %g mm/s", middle[1] * 1e3,
-                             speed_m_per_s * 1e3);
+      s.description = printf_string("across the workspace at y = %.1f mm and back at %g mm/s", middle[1] * 1e3,
+                                    speed_m_per_s * 1e3);
       break;
     }
     case PlanarScenarioKind::circle: {
@@ -104,8 +99,8 @@ PlanarScenario build_planar_scenario(PlanarScenarioKind kind, const PlanarScene&
       hand.circle_radius_m = 0.25 * std::min(high[0] - low[0], high[1] - low[1]);
       const Vec2 first = middle + Vec2{{hand.circle_radius_m, 0.0}};
       travel_m = norm(first - s.start_m) + 2.0 * std::numbers::pi * hand.circle_radius_m;
-      s.description = format("one turn of radius %.1f mm round (%.1f, %.1f) mm at 50 mm/s", hand.circle_radius_m * 1e3,
-                             middle[0] * 1e3, middle[1] * 1e3);
+      s.description = printf_string("one turn of radius %.1f mm round (%.1f, %.1f) mm at 50 mm/s", hand.circle_radius_m * 1e3,
+                                    middle[0] * 1e3, middle[1] * 1e3);
       break;
     }
     case PlanarScenarioKind::press: {
@@ -142,8 +137,8 @@ PlanarScenario build_planar_scenario(PlanarScenarioKind kind, const PlanarScene&
       if (t_back > t_out) hand.path.push_back({t_back, s.start_m, true});
       s.duration_s = t_back + kSettle_s;
       s.description = std::string("into the ") + planar_shape_kind_name(shape.kind) +
-                      format(" at (%.1f, %.1f) mm, 10 mm deep, held 0.5 s, and back", surface_m[0] * 1e3,
-                             surface_m[1] * 1e3);
+                      printf_string(" at (%.1f, %.1f) mm, 10 mm deep, held 0.5 s, and back", surface_m[0] * 1e3,
+                                    surface_m[1] * 1e3);
       return s;
     }
   }

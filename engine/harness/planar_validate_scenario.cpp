@@ -6,30 +6,19 @@
 
 #include "engine/base/format.hpp"
 #include "engine/harness/planar_scenario.hpp"
+#include "engine/harness/scenario_timing.hpp"
 
 namespace hapscene {
 namespace {
 
-constexpr double kMoveSpeed_m_per_s = 0.05;          // getting into position
-constexpr double kApproachGap_m = 0.003;             // press: start this far in front
-constexpr double kPressSpeeds_m_per_s[] = {0.02, 0.08, 0.2};
-constexpr double kPressHold_s = 0.3;
+using namespace scenario_timing;
+
 constexpr std::size_t kMaxPressPlaces = 16;
 constexpr std::size_t kMaxOutlineCandidates = 64;  // edges of one outline measured for places
 constexpr double kMinPressDepth_m = 0.001;           // a place the workspace leaves less of is skipped
-constexpr double kWorkspaceMargin_m = 0.003;         // the hand's path stays this far inside the box
 constexpr double kSwipeGap_m = 0.010;                // swipe: from this far in front, to this far beyond
 constexpr double kSwipeSpeed_m_per_s = 0.5;
 constexpr double kSwipeBackSpeed_m_per_s = 0.1;
-constexpr double kReleaseHold_s = 0.5;
-constexpr double kReleaseWatch_s = 1.5;
-constexpr double kHoldDepth_m = 0.002;
-constexpr double kHoldSettle_s = 0.5;
-constexpr double kHoldWatch_s = 1.0;
-constexpr double kShakeAmplitude_m = 0.002;
-constexpr double kShakeFrequency_Hz = 8.0;
-constexpr double kShakeDuration_s = 1.5;
-constexpr double kFreeDuration_s = 1.5;
 constexpr double kSettle_s = 0.3;                    // after a path, before the run ends
 constexpr double kRouteClearance_m = 0.003;          // the hand passes shapes this far off
 constexpr double kThicknessStep_m = 5e-5;
@@ -66,9 +55,9 @@ bool inside_box(const Vec2& p, const Vec2& low, const Vec2& high, double margin_
 }
 
 // The hand's path as timed waypoints, built move by move.
-class PathBuilder {
+class PlanarPathBuilder {
  public:
-  explicit PathBuilder(const Vec2& start_m) : at_(start_m) { points_.push_back({0.0, start_m, true}); }
+  explicit PlanarPathBuilder(const Vec2& start_m) : at_(start_m) { points_.push_back({0.0, start_m, true}); }
   void move_to(const Vec2& p_m, double speed_m_per_s) {
     const double length_m = norm(p_m - at_);
     if (!(length_m > 1e-9)) return;
@@ -248,7 +237,7 @@ class ReachableFree {
 // Travels to `to_m` round the solids: route's way when each of its legs keeps off them,
 // else (route pushed a leg into a solid: walls round the way, a wall against another) the
 // way through the reachable free cells, when both ends are in them.
-void travel(const std::vector<PlanarShapeGeometry>& shapes, const ReachableFree* free, PathBuilder* path,
+void travel(const std::vector<PlanarShapeGeometry>& shapes, const ReachableFree* free, PlanarPathBuilder* path,
             const Vec2& to_m, double speed) {
   std::vector<Vec2> points;
   route(shapes, path->at(), to_m, 0, &points);
@@ -378,7 +367,7 @@ PlanarValidateScenario build_planar_validate_scenario(PlanarValidateKind kind, c
   const std::vector<PlanarShapeGeometry> shapes = planar_scenario_shapes(scene);
   const ValidateThresholds& t = options.thresholds;
   const double press_depth_m = t.press_force_N / options.hand_stiffness_N_per_m;
-  PathBuilder path(s.start_m);
+  PlanarPathBuilder path(s.start_m);
   // Where the hand may go: only needed by the scenarios that travel among the shapes.
   std::optional<ReachableFree> reachable;
   if (!shapes.empty() && (kind == PlanarValidateKind::sweep || kind == PlanarValidateKind::press ||

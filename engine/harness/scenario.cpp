@@ -4,25 +4,15 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/harness/scenario_timing.hpp"
+
 namespace hapscene {
 namespace {
 
-constexpr double kMoveSpeed_m_per_s = 0.05;       // getting into position
+using namespace scenario_timing;
+
 constexpr double kSweepSpeed_m_per_s = 0.05;
-constexpr double kWorkspaceMargin_m = 0.003;       // the hand stays this far inside
-constexpr double kApproachGap_m = 0.003;           // press: start this far in front of an edge
-constexpr double kPressSpeeds_m_per_s[] = {0.02, 0.08, 0.2};
-constexpr double kPressHold_s = 0.3;
 constexpr int kMaxPressedEdges = 4;
-constexpr double kReleaseHold_s = 0.5;
-constexpr double kReleaseWatch_s = 1.5;
-constexpr double kHoldDepth_m = 0.002;             // hold: this far into the first wall
-constexpr double kHoldSettle_s = 0.5;
-constexpr double kHoldWatch_s = 1.0;
-constexpr double kShakeAmplitude_m = 0.002;
-constexpr double kShakeFrequency_Hz = 8.0;
-constexpr double kShakeDuration_s = 1.5;
-constexpr double kFreeDuration_s = 1.5;
 
 // Builds a "path" hand motion move by move.
 class PathBuilder {

@@ -29,7 +29,7 @@ std::string tick_label(double value, double step) {
   return text;
 }
 
-struct Range {
+struct DataRange {
   double low{INFINITY};
   double high{-INFINITY};
   void add(double v) {
@@ -151,8 +151,8 @@ double svg_title_height(const std::string& title, int width_px) {
 
 std::string render_panel_svg(const PlotPanel& panel, double top_px, double width_px, double height_px) {
   // Data ranges: the series, and the lines that set the range; widened to whole ticks.
-  Range xr;
-  Range yr;
+  DataRange xr;
+  DataRange yr;
   for (const PlotSeries& s : panel.series) {
     for (double v : s.x) xr.add(v);
     for (double v : s.y) yr.add(v);

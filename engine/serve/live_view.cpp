@@ -102,14 +102,15 @@ std::filesystem::file_time_type stamp_of(const std::string& path) {
   return error ? std::filesystem::file_time_type{} : stamp;
 }
 
-// A client of /api/stream: its events waiting to be written, and what it missed.
-struct StreamClient {
+}  // namespace
+
+// A client of /api/stream: its events waiting to be written, and what it missed. Not in
+// the anonymous namespace: LiveViewOf<N>::Impl, which has external linkage, holds them.
+struct LiveStreamClient {
   std::deque<std::string> queue;
   std::uint64_t dropped{};
   bool closed{};
 };
-
-}  // namespace
 
 std::uint64_t live_stride(double rate_hz) {
   return static_cast<std::uint64_t>(std::max(1.0, std::ceil(rate_hz / kLiveMaxTicksPerSecond)));
@@ -397,7 +398,7 @@ struct LiveViewOf<N>::Impl {
                                    ", " + std::to_string(ConnectionLimits{}.streams_per_peer) + " per address)");
       return;
     }
-    auto client = std::make_shared<StreamClient>();
+    auto client = std::make_shared<LiveStreamClient>();
     {
       // The log so far first ("event: log", the last kLiveLogHistory lines): what happened
       // before the page opened. Lines not yet sent come in the client's next events.
@@ -659,7 +660,7 @@ struct LiveViewOf<N>::Impl {
 
   std::mutex clients_mutex;  // clients, their queues, pending_log, log_history
   std::condition_variable clients_cv;
-  std::vector<std::shared_ptr<StreamClient>> clients;
+  std::vector<std::shared_ptr<LiveStreamClient>> clients;
   std::vector<std::string> pending_log;
   std::deque<std::string> log_history;  // the last kLiveLogHistory lines sent, for new clients
   std::uint64_t dropped_events_total{};

@@ -18,7 +18,7 @@ namespace hapscene {
 namespace {
 
 // A JSON number, or a string with a unit of `quantity`, in SI (NaN when it is neither).
-double si_value(const nlohmann::json& value, Quantity quantity) {
+double value_in_si(const nlohmann::json& value, Quantity quantity) {
   if (value.is_number()) return value.get<double>();
   if (value.is_string()) {
     const QuantityParse parsed = parse_quantity_as(value.get<std::string>(), quantity);
@@ -367,12 +367,12 @@ std::vector<LiveParameter> live_parameters(const nlohmann::json& document, const
         const std::string from(key.fallback_from);
         if (written) {
           const nlohmann::json& value = effect[name];
-          p.value = shown_axis < 0 ? si_value(value, key.quantity)
+          p.value = shown_axis < 0 ? value_in_si(value, key.quantity)
                                    : (value.is_array() && value.size() > static_cast<std::size_t>(axis)
-                                          ? si_value(value[static_cast<std::size_t>(axis)], key.quantity)
+                                          ? value_in_si(value[static_cast<std::size_t>(axis)], key.quantity)
                                           : std::nan(""));
         } else if (!from.empty() && effect.contains(from)) {
-          p.value = si_value(effect[from], key.quantity);
+          p.value = value_in_si(effect[from], key.quantity);
         } else {
           p.value = key.fallback_si;
         }

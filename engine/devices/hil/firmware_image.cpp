@@ -113,8 +113,8 @@ void check_avr_firmware(const std::string& path) {
   if (phnum == 0) image.fail("no program headers");
   if (phentsize != kPhdrSize) image.fail("program header size " + std::to_string(phentsize) + ", not 32");
   image.need(phoff, std::uint64_t{phnum} * kPhdrSize, "the program header table");
-  struct Range { std::uint64_t begin, end; };
-  std::vector<Range> flash_ranges, ram_ranges;
+  struct AddressSpan { std::uint64_t begin, end; };
+  std::vector<AddressSpan> flash_ranges, ram_ranges;
   for (std::uint16_t i = 0; i < phnum; ++i) {
     const std::uint64_t at = phoff + std::uint64_t{i} * kPhdrSize;
     if (image.u32(at) != kPtLoad) continue;
@@ -140,8 +140,8 @@ void check_avr_firmware(const std::string& path) {
   for (const auto* ranges : {&flash_ranges, &ram_ranges}) {
     for (std::size_t a = 0; a < ranges->size(); ++a) {
       for (std::size_t b = a + 1; b < ranges->size(); ++b) {
-        const Range& x = (*ranges)[a];
-        const Range& y = (*ranges)[b];
+        const AddressSpan& x = (*ranges)[a];
+        const AddressSpan& y = (*ranges)[b];
         if (x.begin < y.end && y.begin < x.end) {
           image.fail("load segments overlap at " + hex(std::max(x.begin, y.begin)));
         }

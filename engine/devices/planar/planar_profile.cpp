@@ -18,31 +18,18 @@ namespace {
 // than any desktop device, narrow enough that kinematics and the plant stay finite.
 constexpr Range kLink_m{1e-4, 1.0};                       // 0.1 mm to 1 m
 constexpr Range kAngle_rad{-62.83185307179586, 62.83185307179586};  // ten turns
-constexpr double kMaxDegPerCount = 10.0;
-constexpr double kMinDegPerCount = 1e-6;
 constexpr Range kCoupling{-10.0, 10.0};
-constexpr Range kMotorConstant_N_m{1e-6, 100.0};
 constexpr Range kDutyPerTorque_per_N_m{0.0, 1e6, true};
 constexpr Range kTorqueClamp_N_m{0.0, 100.0, true};
 constexpr Range kConditionLimit{1.0, 1e6, true};
-constexpr Range kMass_kg{0.0, 100.0};
+constexpr Range kPartMass_kg{0.0, 100.0};               // a link or the handle (0: massless)
 constexpr Range kInertia_kg_m2{0.0, 100.0};
 constexpr Range kCenterOfMass_m{-1.0, 1.0};
 constexpr Range kJointViscous_N_m_s_per_rad{0.0, 100.0};
 constexpr Range kJointCoulomb_N_m{0.0, 100.0};
 constexpr Range kJointStopStiffness_N_m_per_rad{0.0, 1e6, true};
-constexpr Range kNoise_counts{0.0, 1000.0};
 constexpr long long kMaxCountsPerRevolution = 1LL << 24;
 constexpr std::size_t kMaxPolygonPoints = 1024;
-
-// A sub-object "key" of `parent`, read by `parse` (missing: the error profile.cpp gives).
-template <typename Parse>
-auto parse_part(ObjectReader& parent, std::string_view key, Parse parse) {
-  const nlohmann::json* value = parent.get(key);
-  if (value == nullptr) parent.fail_missing(key);
-  ObjectReader reader(*value, parent.pointer_to(key), parent.file());
-  return parse(reader);
-}
 
 // The array at `key` with exactly `count` entries (count 0: any size within [3, max]).
 const nlohmann::json& array_at(ObjectReader& reader, std::string_view key, std::size_t count, std::string_view what) {
@@ -111,14 +98,14 @@ Linkage parse_kinematics(ObjectReader& reader) {
 
 // --- joints -------------------------------------------------------------------------
 
-PlanarSensor parse_sensor(ObjectReader& reader) {
+PlanarSensor parse_planar_sensor(ObjectReader& reader) {
   PlanarSensor sensor;
   const std::string type = reader.choice("type", {"mr", "encoder", "angle"});
   if (type == "mr") {
     sensor.kind = PlanarSensorKind::mr;
     sensor.counts_to_deg_slope = reader.quantity("counts_to_deg_slope", Quantity::dimensionless);
     const double magnitude = std::abs(sensor.counts_to_deg_slope);
-    if (magnitude < kMinDegPerCount || magnitude > kMaxDegPerCount) {
+    if (magnitude < ranges::kDegPerCountMagnitude.min || magnitude > ranges::kDegPerCountMagnitude.max) {
       reader.fail("counts_to_deg_slope", "must be in [-10, -1e-06] or [1e-06, 10] (deg/count), got " +
                                              format_number(sensor.counts_to_deg_slope));
     }
@@ -146,7 +133,7 @@ PlanarSensor parse_sensor(ObjectReader& reader) {
   return sensor;
 }
 
-PlanarDrive parse_drive(ObjectReader& reader) {
+PlanarDrive parse_planar_drive(ObjectReader& reader) {
   PlanarDrive drive;
   const std::string law = reader.choice("law", {"sqrt", "linear", "torque"});
   if (law == "torque") {
@@ -156,7 +143,7 @@ PlanarDrive parse_drive(ObjectReader& reader) {
   } else {
     if (law == "sqrt") {
       drive.law = PlanarDriveLaw::sqrt;
-      drive.motor_constant_N_m = reader.quantity("motor_constant", Quantity::torque_N_m, kMotorConstant_N_m);
+      drive.motor_constant_N_m = reader.quantity("motor_constant", Quantity::torque_N_m, ranges::kMotorConstant_N_m);
     } else {
       drive.law = PlanarDriveLaw::linear;
       drive.duty_per_N_m = reader.quantity("duty_per_N_m", Quantity::dimensionless, kDutyPerTorque_per_N_m);
@@ -172,7 +159,7 @@ PlanarDrive parse_drive(ObjectReader& reader) {
 
 PlanarJoint parse_joint(ObjectReader& reader, int number) {
   PlanarJoint joint;
-  joint.sensor = parse_part(reader, "sensor", parse_sensor);
+  joint.sensor = reader.part("sensor", parse_planar_sensor);
   // A capstan: both radii or neither (a direct drive, ratio 1).
   const bool has_pulley = reader.has("pulley_radius");
   const bool has_sector = reader.has("sector_radius");
@@ -184,7 +171,7 @@ PlanarJoint parse_joint(ObjectReader& reader, int number) {
     joint.transmission_ratio = reader.quantity("pulley_radius", Quantity::length_m, kLink_m) /
                                reader.quantity("sector_radius", Quantity::length_m, kLink_m);
   }
-  joint.drive = parse_part(reader, "drive", parse_drive);
+  joint.drive = reader.part("drive", parse_planar_drive);
   // Which board port: only a board that reports angles and takes torques has ports.
   const bool board_joint = joint.sensor.kind == PlanarSensorKind::angle && joint.drive.law == PlanarDriveLaw::torque;
   if (reader.has("board_port") && !board_joint) {
@@ -219,7 +206,7 @@ PlanarWorkspace parse_workspace(ObjectReader& reader) {
   if (has_box == has_polygon) reader.fail("", "give exactly one of \"box\" and \"polygon\"");
   if (has_box) {
     workspace.is_box = true;
-    parse_part(reader, "box", [&](ObjectReader& box) {
+    reader.part("box", [&](ObjectReader& box) {
       workspace.box_min_m = vector_at(box, "min", Quantity::length_m, ranges::kPosition_m);
       workspace.box_max_m = vector_at(box, "max", Quantity::length_m, ranges::kPosition_m);
       if (!(workspace.box_min_m[0] < workspace.box_max_m[0]) || !(workspace.box_min_m[1] < workspace.box_max_m[1])) {
@@ -253,7 +240,7 @@ PlanarWorkspace parse_workspace(ObjectReader& reader) {
   return workspace;
 }
 
-PlanarLimits parse_limits(ObjectReader& reader) {
+PlanarLimits parse_planar_limits(ObjectReader& reader) {
   PlanarLimits limits;
   limits.max_force_N = reader.quantity("max_force", Quantity::force_N, ranges::kPositiveForce_N);
   limits.slew_limit_N_per_s =
@@ -261,7 +248,7 @@ PlanarLimits parse_limits(ObjectReader& reader) {
   limits.soft_start_s = reader.quantity("soft_start", Quantity::time_s, ranges::kDuration_s);
   limits.soft_start_threshold_N = reader.quantity("soft_start_threshold", Quantity::force_N, ranges::kForce_N);
   limits.condition_limit = reader.quantity("condition_limit", Quantity::dimensionless, kConditionLimit);
-  limits.workspace = parse_part(reader, "workspace", parse_workspace);
+  limits.workspace = reader.part("workspace", parse_workspace);
   reader.finish();
   return limits;
 }
@@ -270,14 +257,14 @@ PlanarLimits parse_limits(ObjectReader& reader) {
 
 PlanarLinkMass parse_link_mass(ObjectReader& reader) {
   PlanarLinkMass link;
-  link.mass_kg = reader.quantity("mass", Quantity::mass_kg, kMass_kg);
+  link.mass_kg = reader.quantity("mass", Quantity::mass_kg, kPartMass_kg);
   link.inertia_kg_m2 = reader.quantity("inertia", Quantity::inertia_kg_m2, kInertia_kg_m2);
   link.center_of_mass_m = reader.quantity("center_of_mass", Quantity::length_m, kCenterOfMass_m);
   reader.finish();
   return link;
 }
 
-PlanarPlantEstimates parse_plant(ObjectReader& reader, LinkageFamily family) {
+PlanarPlantEstimates parse_planar_plant(ObjectReader& reader, LinkageFamily family) {
   PlanarPlantEstimates plant;
   plant.link_count = family == LinkageFamily::serial_2r ? 2 : 4;
   const char* links_expected = family == LinkageFamily::serial_2r
@@ -289,7 +276,7 @@ PlanarPlantEstimates parse_plant(ObjectReader& reader, LinkageFamily family) {
                              reader.file());
     plant.links[static_cast<std::size_t>(i)] = parse_link_mass(link_reader);
   }
-  plant.handle_mass_kg = reader.quantity("handle_mass", Quantity::mass_kg, kMass_kg);
+  plant.handle_mass_kg = reader.quantity("handle_mass", Quantity::mass_kg, kPartMass_kg);
   plant.rotor_inertia_kg_m2 = vector_at(reader, "rotor_inertia", Quantity::inertia_kg_m2, kInertia_kg_m2);
   plant.viscous_N_m_s_per_rad =
       vector_at(reader, "viscous", Quantity::rotational_damping_N_m_s_per_rad, kJointViscous_N_m_s_per_rad);
@@ -305,7 +292,7 @@ PlanarPlantEstimates parse_plant(ObjectReader& reader, LinkageFamily family) {
   }
   plant.end_stop_stiffness_N_m_per_rad = reader.quantity(
       "end_stop_stiffness", Quantity::rotational_stiffness_N_m_per_rad, kJointStopStiffness_N_m_per_rad);
-  plant.sensor_noise_counts = reader.quantity("sensor_noise_counts", Quantity::dimensionless, kNoise_counts);
+  plant.sensor_noise_counts = reader.quantity("sensor_noise_counts", Quantity::dimensionless, ranges::kNoise_counts);
   reader.finish();
   return plant;
 }
@@ -401,17 +388,17 @@ PlanarProfile parse_planar_profile(std::string_view json_text, const std::string
   profile.source = display_name;
   reader.string_or("description", "");  // for people: checked to be text, not kept
   reader.string_or("note", "");
-  profile.frame = parse_part(reader, "frame", parse_frame);
-  profile.linkage = parse_part(reader, "kinematics", parse_kinematics);
+  profile.frame = reader.part("frame", parse_frame);
+  profile.linkage = reader.part("kinematics", parse_kinematics);
   profile.joints = parse_joints(reader);
   profile.coupling = reader.quantity_or("coupling", Quantity::dimensionless, 0.0, kCoupling);
   profile.home_m = vector_at(reader, "home", Quantity::length_m, ranges::kPosition_m);
-  profile.limits = parse_part(reader, "limits", parse_limits);
+  profile.limits = reader.part("limits", parse_planar_limits);
   if (!workspace_contains(profile.limits.workspace, profile.home_m)) {
     reader.fail("home", "must lie inside /limits/workspace");
   }
   const LinkageFamily family = profile.linkage.family;
-  profile.plant = parse_part(reader, "plant", [family](ObjectReader& plant) { return parse_plant(plant, family); });
+  profile.plant = reader.part("plant", [family](ObjectReader& plant) { return parse_planar_plant(plant, family); });
   if (const nlohmann::json* serials = reader.get("board_serials")) {
     const bool two_names = serials->is_array() && serials->size() == 2 && (*serials)[0].is_string() &&
                            (*serials)[1].is_string() && !(*serials)[0].get<std::string>().empty() &&
