@@ -16,6 +16,7 @@ struct EffectInputOf {
 };
 
 using EffectInput = EffectInputOf<1>;
+using PlanarInput = EffectInputOf<2>;  // a 2-DOF device's: x and y
 
 // Inputs an effect reads besides position.
 struct Needs {

@@ -18,10 +18,10 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "engine/effects/effect_groups.hpp"
+#include "engine/effects/effect_input.hpp"
 #include "engine/effects/effect_keys.hpp"
 #include "engine/effects/magnet.hpp"
 #include "engine/effects/planar/planar_fields.hpp"
-#include "engine/effects/planar/planar_input.hpp"
 #include "engine/effects/planar/planar_shapes.hpp"
 #include "engine/effects/planar/proxy_state.hpp"
 #include "engine/effects/script_effect.hpp"

@@ -10,8 +10,8 @@
 //            a billionth of a period of an edge count as on it); there F = -B v, else 0.
 #include "engine/base/axes.hpp"
 #include "engine/effects/damper.hpp"
+#include "engine/effects/effect_input.hpp"
 #include "engine/effects/effect_keys.hpp"
-#include "engine/effects/planar/planar_input.hpp"
 #include "engine/effects/spring.hpp"
 #include "engine/effects/texture.hpp"
 

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "engine/base/axes.hpp"
+#include "engine/effects/effect_input.hpp"
 #include "engine/effects/effect_keys.hpp"
-#include "engine/effects/planar/planar_input.hpp"
 #include "engine/effects/planar/polygon_outline.hpp"
 #include "engine/effects/planar/proxy_state.hpp"
 
