@@ -38,17 +38,16 @@ std::unique_ptr<TickLoop> make_call_loop(const ScriptProgram& program, std::vect
 
 }  // namespace
 
-std::unique_ptr<TickLoop> script_call_tick_loop(const ScriptProgram& program, std::vector<ScriptInput> inputs) {
+template <int N>
+std::unique_ptr<TickLoop> script_call_tick_loop(const ScriptProgram& program, std::vector<ScriptInputOf<N>> inputs) {
   return make_call_loop(program, std::move(inputs),
-                        [](ScriptInstance& script, const ScriptInput& input) { return script.force_N(input); });
+                        [](ScriptInstance& script, const ScriptInputOf<N>& input) { return script.force_N(input); });
 }
 
-std::unique_ptr<TickLoop> planar_script_call_tick_loop(const ScriptProgram& program,
-                                                       std::vector<PlanarScriptInput> inputs) {
-  return make_call_loop(program, std::move(inputs), [](ScriptInstance& script, const PlanarScriptInput& input) {
-    return script.planar_force_N(input);
-  });
-}
+#define HAPSCENE_SCRIPT_CALL_LOOP(N) \
+  template std::unique_ptr<TickLoop> script_call_tick_loop<N>(const ScriptProgram&, std::vector<ScriptInputOf<N>>);
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_SCRIPT_CALL_LOOP)
+#undef HAPSCENE_SCRIPT_CALL_LOOP
 
 std::vector<ScriptInput> swinging_script_inputs(std::size_t count) {
   std::vector<ScriptInput> inputs(count);
@@ -69,10 +68,8 @@ std::vector<PlanarScriptInput> swinging_planar_script_inputs(std::size_t count, 
     const double t_s = 0.001 * static_cast<double>(i);
     const double phase = 2.0 * std::numbers::pi * 0.5 * t_s;
     const double speed = 0.02 * 2.0 * std::numbers::pi * 0.5;
-    inputs[i].x_m = x0_m + 0.02 * std::sin(phase);
-    inputs[i].y_m = y0_m + 0.02 * std::cos(phase);
-    inputs[i].vx_m_per_s = speed * std::cos(phase);
-    inputs[i].vy_m_per_s = -speed * std::sin(phase);
+    inputs[i].x_m = Vec2{{x0_m + 0.02 * std::sin(phase), y0_m + 0.02 * std::cos(phase)}};
+    inputs[i].v_m_per_s = Vec2{{speed * std::cos(phase), -speed * std::sin(phase)}};
     inputs[i].t_s = t_s;
     inputs[i].dt_s = 0.001;
   }

@@ -12,11 +12,10 @@
 
 namespace hapscene {
 
-// force_N (1-D) or planar_force_N (2-D) of a fresh, reset instance of `program`, on
-// inputs[i] for each reading i (the readings are indices into `inputs`).
-std::unique_ptr<TickLoop> script_call_tick_loop(const ScriptProgram& program, std::vector<ScriptInput> inputs);
-std::unique_ptr<TickLoop> planar_script_call_tick_loop(const ScriptProgram& program,
-                                                       std::vector<PlanarScriptInput> inputs);
+// force_N of a fresh, reset instance of `program` (compiled for N axes), on inputs[i] for
+// each reading i (the readings are indices into `inputs`).
+template <int N>
+std::unique_ptr<TickLoop> script_call_tick_loop(const ScriptProgram& program, std::vector<ScriptInputOf<N>> inputs);
 
 // `count` inputs with the handle swinging over +-20 mm (round (x0, y0) in 2-D) at 1 kHz.
 std::vector<ScriptInput> swinging_script_inputs(std::size_t count);

@@ -252,47 +252,36 @@ void check_bench_memory(const Arguments& arguments, const std::vector<Scene>& sc
   }
 }
 
-}  // namespace
-
-int bench_command(std::vector<std::string> args) {
-  Arguments arguments(std::move(args), "hapscene bench");
-  if (arguments.take_flag("accuracy")) return bench_accuracy(arguments);
-  if (arguments.take_flag("stress")) return bench_stress(arguments);
-  if (arguments.take_flag("soak")) return bench_soak(arguments);
-  if (arguments.take_flag("callgrind")) return bench_callgrind(arguments);
-  if (arguments.take_flag("realtime")) return bench_realtime(arguments);
-  const double seconds = arguments.take(option::bench_seconds).value_or(20.0);
-  const int passes = static_cast<int>(arguments.take(option::bench_passes).value_or(10));
-  const std::string scripts_dir = arguments.take_value("scripts").value_or("scripts");
-  std::vector<std::string> files = arguments.positionals();
-  const bool defaults = files.empty();
-  if (defaults) files.assign(std::begin(kLabEnvironments), std::end(kLabEnvironments));
-
-  // Every scene, and its Lua twin, loaded before anything is timed; a 2-DOF environment
-  // (its device a planar profile) goes to the 2-D table.
+// The scenes a bench run times: the 1-D ones with their Lua twins, and the 2-DOF ones (a
+// planar device's environment goes to the 2-D table). Every one is loaded before anything
+// is timed.
+struct BenchScenes {
   std::vector<Scene> scenes;
   std::vector<std::optional<Scene>> lua_scenes;
   std::vector<PlanarScene> planar_scenes;
+};
+
+BenchScenes load_bench_scenes(const std::vector<std::string>& files, bool defaults, const std::string& scripts_dir) {
+  BenchScenes b;
   for (const std::string& file : files) {
     if (environment_axes(file) == 2) {
-      planar_scenes.push_back(load_planar_environment_file(file));
+      b.planar_scenes.push_back(load_planar_environment_file(file));
       continue;
     }
-    scenes.push_back(load_environment_file(file));
-    lua_scenes.push_back(lua_equivalent(scenes.back(), scripts_dir));
+    b.scenes.push_back(load_environment_file(file));
+    b.lua_scenes.push_back(lua_equivalent(b.scenes.back(), scripts_dir));
   }
   if (defaults) {
-    for (const char* file : kPlanarEnvironments) planar_scenes.push_back(load_planar_environment_file(file));
+    for (const char* file : kPlanarEnvironments) b.planar_scenes.push_back(load_planar_environment_file(file));
     const PlanarScene empty =
         load_planar_environment_text(std::string(R"({"device": ")") + kPolygonDevice + R"(", "effects": []})", "bench");
-    planar_scenes.push_back(
+    b.planar_scenes.push_back(
         load_planar_environment_text(regular_polygon_environment(empty, kPolygonDevice, kPolygonEdges), "bench"));
   }
+  return b;
+}
 
-  check_bench_memory(arguments, scenes, planar_scenes, defaults, seconds, passes);
-
-  TickTimer timer;
-  InstructionCounter counter;
+void print_preamble(double seconds, int passes, const InstructionCounter& counter) {
   print_out("build: %s\n", build_description().c_str());
   print_out("tick compute in ns (read counts -> motor command, no I/O); %g s of recorded sensor "
             "readings x %d passes per row, every row interleaved in rounds of %zu ticks; ratios against the "
@@ -306,32 +295,73 @@ int bench_command(std::vector<std::string> args) {
     print_out("instr: not available here (%s); count them with valgrind: hapscene bench --callgrind "
               "(see docs/explanation/measurements.md)\n\n", counter.reason().c_str());
   }
-  // Each environment's group: the hand-written code first (the ratios' reference), then
-  // the engine, then Lua, on the environment's own recorded readings.
-  struct EnvironmentLoops {
-    std::vector<std::int32_t> counts;
-    std::unique_ptr<TickLoop> baseline, sketch_inline, sketch_out_of_line, builtin, lua, lua_vm;
-  };
-  std::vector<EnvironmentLoops> environments(scenes.size());
+}
+
+// One 1-D environment's group: the hand-written code first (the ratios' reference), then
+// the engine, then Lua, on the environment's own recorded readings.
+struct EnvironmentLoops {
+  std::vector<std::int32_t> counts;
+  std::unique_ptr<TickLoop> baseline, sketch_inline, sketch_out_of_line, builtin, lua, lua_vm;
+};
+
+// One 2-D environment's group: the hand-written 2-D code first (when there is one), then step<2>().
+struct PlanarLoops {
+  std::vector<PlanarReading> readings;
+  std::vector<std::int32_t> indices;
+  std::unique_ptr<TickLoop> baseline, builtin;
+};
+
+// The Lua spring in 1-D (the spring row's Lua scene on its readings) and in 2-D (on the
+// Haplink, its own readings), in one group of indices into both recordings; then the
+// force calls alone, as they run and in the VM alone, a group each (1-D first).
+struct LuaSpringLoops {
+  std::optional<PlanarScene> planar;
+  std::vector<PlanarReading> planar_readings;
+  std::vector<std::int32_t> indices;
+  std::unique_ptr<TickLoop> one_axis, two_axes;
+  std::unique_ptr<TickLoop> calls[4];  // the force calls alone: 1-D, 2-D; then both in the VM alone
+  std::size_t group = 0;
+  std::size_t call_group = 0;
+};
+
+// Everything one run times, in groups interleaved in one measurement. The groups point
+// into this object, so it is built in place and never moved.
+struct BenchLoops {
+  BenchLoops() = default;
+  BenchLoops(const BenchLoops&) = delete;
+  BenchLoops& operator=(const BenchLoops&) = delete;
+
+  std::vector<EnvironmentLoops> environments;
   // The Lua twins with every force run by the VM alone, beside the twins as they run (a
   // straight-line numeric force is translated): what the translation saves.
-  std::vector<std::optional<Scene>> lua_vm_scenes(scenes.size());
+  std::vector<std::optional<Scene>> lua_vm_scenes;
+  // The parts group: scenes that differ in one part, on the readings of a wall scene.
+  std::vector<std::int32_t> part_counts;
+  std::vector<Scene> part_scenes;
+  std::vector<std::unique_ptr<TickLoop>> part_loops;
+  std::vector<PlanarLoops> planar;
+  LuaSpringLoops lua_spring;
   std::vector<TickLoopGroup> groups;
-  for (std::size_t i = 0; i < scenes.size(); ++i) {
-    EnvironmentLoops& e = environments[i];
-    e.counts = record_sensor_counts(scenes[i], seconds);
+};
+
+void add_environment_groups(const BenchScenes& b, double seconds, BenchLoops* loops) {
+  loops->environments.resize(b.scenes.size());
+  loops->lua_vm_scenes.resize(b.scenes.size());
+  for (std::size_t i = 0; i < b.scenes.size(); ++i) {
+    EnvironmentLoops& e = loops->environments[i];
+    e.counts = record_sensor_counts(b.scenes[i], seconds);
     // The reference (first) is the folded floor; the sketch rows come with it.
-    e.baseline = lab_folded_tick_loop(scenes[i]);
+    e.baseline = lab_folded_tick_loop(b.scenes[i]);
     if (e.baseline) {
-      e.sketch_inline = lab_baseline_tick_loop(scenes[i]);
-      e.sketch_out_of_line = lab_sketch_out_of_line_tick_loop(scenes[i]);
+      e.sketch_inline = lab_baseline_tick_loop(b.scenes[i]);
+      e.sketch_out_of_line = lab_sketch_out_of_line_tick_loop(b.scenes[i]);
     }
-    e.builtin = scene_tick_loop(scenes[i]);
-    if (lua_scenes[i]) {
-      e.lua = scene_tick_loop(*lua_scenes[i]);
+    e.builtin = scene_tick_loop(b.scenes[i]);
+    if (b.lua_scenes[i]) {
+      e.lua = scene_tick_loop(*b.lua_scenes[i]);
       if (runs_translated(*e.lua)) {
-        lua_vm_scenes[i] = with_scripts_in_vm(*lua_scenes[i]);
-        e.lua_vm = scene_tick_loop(*lua_vm_scenes[i]);
+        loops->lua_vm_scenes[i] = with_scripts_in_vm(*b.lua_scenes[i]);
+        e.lua_vm = scene_tick_loop(*loops->lua_vm_scenes[i]);
       }
     }
     TickLoopGroup group{&e.counts, {}};
@@ -339,98 +369,92 @@ int bench_command(std::vector<std::string> args) {
                            e.lua.get(), e.lua_vm.get()}) {
       if (loop != nullptr) group.loops.push_back(loop);
     }
-    groups.push_back(std::move(group));
+    loops->groups.push_back(std::move(group));
   }
+}
 
-  // The parts group: scenes that differ in one part, on the readings of a wall scene.
-  const std::vector<std::int32_t> part_counts = record_sensor_counts(
+void add_part_group(const std::string& scripts_dir, double seconds, BenchLoops* loops) {
+  loops->part_counts = record_sensor_counts(
       load_environment_text(R"({"effects": [{"type": "wall", "position": 0.01, "stiffness": 500,
         "solid": "above"}]})", "bench"), seconds);
-  std::vector<Scene> part_scenes;
   for (const auto& [label, json] : kPartScenes) {
     std::string text = json;
     for (std::size_t at = text.find("scripts/"); at != std::string::npos; at = text.find("scripts/", at + scripts_dir.size() + 1)) {
       text.replace(at, 7, scripts_dir);
     }
-    part_scenes.push_back(load_environment_text(text, "bench", "."));
+    loops->part_scenes.push_back(load_environment_text(text, "bench", "."));
   }
-  std::vector<std::unique_ptr<TickLoop>> part_loops;
-  TickLoopGroup parts{&part_counts, {}};
-  for (const Scene& scene : part_scenes) {
-    part_loops.push_back(scene_tick_loop(scene));
-    parts.loops.push_back(part_loops.back().get());
+  TickLoopGroup parts{&loops->part_counts, {}};
+  for (const Scene& scene : loops->part_scenes) {
+    loops->part_loops.push_back(scene_tick_loop(scene));
+    parts.loops.push_back(loops->part_loops.back().get());
   }
-  groups.push_back(parts);
+  loops->groups.push_back(parts);
+}
 
-  // The 2-D groups: the hand-written 2-D code first (when there is one), then step<2>().
-  struct PlanarLoops {
-    std::vector<PlanarReading> readings;
-    std::vector<std::int32_t> indices;
-    std::unique_ptr<TickLoop> baseline, builtin;
-  };
-  std::vector<PlanarLoops> planar(planar_scenes.size());
-  for (std::size_t i = 0; i < planar_scenes.size(); ++i) {
-    PlanarLoops& p = planar[i];
-    p.readings = record_planar_readings(planar_scenes[i], seconds);
+void add_planar_groups(const BenchScenes& b, double seconds, BenchLoops* loops) {
+  loops->planar.resize(b.planar_scenes.size());
+  for (std::size_t i = 0; i < b.planar_scenes.size(); ++i) {
+    PlanarLoops& p = loops->planar[i];
+    p.readings = record_planar_readings(b.planar_scenes[i], seconds);
     p.indices = reading_indices(p.readings.size());
-    p.baseline = planar_baseline_tick_loop(planar_scenes[i], p.readings);
-    p.builtin = planar_scene_tick_loop(planar_scenes[i], p.readings);
+    p.baseline = planar_baseline_tick_loop(b.planar_scenes[i], p.readings);
+    p.builtin = planar_scene_tick_loop(b.planar_scenes[i], p.readings);
     TickLoopGroup group{&p.indices, {}};
     if (p.baseline) group.loops.push_back(p.baseline.get());
     group.loops.push_back(p.builtin.get());
-    groups.push_back(std::move(group));
+    loops->groups.push_back(std::move(group));
   }
+}
 
-  // The Lua spring in 1-D (the spring row's Lua scene on its readings) and in 2-D (on the
-  // Haplink, its own readings), in one group of indices into both recordings.
-  std::optional<PlanarScene> lua_planar;
-  std::vector<PlanarReading> lua_planar_readings;
-  std::vector<std::int32_t> lua_indices;
-  std::unique_ptr<TickLoop> lua_one_axis, lua_two_axes;
-  std::unique_ptr<TickLoop> call_loops[4];  // the force calls alone: 1-D, 2-D; then both in the VM alone
-  std::size_t lua_group = 0;
-  std::size_t call_group = 0;
-  const auto spring = std::find_if(scenes.begin(), scenes.end(), [](const Scene& scene) { return scene.name == "spring"; });
-  if (defaults && spring != scenes.end() && lua_scenes[static_cast<std::size_t>(spring - scenes.begin())]) {
-    const std::size_t i = static_cast<std::size_t>(spring - scenes.begin());
-    const Spring& spring_effect = std::get<Spring>(spring->effects[0]);
-    const PlanarScene empty =
-        load_planar_environment_text(std::string(R"({"device": ")") + kPolygonDevice + R"(", "effects": []})", "bench");
-    const Vec2 middle = (empty.safety.workspace_min_m + empty.safety.workspace_max_m) * 0.5;
-    lua_planar = load_planar_environment_text(
-        planar_lua_spring_environment("spring_lua_2d", kPolygonDevice, spring_effect.stiffness_N_per_m, middle), "bench");
-    lua_planar_readings = record_planar_readings(*lua_planar, seconds);
-    lua_indices = reading_indices(std::min(lua_planar_readings.size(), environments[i].counts.size()));
-    lua_one_axis = indexed_scene_tick_loop(*lua_scenes[i], environments[i].counts);
-    lua_two_axes = planar_scene_tick_loop(*lua_planar, lua_planar_readings);
-    lua_group = groups.size();
-    groups.push_back(TickLoopGroup{&lua_indices, {lua_one_axis.get(), lua_two_axes.get()}});
-    // The force calls alone, as they run and in the VM alone: a group each, 1-D first.
-    const ScriptProgram* one_axis_program = first_script_program(*lua_scenes[i]);
-    const ScriptProgram* two_axes_program = first_script_program(*lua_planar);
-    ScriptProgram one_axis_vm = *one_axis_program;
-    ScriptProgram two_axes_vm = *two_axes_program;
-    one_axis_vm.limits.translate_force = two_axes_vm.limits.translate_force = false;
-    call_loops[0] = script_call_tick_loop(*one_axis_program, swinging_script_inputs(lua_indices.size()));
-    call_loops[1] = planar_script_call_tick_loop(
-        *two_axes_program, swinging_planar_script_inputs(lua_indices.size(), middle[0], middle[1]));
-    call_loops[2] = script_call_tick_loop(one_axis_vm, swinging_script_inputs(lua_indices.size()));
-    call_loops[3] = planar_script_call_tick_loop(
-        two_axes_vm, swinging_planar_script_inputs(lua_indices.size(), middle[0], middle[1]));
-    call_group = groups.size();
-    groups.push_back(TickLoopGroup{&lua_indices, {call_loops[0].get(), call_loops[1].get()}});
-    groups.push_back(TickLoopGroup{&lua_indices, {call_loops[2].get(), call_loops[3].get()}});
+// The Lua spring groups, when the lab's spring is among the default scenes with its twin.
+void add_lua_spring_groups(const BenchScenes& b, bool defaults, double seconds, BenchLoops* loops) {
+  const auto spring =
+      std::find_if(b.scenes.begin(), b.scenes.end(), [](const Scene& scene) { return scene.name == "spring"; });
+  if (!defaults || spring == b.scenes.end() || !b.lua_scenes[static_cast<std::size_t>(spring - b.scenes.begin())]) {
+    return;
   }
+  const std::size_t i = static_cast<std::size_t>(spring - b.scenes.begin());
+  const Scene& lua_scene = *b.lua_scenes[i];
+  const std::vector<std::int32_t>& counts = loops->environments[i].counts;
+  LuaSpringLoops& l = loops->lua_spring;
+  const Spring& spring_effect = std::get<Spring>(spring->effects[0]);
+  const PlanarScene empty =
+      load_planar_environment_text(std::string(R"({"device": ")") + kPolygonDevice + R"(", "effects": []})", "bench");
+  const Vec2 middle = (empty.safety.workspace_min_m + empty.safety.workspace_max_m) * 0.5;
+  l.planar = load_planar_environment_text(
+      planar_lua_spring_environment("spring_lua_2d", kPolygonDevice, spring_effect.stiffness_N_per_m, middle), "bench");
+  l.planar_readings = record_planar_readings(*l.planar, seconds);
+  l.indices = reading_indices(std::min(l.planar_readings.size(), counts.size()));
+  l.one_axis = indexed_scene_tick_loop(lua_scene, counts);
+  l.two_axes = planar_scene_tick_loop(*l.planar, l.planar_readings);
+  l.group = loops->groups.size();
+  loops->groups.push_back(TickLoopGroup{&l.indices, {l.one_axis.get(), l.two_axes.get()}});
+  const ScriptProgram* one_axis_program = first_script_program(lua_scene);
+  const ScriptProgram* two_axes_program = first_script_program(*l.planar);
+  ScriptProgram one_axis_vm = *one_axis_program;
+  ScriptProgram two_axes_vm = *two_axes_program;
+  one_axis_vm.limits.translate_force = two_axes_vm.limits.translate_force = false;
+  l.calls[0] = script_call_tick_loop(*one_axis_program, swinging_script_inputs(l.indices.size()));
+  l.calls[1] = script_call_tick_loop(*two_axes_program,
+                                     swinging_planar_script_inputs(l.indices.size(), middle[0], middle[1]));
+  l.calls[2] = script_call_tick_loop(one_axis_vm, swinging_script_inputs(l.indices.size()));
+  l.calls[3] = script_call_tick_loop(two_axes_vm,
+                                     swinging_planar_script_inputs(l.indices.size(), middle[0], middle[1]));
+  l.call_group = loops->groups.size();
+  loops->groups.push_back(TickLoopGroup{&l.indices, {l.calls[0].get(), l.calls[1].get()}});
+  loops->groups.push_back(TickLoopGroup{&l.indices, {l.calls[2].get(), l.calls[3].get()}});
+}
 
-  // Everything measured in one interleaved run, then printed.
-  const std::vector<std::vector<TickCost>> costs = compare_tick_loops(groups, passes, &timer, &counter);
-
-  print_header();
+// The 1-D rows, each environment's group in turn, and their goals; false when a Lua
+// row's tail goal was missed.
+bool print_environment_rows(const BenchScenes& b, const BenchLoops& loops,
+                            const std::vector<std::vector<TickCost>>& costs, bool defaults,
+                            std::vector<std::string>* goals) {
   bool tails_ok = true;
-  std::vector<std::string> goals;
-  for (std::size_t i = 0; i < scenes.size(); ++i) {
-    const Scene& scene = scenes[i];
-    const EnvironmentLoops& e = environments[i];
+  for (std::size_t i = 0; i < b.scenes.size(); ++i) {
+    const Scene& scene = b.scenes[i];
+    const EnvironmentLoops& e = loops.environments[i];
     std::vector<TickCost> row_costs = costs[i];
     if (!e.baseline) {
       for (TickCost& cost : row_costs) cost.ratio = -1.0;
@@ -455,7 +479,7 @@ int bench_command(std::vector<std::string> args) {
       std::snprintf(goal, sizeof goal, "%s: built-in %.2fx the lab sketch called out of line (goal <= %.1fx): %s",
                     scene.name.c_str(), ratio, kBuiltinSketchGoalRatio,
                     !measured ? "not measured" : ratio <= kBuiltinSketchGoalRatio ? "met" : "NOT met");
-      goals.push_back(goal);
+      goals->push_back(goal);
     }
     if (e.lua) {
       const TickCost lua_cost = row_costs[row++];
@@ -463,7 +487,7 @@ int bench_command(std::vector<std::string> args) {
       if (e.lua_vm) print_row(scene.name, "Lua, VM only", row_costs[row++], false);
       std::snprintf(goal, sizeof goal, "%s: Lua median %.1f ns (goal < %.0f ns): %s", scene.name.c_str(),
                     lua_cost.median_ns, kLuaGoal_ns, lua_cost.median_ns < kLuaGoal_ns ? "met" : "NOT met");
-      goals.push_back(goal);
+      goals->push_back(goal);
       // The shipped spring and texture scripts have goals of their own.
       if (defaults && (scene.name == "spring" || scene.name == "texture")) {
         const bool spring_row = scene.name == "spring";
@@ -471,52 +495,30 @@ int bench_command(std::vector<std::string> args) {
         const bool met = spring_row ? lua_cost.median_ns <= limit_ns : lua_cost.median_ns < limit_ns;
         std::snprintf(goal, sizeof goal, "%s: Lua median %.1f ns (goal %s %.0f ns): %s", scene.name.c_str(),
                       lua_cost.median_ns, spring_row ? "<=" : "<", limit_ns, met ? "met" : "NOT met");
-        goals.push_back(goal);
+        goals->push_back(goal);
       }
     }
   }
-  print_out("\ngoals\n");
-  for (const std::string& goal : goals) print_out("  %s\n", goal.c_str());
-  print_out("  Lua rows: p99.9 <= %.0fx the median (no GC spikes): %s\n", kTailGoalRatio,
-            tails_ok ? "met" : "NOT met (see p99.9/med)");
+  return tails_ok;
+}
 
-  {
-    const std::vector<TickCost>& parts_costs = costs[scenes.size()];
-    const double fields_ratio = parts_costs[kTexture10Part].median_ns > 0.0
-                                    ? parts_costs[kTextureFinestPart].median_ns / parts_costs[kTexture10Part].median_ns
-                                    : 0.0;
-    print_out("  texture: 50000 fields %.2fx the cost of 10 fields (goal <= %.1fx): %s\n", fields_ratio,
-              kTextureFieldsGoalRatio, fields_ratio <= kTextureFieldsGoalRatio ? "met" : "NOT met");
-  }
-
+// What each part of a scene costs (the parts group, after the environments' groups).
+void print_part_rows(const BenchLoops& loops, const std::vector<TickCost>& part_costs) {
   print_out("\nwhat each part of a scene costs (median ns per tick, measured with the rows above; "
             "ratio against the first row)\n\n");
-  const std::vector<TickCost>& part_costs = costs[scenes.size()];
-  for (std::size_t i = 0; i < part_scenes.size(); ++i) {
+  for (std::size_t i = 0; i < loops.part_scenes.size(); ++i) {
     print_out("%-52s %8.1f %6.2fx", kPartScenes[i][0], part_costs[i].median_ns, part_costs[i].ratio);
-    if (part_scenes[i].script_count > 0) {
-      print_out("   %zu script effect(s), %.3f Lua calls per tick", part_scenes[i].script_count,
-                part_loops[i]->script_calls_per_tick());
+    if (loops.part_scenes[i].script_count > 0) {
+      print_out("   %zu script effect(s), %.3f Lua calls per tick", loops.part_scenes[i].script_count,
+                loops.part_loops[i]->script_calls_per_tick());
     }
     print_out("\n");
   }
+}
 
-  if (!planar_scenes.empty()) {
-    std::vector<PlanarRow> rows;
-    for (std::size_t i = 0; i < planar_scenes.size(); ++i) {
-      rows.push_back(PlanarRow{&planar_scenes[i], costs[scenes.size() + 1 + i], planar[i].baseline != nullptr,
-                               defaults && i + 1 == planar_scenes.size()});
-    }
-    std::optional<LuaSpringRows> lua;
-    if (lua_two_axes) {
-      lua = LuaSpringRows{lua_planar->name, costs[lua_group][0], costs[lua_group][1], costs[call_group][0],
-                          costs[call_group][1], costs[call_group + 1][0], costs[call_group + 1][1]};
-    }
-    print_planar_table(rows, lua ? &*lua : nullptr);
-  }
-
-  // A script that faulted was disabled and its row timed the 0 N left behind: the
-  // numbers above are not the script's cost. Each message once, then exit 1.
+// A script that faulted was disabled and its row timed the 0 N left behind: the numbers
+// printed are not the script's cost. Each message once on stderr; false when any faulted.
+bool report_script_faults(const BenchScenes& b, const BenchLoops& loops) {
   ScriptFaultLog faults;
   const auto collect = [&](const TickLoop* loop, const std::string& where) {
     if (loop == nullptr || loop->scripts() == nullptr) return;
@@ -524,23 +526,91 @@ int bench_command(std::vector<std::string> args) {
       if (script->disabled()) faults.add(std::string(script->fault_message()) + " (while timing " + where + ")", "");
     }
   };
-  for (std::size_t i = 0; i < scenes.size(); ++i) {
-    collect(environments[i].builtin.get(), scenes[i].name + ", " + implementation_label(scenes[i]));
-    collect(environments[i].lua.get(), scenes[i].name + ", Lua script");
+  for (std::size_t i = 0; i < b.scenes.size(); ++i) {
+    collect(loops.environments[i].builtin.get(), b.scenes[i].name + ", " + implementation_label(b.scenes[i]));
+    collect(loops.environments[i].lua.get(), b.scenes[i].name + ", Lua script");
   }
-  for (std::size_t i = 0; i < part_loops.size(); ++i) {
-    collect(part_loops[i].get(), std::string("the part \"") + kPartScenes[i][0] + "\"");
+  for (std::size_t i = 0; i < loops.part_loops.size(); ++i) {
+    collect(loops.part_loops[i].get(), std::string("the part \"") + kPartScenes[i][0] + "\"");
   }
-  collect(lua_one_axis.get(), "spring (1-D), Lua script");
-  collect(lua_two_axes.get(), "spring_lua_2d, Lua script");
-  for (const auto& loop : call_loops) collect(loop.get(), "the Lua springs' force calls");
-  for (std::size_t i = 0; i < scenes.size(); ++i) collect(environments[i].lua_vm.get(), scenes[i].name + ", Lua, VM only");
+  collect(loops.lua_spring.one_axis.get(), "spring (1-D), Lua script");
+  collect(loops.lua_spring.two_axes.get(), "spring_lua_2d, Lua script");
+  for (const auto& loop : loops.lua_spring.calls) collect(loop.get(), "the Lua springs' force calls");
+  for (std::size_t i = 0; i < b.scenes.size(); ++i) {
+    collect(loops.environments[i].lua_vm.get(), b.scenes[i].name + ", Lua, VM only");
+  }
   flush_out();
   for (const std::string& line : faults.report_lines()) std::fprintf(stderr, "%s\n", line.c_str());
   if (!faults.empty()) {
     std::fprintf(stderr, "hapscene bench: a script faulted and was disabled; its rows timed 0 N, not the script\n");
   }
-  return faults.empty() ? kExitOk : kExitFailure;
+  return faults.empty();
+}
+
+}  // namespace
+
+int bench_command(std::vector<std::string> args) {
+  Arguments arguments(std::move(args), "hapscene bench");
+  if (arguments.take_flag("accuracy")) return bench_accuracy(arguments);
+  if (arguments.take_flag("stress")) return bench_stress(arguments);
+  if (arguments.take_flag("soak")) return bench_soak(arguments);
+  if (arguments.take_flag("callgrind")) return bench_callgrind(arguments);
+  if (arguments.take_flag("realtime")) return bench_realtime(arguments);
+  const double seconds = arguments.take(option::bench_seconds).value_or(20.0);
+  const int passes = static_cast<int>(arguments.take(option::bench_passes).value_or(10));
+  const std::string scripts_dir = arguments.take_value("scripts").value_or("scripts");
+  std::vector<std::string> files = arguments.positionals();
+  const bool defaults = files.empty();
+  if (defaults) files.assign(std::begin(kLabEnvironments), std::end(kLabEnvironments));
+
+  const BenchScenes b = load_bench_scenes(files, defaults, scripts_dir);
+  check_bench_memory(arguments, b.scenes, b.planar_scenes, defaults, seconds, passes);
+
+  TickTimer timer;
+  InstructionCounter counter;
+  print_preamble(seconds, passes, counter);
+  // The groups in this order: each 1-D environment, the parts, each 2-D environment, the
+  // Lua springs; the rows below read the costs back in the same order.
+  BenchLoops loops;
+  add_environment_groups(b, seconds, &loops);
+  add_part_group(scripts_dir, seconds, &loops);
+  add_planar_groups(b, seconds, &loops);
+  add_lua_spring_groups(b, defaults, seconds, &loops);
+
+  // Everything measured in one interleaved run, then printed.
+  const std::vector<std::vector<TickCost>> costs = compare_tick_loops(loops.groups, passes, &timer, &counter);
+
+  print_header();
+  std::vector<std::string> goals;
+  const bool tails_ok = print_environment_rows(b, loops, costs, defaults, &goals);
+  print_out("\ngoals\n");
+  for (const std::string& goal : goals) print_out("  %s\n", goal.c_str());
+  print_out("  Lua rows: p99.9 <= %.0fx the median (no GC spikes): %s\n", kTailGoalRatio,
+            tails_ok ? "met" : "NOT met (see p99.9/med)");
+
+  const std::vector<TickCost>& part_costs = costs[b.scenes.size()];
+  const double fields_ratio = part_costs[kTexture10Part].median_ns > 0.0
+                                  ? part_costs[kTextureFinestPart].median_ns / part_costs[kTexture10Part].median_ns
+                                  : 0.0;
+  print_out("  texture: 50000 fields %.2fx the cost of 10 fields (goal <= %.1fx): %s\n", fields_ratio,
+            kTextureFieldsGoalRatio, fields_ratio <= kTextureFieldsGoalRatio ? "met" : "NOT met");
+  print_part_rows(loops, part_costs);
+
+  if (!b.planar_scenes.empty()) {
+    std::vector<PlanarRow> rows;
+    for (std::size_t i = 0; i < b.planar_scenes.size(); ++i) {
+      rows.push_back(PlanarRow{&b.planar_scenes[i], costs[b.scenes.size() + 1 + i], loops.planar[i].baseline != nullptr,
+                               defaults && i + 1 == b.planar_scenes.size()});
+    }
+    std::optional<LuaSpringRows> lua;
+    const LuaSpringLoops& l = loops.lua_spring;
+    if (l.two_axes) {
+      lua = LuaSpringRows{l.planar->name, costs[l.group][0], costs[l.group][1], costs[l.call_group][0],
+                          costs[l.call_group][1], costs[l.call_group + 1][0], costs[l.call_group + 1][1]};
+    }
+    print_planar_table(rows, lua ? &*lua : nullptr);
+  }
+  return report_script_faults(b, loops) ? kExitOk : kExitFailure;
 }
 
 }  // namespace hapscene

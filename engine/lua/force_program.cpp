@@ -68,7 +68,7 @@ bool exact_integer(lua_Integer n) {
 }  // namespace
 
 std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
-                                                    const std::array<bool, kFieldCount>& present, lua_State* L,
+                                                    const std::array<const char*, kFieldCount>& fields, lua_State* L,
                                                     int function_index) {
   const int count = static_cast<int>(chunk.code.size());
   const int registers = chunk.stack_size;
@@ -91,7 +91,6 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
     constant_slots.push_back(true);
     return static_cast<int>(program.values_.size()) - 1;
   };
-  static constexpr std::string_view kFieldNames[kFieldCount] = {"x", "v", "t", "dt", "y", "vx", "vy"};
 
   // Upvalues that hold numbers now: a slot each, filled by read_upvalues.
   std::vector<int> upvalue_slot(u(chunk.upvalue_count), -1);
@@ -255,7 +254,7 @@ std::optional<ForceProgram> ForceProgram::translate(const FunctionChunk& chunk,
         if (key.kind != LuaConstant::Kind::string) return fail;
         int field = -1;
         for (int f = 0; f < kFieldCount; ++f) {
-          if (present[u(f)] && key.text == kFieldNames[f]) field = f;
+          if (fields[u(f)] != nullptr && key.text == fields[u(f)]) field = f;
         }
         if (field < 0) return fail;  // Lua raises "s has no field ...": the VM says so
         load(field, Holds::number);
@@ -404,7 +403,7 @@ bool ForceProgram::read_upvalues(lua_State* L, int function_index) noexcept {
     if (!ok) return false;
     values_[static_cast<std::size_t>(u.slot)] = value;
   }
-  double unused[2];
+  double unused[kMaxResults];
   execute(invariant_ops_.data(), values_.data(), unused);
   return true;
 }

@@ -22,31 +22,35 @@
 #include <vector>
 
 #include "engine/lua/bytecode.hpp"
+#include "engine/lua/state_fields.hpp"
 
 namespace hapscene::detail {
 
-// The fields of s, in the order of the key slots (kSlotKeyX .. kSlotKeyVy).
-enum StateField : int { kFieldX, kFieldV, kFieldT, kFieldDt, kFieldY, kFieldVx, kFieldVy, kFieldCount };
 
 class ForceProgram {
  public:
   // Translates the function at `function_index` (its chunk already read into `chunk`),
   // whose first parameter is s and is only read by constant field (bytecode.hpp);
-  // `present[f]` says which fields s has in this scene (a missing one is an error in Lua).
+  // `fields[f]` is the name of field f (state_fields.hpp) in this scene, nullptr where s
+  // has no such field (reading one is an error in Lua).
   // Reads the upvalues' current values. nullopt: not translatable.
   static std::optional<ForceProgram> translate(const FunctionChunk& chunk,
-                                               const std::array<bool, kFieldCount>& present, lua_State* L,
+                                               const std::array<const char*, kFieldCount>& fields, lua_State* L,
                                                int function_index);
 
   // Reads the upvalues again (after Lua code ran: reset()). False when one is no longer a
   // number of the kind the translation assumed: the program must not run any more.
   bool read_upvalues(lua_State* L, int function_index) noexcept;
 
-  // The value of s.<field> for the next run.
-  void set_field(StateField field, double value) noexcept { values_[field] = value; }
+  // The value of s.<field> for the next run (field: state_fields.hpp).
+  void set_field(int field, double value) noexcept { values_[static_cast<std::size_t>(field)] = value; }
 
-  // Runs the program; writes up to two results to `results` and returns how many values
-  // the function returned (0, 1, 2 or more).
+  // The most values a translated force hands back: a force that returns more (a scene of
+  // more axes) still runs, but in the VM.
+  static constexpr int kMaxResults = 2;
+
+  // Runs the program; writes up to kMaxResults results to `results` and returns how many
+  // values the function returned (0, 1, 2 or more).
   int run(double* results) noexcept;
 
  private:
@@ -73,7 +77,7 @@ class ForceProgram {
   // Ops whose operands are all constants and upvalues, taken out of the run: read_upvalues
   // runs them once (they cannot fail: float arithmetic does not trap). Ends with a give_back.
   std::vector<Op> invariant_ops_;
-  // The fields of s (slot = StateField), the registers, then constants and upvalues.
+  // The fields of s (slot = field index), the registers, then constants and upvalues.
   std::vector<double> values_;
   std::vector<Upvalue> upvalues_;
 };

@@ -300,17 +300,20 @@ int state_index(lua_State* L) {
   if (!vm->needs_time && std::strcmp(name, "t") == 0) {
     return luaL_error(L, "s.t is not available: the script declares needs.time = false");
   }
-  // The other dimension's fields: the script was written for a scene of the other kind.
-  const bool planar_field = std::strcmp(name, "y") == 0 || std::strcmp(name, "vx") == 0 || std::strcmp(name, "vy") == 0;
-  if (vm->axes == 1 && planar_field) {
-    return luaL_error(L, "s.%s is only in 2-D scenes, and this is a 1-D scene (s has x, v, t, dt): "
-                         "a 2-D script cannot run here", name);
+  // A field of another number of axes: the script was written for a scene of another kind.
+  int field = 0;
+  const bool in_scene = find_state_field(name, vm->axes, &field);
+  char scenes[32];
+  write_scenes_with_field(name, " and ", scenes, sizeof scenes);
+  if (!in_scene && scenes[0] != '\0') {
+    char fields[96];
+    char scripts[32];
+    write_state_field_list(vm->axes, fields, sizeof fields);
+    write_scenes_with_field(name, " or ", scripts, sizeof scripts);
+    return luaL_error(L, "s.%s is only in %s scenes, and this is a %d-D scene (s has %s): a %s script cannot run here",
+                      name, scenes, vm->axes, fields, scripts);
   }
-  if (vm->axes == 2 && std::strcmp(name, "v") == 0) {
-    return luaL_error(L, "s.v is only in 1-D scenes, and this is a 2-D scene (s has x, y, vx, vy, t, dt): "
-                         "a 1-D script cannot run here");
-  }
-  if (vm->axes == 2 && !vm->needs_velocity && planar_field && name[0] == 'v') {
+  if (in_scene && !vm->needs_velocity && is_velocity_field(field)) {
     return luaL_error(L, "s.%s is not available: the script declares needs.velocity = false", name);
   }
   return raise_lookup_error(L, PendingSuggestion::Kind::state, "", "s has no field '%s'", name);
@@ -324,21 +327,14 @@ int state_newindex(lua_State* L) {
 // empty, so every read goes to the data table (whose keys the script cannot reach or
 // remove), and every write to the proxy is an error.
 void push_state_tables(lua_State* L, const ScriptVm* vm) {
-  lua_createtable(L, 0, vm->axes == 2 ? 6 : 4);  // data
-  lua_pushnumber(L, 0.0);
-  lua_setfield(L, -2, "x");
-  if (vm->axes == 2) {
+  lua_createtable(L, 0, 2 + 2 * vm->axes);  // data
+  for (int i = 0; i < vm->axes; ++i) {
     lua_pushnumber(L, 0.0);
-    lua_setfield(L, -2, "y");
+    lua_setfield(L, -2, state_field_name(position_field(i), vm->axes));
   }
-  if (vm->needs_velocity) {
-    static constexpr const char* kVelocity1[] = {"v"};
-    static constexpr const char* kVelocity2[] = {"vx", "vy"};
-    const int count = vm->axes == 2 ? 2 : 1;
-    for (int i = 0; i < count; ++i) {
-      lua_pushnumber(L, 0.0);
-      lua_setfield(L, -2, vm->axes == 2 ? kVelocity2[i] : kVelocity1[i]);
-    }
+  for (int i = 0; vm->needs_velocity && i < vm->axes; ++i) {
+    lua_pushnumber(L, 0.0);
+    lua_setfield(L, -2, state_field_name(velocity_field(i), vm->axes));
   }
   if (vm->needs_time) {
     lua_pushnumber(L, 0.0);
@@ -463,7 +459,9 @@ void suggestion_for(ScriptVm* vm, lua_State* L, const char* message, char* out, 
       if (found) {
         std::snprintf(out, size, " (did you mean 's.%s'?)", nearest);
       } else {
-        std::snprintf(out, size, vm->axes == 2 ? " (s has x, y, vx, vy, t, dt)" : " (s has x, v, t, dt)");
+        char fields[96];
+        write_state_field_list(vm->axes, fields, sizeof fields);
+        std::snprintf(out, size, " (s has %s)", fields);
       }
       break;
     case PendingSuggestion::Kind::library:
@@ -543,15 +541,13 @@ int finish_load(lua_State* L) {
   lua_getinfo(L, ">S", &ar);
   vm->force_line = ar.linedefined;
 
-  // Results, in slot order: force, reset, s, data, "x", "v", "t", "dt", "y", "vx", "vy".
+  // Results, in slot order: force, reset, s, data, then each field's name (state_fields.hpp;
+  // "" for a field this scene does not have: its slot is never used).
   push_state_tables(L, vm);
-  lua_pushliteral(L, "x");
-  lua_pushliteral(L, "v");
-  lua_pushliteral(L, "t");
-  lua_pushliteral(L, "dt");
-  lua_pushliteral(L, "y");
-  lua_pushliteral(L, "vx");
-  lua_pushliteral(L, "vy");
+  for (int f = 0; f < kFieldCount; ++f) {
+    const char* field_name = state_field_name(f, vm->axes);
+    lua_pushstring(L, field_name != nullptr ? field_name : "");
+  }
   return kSlotCount;
 }
 

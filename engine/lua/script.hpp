@@ -25,6 +25,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "engine/base/axes.hpp"
 #include "engine/base/units.hpp"
 
 namespace hapscene {
@@ -90,30 +91,19 @@ enum class ScriptFault {
   memory_limit,        // memory_bytes, allocation_bytes_per_call or string_bytes
 };
 
-// The state handed to force(s) in a 1-D scene, in SI units.
-struct ScriptInput {
-  double x_m{};        // s.x, handle position
-  double v_m_per_s{};  // s.v, absent when the script declares needs.velocity = false
-  double t_s{};        // s.t, run time; absent when the script declares needs.time = false
-  double dt_s{};       // s.dt, tick period
+// The state handed to force(s) in a scene of N axes, in SI units: per axis a position
+// and a velocity (1-D: s.x, s.v; 2-D: s.x, s.y, s.vx, s.vy; engine/lua/state_fields.hpp),
+// then s.t and s.dt. The velocity is absent from s when the script declares
+// needs.velocity = false, the time when it declares needs.time = false.
+template <int N>
+struct ScriptInputOf {
+  Axes<N> x_m{};        // handle position
+  Axes<N> v_m_per_s{};  // velocity
+  double t_s{};         // run time
+  double dt_s{};        // tick period
 };
-
-// The state handed to force(s) in a 2-D (planar) scene, in SI units; force(s) returns
-// two numbers there, fx and fy in N.
-struct PlanarScriptInput {
-  double x_m{};         // s.x, s.y: handle position
-  double y_m{};
-  double vx_m_per_s{};  // s.vx, s.vy; absent when the script declares needs.velocity = false
-  double vy_m_per_s{};
-  double t_s{};         // s.t; absent when the script declares needs.time = false
-  double dt_s{};        // s.dt
-};
-
-// What a 2-D script returned.
-struct PlanarScriptForce {
-  double x_N{};
-  double y_N{};
-};
+using ScriptInput = ScriptInputOf<1>;
+using PlanarScriptInput = ScriptInputOf<2>;
 
 // One script parameter after defaults and JSON overrides are applied, in SI.
 struct ScriptParam {
@@ -193,14 +183,13 @@ class ScriptInstance {
   ScriptInstance(const ScriptInstance&) = delete;
   ScriptInstance& operator=(const ScriptInstance&) = delete;
 
-  // The script's force in N. Returns 0 once disabled. The first runtime error, limit
-  // overrun, or return value that is not a finite number disables the script and records
-  // fault_message(); later calls do not run the script.
-  double force_N(const ScriptInput& input) noexcept;
-  // The same for a program compiled for 2 axes: force(s) must return two finite numbers
-  // (fx, fy); anything else (one value, three, nil, nan) disables the script and gives
-  // {0, 0}. Each instance is called with the input of its program's dimension only.
-  PlanarScriptForce planar_force_N(const PlanarScriptInput& input) noexcept;
+  // The script's force in N: force(s) must return N finite numbers in a scene of N axes
+  // (one in 1-D; fx, fy in 2-D). Returns 0 N once disabled. The first runtime error,
+  // limit overrun, or return value that is not that (a count of values not N, a nil, a
+  // nan) disables the script and records fault_message(); later calls do not run the
+  // script. Each instance is called with the input of its program's dimension only.
+  template <int N>
+  Axes<N> force_N(const ScriptInputOf<N>& input) noexcept;
   // Calls the script's reset() if it defines one (same limits as force). The host calls
   // it when a run starts or restarts; create() does not. Does not re-enable a disabled
   // script: its state may be half-updated; a new instance (a new run or a reload) starts
@@ -225,7 +214,7 @@ class ScriptInstance {
   void warm() noexcept;
   // The real-time loop's dry tick (engine/run/warm_tick.hpp) runs the tick's own code on
   // a copy of the tick state, replaying the last tick. Between begin_dry_run() and
-  // end_dry_run(), force_N() and planar_force_N() repeat the last call through their own
+  // end_dry_run(), force_N() repeats the last call through its own
   // code when warm() would make a dry call and the input is bit for bit the one s holds
   // (the replay's), and otherwise warm() and answer 0 N; either way nothing changes that
   // the script or the host can see (no fault, no skipped call counted).

@@ -120,47 +120,50 @@ bool can_repeat_last_call(const ScriptVm* vm) {
 
 // Whether a call with `input` would be the last call again: it may repeat, and every value
 // it would write into s is already there, bit for bit (t: the last call's, now_s).
-bool repeats_last_call(const ScriptVm* vm, const ScriptInput& input) {
+template <int N>
+bool repeats_last_call(const ScriptVm* vm, const ScriptInputOf<N>& input) {
   lua_State* L = vm->L;
-  return can_repeat_last_call(vm) && same_bits(input.dt_s, vm->last_dt_s) && same_bits(input.t_s, vm->now_s) &&
-         state_holds(L, detail::kSlotKeyX, input.x_m) &&
-         (!vm->needs_velocity || state_holds(L, detail::kSlotKeyV, input.v_m_per_s)) &&
-         (!vm->needs_time || state_holds(L, detail::kSlotKeyT, input.t_s));
-}
-bool repeats_last_call(const ScriptVm* vm, const PlanarScriptInput& input) {
-  lua_State* L = vm->L;
-  return can_repeat_last_call(vm) && same_bits(input.dt_s, vm->last_dt_s) && same_bits(input.t_s, vm->now_s) &&
-         state_holds(L, detail::kSlotKeyX, input.x_m) && state_holds(L, detail::kSlotKeyY, input.y_m) &&
-         (!vm->needs_velocity || (state_holds(L, detail::kSlotKeyVx, input.vx_m_per_s) &&
-                                  state_holds(L, detail::kSlotKeyVy, input.vy_m_per_s))) &&
-         (!vm->needs_time || state_holds(L, detail::kSlotKeyT, input.t_s));
+  if (!can_repeat_last_call(vm) || !same_bits(input.dt_s, vm->last_dt_s) || !same_bits(input.t_s, vm->now_s)) {
+    return false;
+  }
+  for (int i = 0; i < N; ++i) {
+    if (!state_holds(L, detail::key_slot(detail::position_field(i)), component(input.x_m, i))) return false;
+    if (vm->needs_velocity &&
+        !state_holds(L, detail::key_slot(detail::velocity_field(i)), component(input.v_m_per_s, i))) {
+      return false;
+    }
+  }
+  return !vm->needs_time || state_holds(L, detail::kSlotKeyT, input.t_s);
 }
 
 // force(s) from its translation (force_program.hpp) on `input`: true, with the force, when
-// it returned what the scene needs (one finite number; two in 2-D); false otherwise (the
-// VM is then the one to ask).
-bool translated_force(ScriptVm* vm, const ScriptInput& input, double* force_N) {
+// it returned what the scene needs (N finite numbers); false otherwise (the VM is then
+// the one to ask).
+template <int N>
+bool translated_force(ScriptVm* vm, const ScriptInputOf<N>& input, Axes<N>* force_N) {
+  if constexpr (N > detail::ForceProgram::kMaxResults) {
+    return false;  // not translated (see create)
+  }
   detail::ForceProgram& program = *vm->force_program;
-  program.set_field(detail::kFieldX, input.x_m);
-  program.set_field(detail::kFieldV, input.v_m_per_s);
+  for (int i = 0; i < N; ++i) {
+    program.set_field(detail::position_field(i), component(input.x_m, i));
+    program.set_field(detail::velocity_field(i), component(input.v_m_per_s, i));
+  }
   program.set_field(detail::kFieldT, input.t_s);
   program.set_field(detail::kFieldDt, input.dt_s);
-  double results[2];
-  if (program.run(results) < 1 || !std::isfinite(results[0])) return false;
-  *force_N = results[0];
-  return true;
-}
-bool translated_force(ScriptVm* vm, const PlanarScriptInput& input, PlanarScriptForce* force) {
-  detail::ForceProgram& program = *vm->force_program;
-  program.set_field(detail::kFieldX, input.x_m);
-  program.set_field(detail::kFieldY, input.y_m);
-  program.set_field(detail::kFieldVx, input.vx_m_per_s);
-  program.set_field(detail::kFieldVy, input.vy_m_per_s);
-  program.set_field(detail::kFieldT, input.t_s);
-  program.set_field(detail::kFieldDt, input.dt_s);
-  double results[2];
-  if (program.run(results) != 2 || !std::isfinite(results[0]) || !std::isfinite(results[1])) return false;
-  *force = {results[0], results[1]};
+  double results[detail::ForceProgram::kMaxResults];
+  const int count = program.run(results);
+  if constexpr (N == 1) {
+    // One value is kept, as the VM's call keeps one.
+    if (count < 1 || !std::isfinite(results[0])) return false;
+    *force_N = results[0];
+  } else {
+    if (count != N) return false;
+    for (int i = 0; i < N; ++i) {
+      if (!std::isfinite(results[i])) return false;
+      (*force_N)[i] = results[i];
+    }
+  }
   return true;
 }
 
@@ -240,18 +243,18 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   vm->state_slot = force_code.first_parameter_read_by_field_only ? detail::kSlotData : detail::kSlotState;
   // A force that would run unhooked, reads s by field only and is arithmetic on numbers
   // runs from its translation (force_program.hpp).
-  if (program.limits.translate_force && force_code.first_parameter_read_by_field_only && !vm->force_calls &&
+  if (program.limits.translate_force && vm->axes <= detail::ForceProgram::kMaxResults &&
+      force_code.first_parameter_read_by_field_only && !vm->force_calls &&
       force_code.straight_line_length > 0 && force_code.straight_line_length <= detail::kMaxStraightLine &&
       force_code.straight_line_length < vm->limits.instructions_per_call) {
     detail::FunctionChunk chunk;
     if (detail::read_function_chunk(L, detail::kSlotForce, &chunk)) {
-      std::array<bool, detail::kFieldCount> present{};
-      present[detail::kFieldX] = present[detail::kFieldDt] = true;
-      present[detail::kFieldT] = vm->needs_time;
-      present[detail::kFieldV] = vm->axes == 1 && vm->needs_velocity;
-      present[detail::kFieldY] = vm->axes == 2;
-      present[detail::kFieldVx] = present[detail::kFieldVy] = vm->axes == 2 && vm->needs_velocity;
-      vm->force_program = detail::ForceProgram::translate(chunk, present, L, detail::kSlotForce);
+      std::array<const char*, detail::kFieldCount> fields{};
+      for (int f = 0; f < detail::kFieldCount; ++f) {
+        const bool present = (f != detail::kFieldT || vm->needs_time) && (!detail::is_velocity_field(f) || vm->needs_velocity);
+        fields[static_cast<std::size_t>(f)] = present ? detail::state_field_name(f, vm->axes) : nullptr;
+      }
+      vm->force_program = detail::ForceProgram::translate(chunk, fields, L, detail::kSlotForce);
     }
   }
   vm->force_translated = vm->force_program.has_value() && !vm->script_metamethods;
@@ -263,77 +266,9 @@ std::unique_ptr<ScriptInstance> ScriptInstance::create(const ScriptProgram& prog
   return instance;
 }
 
-double ScriptInstance::force_N(const ScriptInput& input) noexcept {
-  ScriptVm* vm = vm_.get();
-  if (vm->disabled || vm->dry_run) [[unlikely]] {
-    if (!vm->dry_run) {
-      ++vm->skipped_calls;
-      return 0.0;
-    }
-    // The dry tick. A translated force has no side effects: it runs on any input (a
-    // result that is not plainly good is 0 N here; the VM is not asked).
-    if (vm->force_translated && !vm->disabled) {
-      ++vm->dry_calls;
-      double force = 0.0;
-      return translated_force(vm, input, &force) ? force : 0.0;
-    }
-    // Else the last call again, through this code, only when that changes nothing.
-    if (!repeats_last_call(vm, input)) {
-      warm();
-      return 0.0;
-    }
-    ++vm->dry_calls;
-  }
-  lua_State* L = vm->L;
-  vm->now_s = input.t_s;
-  if (vm->force_translated) {
-    double force = 0.0;
-    if (translated_force(vm, input, &force)) return force;
-    vm->last_dt_s = std::numeric_limits<double>::quiet_NaN();  // the VM's s was not kept up to date
-  }
-  detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
-                     vm->force_straight_line, vm->force_calls);
-
-  // s, then force(s) in protected mode.
-  set_state(L, detail::kSlotKeyX, input.x_m);
-  if (vm->needs_velocity) set_state(L, detail::kSlotKeyV, input.v_m_per_s);
-  if (vm->needs_time) set_state(L, detail::kSlotKeyT, input.t_s);
-  if (input.dt_s != vm->last_dt_s) {
-    set_state(L, detail::kSlotKeyDt, input.dt_s);
-    vm->last_dt_s = input.dt_s;
-  }
-  lua_pushvalue(L, detail::kSlotForce);
-  lua_pushvalue(L, vm->state_slot);
-  const int status = lua_pcall(L, 1, 1, 0);
-  detail::end_call(vm);
-
-  // The result must be a finite number; a tripped limit fails the call even if the
-  // script caught the error and returned.
-  if (status == LUA_OK && !vm->tripped) {
-    if (lua_type(L, -1) == LUA_TNUMBER) {
-      const double force = lua_tonumber(L, -1);
-      lua_settop(L, detail::kSlotCount);
-      if (std::isfinite(force)) return force;
-      detail::record_fault(vm, ScriptFault::bad_return,
-                           "%s:%d: force(s) returned %s, expected a finite number (N)",
-                           vm->short_source.c_str(), vm->force_line,
-                           std::isnan(force) ? "nan" : (force > 0 ? "inf" : "-inf"));
-    } else {
-      detail::record_fault(vm, ScriptFault::bad_return,
-                           "%s:%d: force(s) returned %s, expected a finite number (N)",
-                           vm->short_source.c_str(), vm->force_line, luaL_typename(L, -1));
-    }
-  } else {
-    record_call_failure(vm, status, "force(s)");
-  }
-  lua_settop(L, detail::kSlotCount);
-  disable(vm);
-  return 0.0;
-}
-
 namespace {
 
-// "nan", "-inf", or the number as %g, for messages about a return value.
+// "nan", "-inf", or the number as %.17g, for messages about a return value.
 void describe_number(double value, char* out, std::size_t size) {
   if (std::isnan(value)) {
     std::snprintf(out, size, "nan");
@@ -344,9 +279,68 @@ void describe_number(double value, char* out, std::size_t size) {
   }
 }
 
+inline constexpr const char* kCountWords[] = {"no", "one", "two", "three", "four"};
+static_assert(kMaxAxes < static_cast<int>(std::size(kCountWords)), "every count of results has a word");
+
+// "fx, fy": the forces a scene of `axes` axes asks force(s) for.
+void write_force_names(int axes, char* out, std::size_t size) {
+  std::size_t used = 0;
+  out[0] = '\0';
+  for (int i = 0; i < axes && used < size; ++i) {
+    const int written = std::snprintf(out + used, size - used, "%sf%s", i == 0 ? "" : ", ", kAxisNames[i]);
+    if (written < 0) return;
+    used += static_cast<std::size_t>(written);
+  }
+}
+
+// Why the `results` values force(s) returned (on the stack's top) are not the N finite
+// numbers of a scene of N >= 2 axes: the fault, recorded.
+void record_bad_results(ScriptVm* vm, int results, int axes) {
+  lua_State* L = vm->L;
+  const char* name = vm->short_source.c_str();
+  char forces[32];
+  write_force_names(axes, forces, sizeof forces);
+  const char* expected = kCountWords[axes];
+  bool numbers = true;
+  for (int k = 0; k < results; ++k) numbers = numbers && lua_type(L, -results + k) == LUA_TNUMBER;
+  char got[192];
+  std::size_t used = 0;
+  got[0] = '\0';
+  if (results == axes && numbers) {
+    // The right count, but a value that is not finite: each value as it was.
+    for (int k = 0; k < results && used < sizeof got; ++k) {
+      char number[32];
+      describe_number(lua_tonumber(L, -results + k), number, sizeof number);
+      used += static_cast<std::size_t>(std::snprintf(got + used, sizeof got - used, "%s%s", k == 0 ? "" : ", ", number));
+    }
+    detail::record_fault(vm, ScriptFault::bad_return, "%s:%d: force(s) returned %s, expected %s finite numbers %s (N)",
+                         name, vm->force_line, got, expected, forces);
+  } else if (results == axes) {
+    // The right count, not all numbers: "a number and a nil".
+    for (int k = 0; k < results && used < sizeof got; ++k) {
+      const char* joint = k == 0 ? "" : k + 1 == results ? " and " : ", ";
+      used += static_cast<std::size_t>(
+          std::snprintf(got + used, sizeof got - used, "%sa %s", joint, luaL_typename(L, -results + k)));
+    }
+    detail::record_fault(vm, ScriptFault::bad_return, "%s:%d: force(s) returned %s, expected %s finite numbers %s (N)",
+                         name, vm->force_line, got, expected, forces);
+  } else if (numbers && results >= 1 && detail::scene_axes_supported(results)) {
+    // As many numbers as a scene of another number of axes asks for.
+    detail::record_fault(vm, ScriptFault::bad_return,
+                         "%s:%d: force(s) returned %s number%s, expected %s, %s (N): this is a %d-D scene, and a "
+                         "%d-D script returns %s (docs/reference/lua.md, \"Scripts in 2-D\")",
+                         name, vm->force_line, kCountWords[results], results == 1 ? "" : "s", expected, forces, axes,
+                         results, kCountWords[results]);
+  } else {
+    detail::record_fault(vm, ScriptFault::bad_return, "%s:%d: force(s) returned %d value%s, expected %s finite numbers %s (N)",
+                         name, vm->force_line, results, results == 1 ? "" : "s", expected, forces);
+  }
+}
+
 }  // namespace
 
-PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input) noexcept {
+template <int N>
+Axes<N> ScriptInstance::force_N(const ScriptInputOf<N>& input) noexcept {
   ScriptVm* vm = vm_.get();
   if (vm->disabled || vm->dry_run) [[unlikely]] {
     if (!vm->dry_run) {
@@ -357,8 +351,8 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
     // result that is not plainly good is 0 N here; the VM is not asked).
     if (vm->force_translated && !vm->disabled) {
       ++vm->dry_calls;
-      PlanarScriptForce force;
-      return translated_force(vm, input, &force) ? force : PlanarScriptForce{};
+      Axes<N> force{};
+      return translated_force(vm, input, &force) ? force : Axes<N>{};
     }
     // Else the last call again, through this code, only when that changes nothing.
     if (!repeats_last_call(vm, input)) {
@@ -370,19 +364,17 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
   lua_State* L = vm->L;
   vm->now_s = input.t_s;
   if (vm->force_translated) {
-    PlanarScriptForce force;
+    Axes<N> force{};
     if (translated_force(vm, input, &force)) return force;
     vm->last_dt_s = std::numeric_limits<double>::quiet_NaN();  // the VM's s was not kept up to date
   }
   detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
                      vm->force_straight_line, vm->force_calls);
 
-  // s, then force(s) in protected mode, keeping every result to count them.
-  set_state(L, detail::kSlotKeyX, input.x_m);
-  set_state(L, detail::kSlotKeyY, input.y_m);
+  // s, then force(s) in protected mode.
+  for (int i = 0; i < N; ++i) set_state(L, detail::key_slot(detail::position_field(i)), component(input.x_m, i));
   if (vm->needs_velocity) {
-    set_state(L, detail::kSlotKeyVx, input.vx_m_per_s);
-    set_state(L, detail::kSlotKeyVy, input.vy_m_per_s);
+    for (int i = 0; i < N; ++i) set_state(L, detail::key_slot(detail::velocity_field(i)), component(input.v_m_per_s, i));
   }
   if (vm->needs_time) set_state(L, detail::kSlotKeyT, input.t_s);
   if (input.dt_s != vm->last_dt_s) {
@@ -391,37 +383,42 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
   }
   lua_pushvalue(L, detail::kSlotForce);
   lua_pushvalue(L, vm->state_slot);
-  const int status = lua_pcall(L, 1, LUA_MULTRET, 0);
+  // In 1-D the first result is kept (the load check counts them); with more axes every
+  // result, to count them. A tripped limit fails the call even if the script caught the
+  // error and returned.
+  const int status = lua_pcall(L, 1, N == 1 ? 1 : LUA_MULTRET, 0);
   detail::end_call(vm);
-
-  // Exactly two finite numbers; a tripped limit fails the call even if the script caught it.
   if (status == LUA_OK && !vm->tripped) {
-    const int results = lua_gettop(L) - detail::kSlotCount;
-    const char* name = vm->short_source.c_str();
-    if (results == 2 && lua_type(L, -2) == LUA_TNUMBER && lua_type(L, -1) == LUA_TNUMBER) {
-      const PlanarScriptForce force{lua_tonumber(L, -2), lua_tonumber(L, -1)};
-      lua_settop(L, detail::kSlotCount);
-      if (std::isfinite(force.x_N) && std::isfinite(force.y_N)) return force;
-      char fx[32];
-      char fy[32];
-      describe_number(force.x_N, fx, sizeof fx);
-      describe_number(force.y_N, fy, sizeof fy);
-      detail::record_fault(vm, ScriptFault::bad_return,
-                           "%s:%d: force(s) returned %s, %s, expected two finite numbers fx, fy (N)", name,
-                           vm->force_line, fx, fy);
-    } else if (results == 2) {
-      detail::record_fault(vm, ScriptFault::bad_return,
-                           "%s:%d: force(s) returned a %s and a %s, expected two finite numbers fx, fy (N)", name,
-                           vm->force_line, luaL_typename(L, -2), luaL_typename(L, -1));
-    } else if (results == 1 && lua_type(L, -1) == LUA_TNUMBER) {
-      detail::record_fault(vm, ScriptFault::bad_return,
-                           "%s:%d: force(s) returned one number, expected two, fx, fy (N): this is a 2-D scene, "
-                           "and a 1-D script returns one (docs/reference/lua.md, \"Scripts in 2-D\")",
-                           name, vm->force_line);
+    if constexpr (N == 1) {
+      if (lua_type(L, -1) == LUA_TNUMBER) {
+        const double force = lua_tonumber(L, -1);
+        lua_settop(L, detail::kSlotCount);
+        if (std::isfinite(force)) return force;
+        detail::record_fault(vm, ScriptFault::bad_return,
+                             "%s:%d: force(s) returned %s, expected a finite number (N)",
+                             vm->short_source.c_str(), vm->force_line,
+                             std::isnan(force) ? "nan" : (force > 0 ? "inf" : "-inf"));
+      } else {
+        detail::record_fault(vm, ScriptFault::bad_return,
+                             "%s:%d: force(s) returned %s, expected a finite number (N)",
+                             vm->short_source.c_str(), vm->force_line, luaL_typename(L, -1));
+      }
     } else {
-      detail::record_fault(vm, ScriptFault::bad_return,
-                           "%s:%d: force(s) returned %d value%s, expected two finite numbers fx, fy (N)", name,
-                           vm->force_line, results, results == 1 ? "" : "s");
+      const int results = lua_gettop(L) - detail::kSlotCount;
+      if (results == N) {
+        Axes<N> force{};
+        bool good = true;
+        for (int i = 0; i < N; ++i) {
+          good = good && lua_type(L, -N + i) == LUA_TNUMBER;
+          force[i] = good ? lua_tonumber(L, -N + i) : 0.0;
+          good = good && std::isfinite(force[i]);
+        }
+        if (good) {
+          lua_settop(L, detail::kSlotCount);
+          return force;
+        }
+      }
+      record_bad_results(vm, results, N);
     }
   } else {
     record_call_failure(vm, status, "force(s)");
@@ -431,6 +428,10 @@ PlanarScriptForce ScriptInstance::planar_force_N(const PlanarScriptInput& input)
   return {};
 }
 
+#define HAPSCENE_SCRIPT_FORCE(N) template Axes<N> ScriptInstance::force_N<N>(const ScriptInputOf<N>&) noexcept;
+HAPSCENE_FOR_EACH_AXES(HAPSCENE_SCRIPT_FORCE)
+#undef HAPSCENE_SCRIPT_FORCE
+
 int ScriptInstance::check_force_results() noexcept {
   ScriptVm* vm = vm_.get();
   if (vm->disabled) return -1;
@@ -438,8 +439,7 @@ int ScriptInstance::check_force_results() noexcept {
   vm->now_s = 0.0;
   detail::begin_call(vm, vm->limits.instructions_per_call, vm->limits.allocation_bytes_per_call,
                      vm->force_straight_line, vm->force_calls);
-  set_state(L, detail::kSlotKeyX, 0.0);
-  if (vm->axes == 2) set_state(L, detail::kSlotKeyY, 0.0);
+  for (int i = 0; i < vm->axes; ++i) set_state(L, detail::key_slot(detail::position_field(i)), 0.0);
   lua_pushvalue(L, detail::kSlotForce);
   lua_pushvalue(L, vm->state_slot);
   const int status = lua_pcall(L, 1, LUA_MULTRET, 0);
@@ -497,7 +497,7 @@ void ScriptInstance::warm() noexcept {
   ScriptVm* vm = vm_.get();
   // A translated force is pure: running it (on the last call's s) warms its code and data.
   if (vm->force_translated && !vm->disabled) {
-    double results[2];
+    double results[detail::ForceProgram::kMaxResults];
     vm->force_program->run(results);
     asm volatile("" : : "m"(results));
     ++vm->dry_calls;

@@ -98,7 +98,9 @@ ScriptProgram compile_script(std::string display_name, std::string source,
                              const nlohmann::json& params_override, std::string error_context,
                              std::string pointer_prefix, ScriptLimits limits, int axes) {
   check_limits(limits, error_context, display_name);
-  if (axes != 1 && axes != 2) throw InputError(display_name + ": scripts run in scenes of 1 or 2 axes");
+  if (!detail::scene_axes_supported(axes)) {
+    throw InputError(display_name + ": a scene of " + std::to_string(axes) + " axes cannot run scripts");
+  }
   if (const std::size_t numbers = count_number_literals(source); numbers > kMaxNumberLiterals) {
     throw InputError(display_name + ": " + std::to_string(numbers) +
                      " number literals; a script may have at most " +
@@ -128,28 +130,27 @@ ScriptProgram compile_script(std::string display_name, std::string source,
   if (instance->disabled()) {
     throw InputError(std::string(instance->fault_message()) + " (while checking reset() at load)");
   }
+  // The call at rest in the scene's own dimension.
+  char at_rest[160];
+  detail::write_state_at_rest(axes, at_rest, sizeof at_rest);
+  const std::string while_checking = std::string(" (while checking force(s) at ") + at_rest + ")";
+#define HAPSCENE_CALL_AT_REST(N) \
+  if (axes == (N)) instance->force_N(ScriptInputOf<N>{.dt_s = 0.001});
+  HAPSCENE_FOR_EACH_AXES(HAPSCENE_CALL_AT_REST)
+#undef HAPSCENE_CALL_AT_REST
+  if (instance->disabled()) throw InputError(std::string(instance->fault_message()) + while_checking);
   if (axes == 1) {
-    ScriptInput probe;
-    probe.dt_s = 0.001;
-    instance->force_N(probe);
-    if (instance->disabled()) {
-      throw InputError(std::string(instance->fault_message()) +
-                       " (while checking force(s) at x = 0 m, v = 0 m/s, t = 0 s)");
-    }
     // force_N keeps the first result only: a script that returns two (fx, fy) was
     // written for a 2-D scene.
     const int results = instance->check_force_results();
-    if (instance->disabled()) {
-      throw InputError(std::string(instance->fault_message()) +
-                       " (while checking force(s) at x = 0 m, v = 0 m/s, t = 0 s)");
-    }
+    if (instance->disabled()) throw InputError(std::string(instance->fault_message()) + while_checking);
     if (results != 1) {
       const std::string where = instance->vm_->short_source + ":" + std::to_string(instance->vm_->force_line);
       throw InputError(where + ": force(s) returned " + std::to_string(results) + " values, expected one number (N)" +
                        (results == 2 ? ": this is a 1-D scene, and a 2-D script returns two, fx, fy "
                                        "(docs/reference/lua.md, \"Scripts in 2-D\")"
                                      : "") +
-                       " (while checking force(s) at x = 0 m, v = 0 m/s, t = 0 s)");
+                       while_checking);
     }
     // Declared shapes describe a 2-D script for validate; a script that passed the 1-D
     // checks is a 1-D script, and a 1-D scene has no use for them.
@@ -158,14 +159,6 @@ ScriptProgram compile_script(std::string display_name, std::string source,
                        ": shapes: this is a 1-D scene, and shapes are for 2-D scripts (validate presses into "
                        "them in a 2-DOF scene; a 1-D scene's walls are found by a scan of the field): remove "
                        "shapes, or use the script in a planar environment");
-    }
-  } else {
-    PlanarScriptInput probe;
-    probe.dt_s = 0.001;
-    instance->planar_force_N(probe);
-    if (instance->disabled()) {
-      throw InputError(std::string(instance->fault_message()) +
-                       " (while checking force(s) at x = 0 m, y = 0 m, vx = 0 m/s, vy = 0 m/s, t = 0 s)");
     }
   }
   return program;

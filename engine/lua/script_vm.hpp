@@ -19,6 +19,7 @@
 #include "engine/lua/force_program.hpp"
 #include "engine/lua/log_queue.hpp"
 #include "engine/lua/script.hpp"
+#include "engine/lua/state_fields.hpp"
 
 namespace hapscene::detail {
 
@@ -28,14 +29,13 @@ inline constexpr int kSlotForce = 1;  // the script's force function
 inline constexpr int kSlotReset = 2;  // reset function, or nil
 inline constexpr int kSlotState = 3;  // `s`: an empty read-only proxy table
 inline constexpr int kSlotData = 4;   // the hidden table `s` reads from
-inline constexpr int kSlotKeyX = 5;   // "x", "v", "t", "dt" as Lua strings
-inline constexpr int kSlotKeyV = 6;
-inline constexpr int kSlotKeyT = 7;
-inline constexpr int kSlotKeyDt = 8;
-inline constexpr int kSlotKeyY = 9;   // "y", "vx", "vy": written in 2-D scenes only
-inline constexpr int kSlotKeyVx = 10;
-inline constexpr int kSlotKeyVy = 11;
-inline constexpr int kSlotCount = 11;
+// Then the name of each field of s as a Lua string, in the order of state_fields.hpp
+// ("t", "dt", "x", "y", ..., "v" or "vx", "vy", ...; "" where the scene has no such field).
+constexpr int key_slot(int field) noexcept { return 5 + field; }
+inline constexpr int kSlotKeyT = key_slot(kFieldT);
+inline constexpr int kSlotKeyDt = key_slot(kFieldDt);
+inline constexpr int kSlotKeyX = key_slot(position_field(0));
+inline constexpr int kSlotCount = key_slot(kFieldCount - 1);
 
 // The hook fires every this many instructions (fewer when the budget is smaller).
 inline constexpr std::int64_t kHookPeriod = 128;
@@ -64,7 +64,7 @@ struct ScriptVm {
   bool needs_velocity{true};
   bool needs_time{true};
   std::vector<ScriptShape> shapes;  // the `shapes` global, checked (globals.cpp)
-  int axes{1};       // of the scene: 1 (s.x, s.v; one result) or 2 (s.x, s.y, s.vx, s.vy; two)
+  int axes{1};       // of the scene: s has a position and a velocity per axis, force returns axes numbers
   int force_line{};  // line where force is defined, for messages about its return value
   std::int64_t force_straight_line{};  // force's length when it cannot loop, else 0
   bool force_calls{true};  // force's own code has a call instruction (see bytecode.hpp)

@@ -54,24 +54,12 @@ TickStateOf<N> make_tick_state(const SceneOf<N>& scene) {
 
 namespace {
 
-// Each script's force (one call per script per tick): 1-DOF scripts.
-double add_scripts_N(double force_N, const EffectInputOf<1>& input, ScriptList& scripts,
-                     std::uint64_t* script_calls) noexcept {
-  const ScriptInput script_input{input.x_m, input.v_m_per_s, input.t_s, input.dt_s};
+// Each script's force (one call per script per tick): N numbers in a scene of N axes.
+template <int N>
+Axes<N> add_scripts_N(Axes<N> force_N, const EffectInputOf<N>& input, ScriptList& scripts,
+                      std::uint64_t* script_calls) noexcept {
+  const ScriptInputOf<N> script_input{input.x_m, input.v_m_per_s, input.t_s, input.dt_s};
   for (const auto& script : scripts) force_N += script->force_N(script_input);
-  if (script_calls != nullptr) *script_calls += scripts.size();
-  return force_N;
-}
-
-// 2-D scripts: each returns (fx, fy).
-Vec2 add_scripts_N(Vec2 force_N, const EffectInputOf<2>& input, ScriptList& scripts,
-                   std::uint64_t* script_calls) noexcept {
-  const PlanarScriptInput script_input{input.x_m[0], input.x_m[1], input.v_m_per_s[0], input.v_m_per_s[1],
-                                       input.t_s,    input.dt_s};
-  for (const auto& script : scripts) {
-    const PlanarScriptForce f = script->planar_force_N(script_input);
-    force_N += Vec2{{f.x_N, f.y_N}};
-  }
   if (script_calls != nullptr) *script_calls += scripts.size();
   return force_N;
 }

@@ -72,16 +72,14 @@ void check_same_2d(const ScriptProgram& program) {
   const auto values = probe_values();
   for (std::size_t i = 0; i < values.size() * 3; ++i) {
     PlanarScriptInput input;
-    input.x_m = values[i % values.size()];
-    input.y_m = 0.12 + values[(i * 5 + 1) % values.size()];
-    input.vx_m_per_s = values[(i * 7 + 3) % values.size()];
-    input.vy_m_per_s = values[(i * 11 + 2) % values.size()];
+    input.x_m = Vec2{{values[i % values.size()], 0.12 + values[(i * 5 + 1) % values.size()]}};
+    input.v_m_per_s = Vec2{{values[(i * 7 + 3) % values.size()], values[(i * 11 + 2) % values.size()]}};
     input.t_s = 0.001 * static_cast<double>(i);
     input.dt_s = 0.001;
-    const PlanarScriptForce a = translated->planar_force_N(input);
-    const PlanarScriptForce b = vm->planar_force_N(input);
-    REQUIRE(bits(a.x_N) == bits(b.x_N));
-    REQUIRE(bits(a.y_N) == bits(b.y_N));
+    const Vec2 a = translated->force_N(input);
+    const Vec2 b = vm->force_N(input);
+    REQUIRE(bits(a[0]) == bits(b[0]));
+    REQUIRE(bits(a[1]) == bits(b[1]));
     REQUIRE(translated->disabled() == vm->disabled());
     REQUIRE(std::string(translated->fault_message()) == std::string(vm->fault_message()));
     if (vm->disabled()) break;

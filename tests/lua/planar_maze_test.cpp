@@ -29,32 +29,32 @@ std::unique_ptr<ScriptInstance> start_maze() {
 }
 
 // One call at (x, y) mm; the force in N.
-PlanarScriptForce at_mm(ScriptInstance& script, double x_mm, double y_mm) {
-  return script.planar_force_N(PlanarScriptInput{x_mm * 1e-3, y_mm * 1e-3, 0.0, 0.0, 0.0, 0.001});
+Vec2 at_mm(ScriptInstance& script, double x_mm, double y_mm) {
+  return script.force_N(PlanarScriptInput{Vec2{{x_mm * 1e-3, y_mm * 1e-3}}, Vec2{}, 0.0, 0.001});
 }
 
 // The proxy the force implies: p + F / K, in mm.
-double proxy_x_mm(const PlanarScriptForce& f, double x_mm) { return x_mm + f.x_N / kStiffness_N_per_m * 1e3; }
-double proxy_y_mm(const PlanarScriptForce& f, double y_mm) { return y_mm + f.y_N / kStiffness_N_per_m * 1e3; }
+double proxy_x_mm(const Vec2& f, double x_mm) { return x_mm + f[0] / kStiffness_N_per_m * 1e3; }
+double proxy_y_mm(const Vec2& f, double y_mm) { return y_mm + f[1] / kStiffness_N_per_m * 1e3; }
 
 }  // namespace
 
 TEST_CASE("maze: the proxy holds in a concave corner however the handle presses into it") {
   // The corner between the left wall's face x = -58 mm and the shelf's top y = 122 mm.
   auto script = start_maze();
-  CHECK(at_mm(*script, -50, 130).x_N == 0.0);
+  CHECK(at_mm(*script, -50, 130)[0] == 0.0);
   // Pressed diagonally into the corner, in steps, then deep beyond both walls.
   for (double k = 0; k <= 1.0; k += 0.01) at_mm(*script, -50 - 14 * k, 130 - 14 * k);
-  const PlanarScriptForce f = at_mm(*script, -64, 116);
+  const Vec2 f = at_mm(*script, -64, 116);
   CHECK(proxy_x_mm(f, -64) == doctest::Approx(-58).epsilon(1e-9));
   CHECK(proxy_y_mm(f, 116) == doctest::Approx(122).epsilon(1e-9));
-  CHECK(f.x_N > 0.0);
-  CHECK(f.y_N > 0.0);
+  CHECK(f[0] > 0.0);
+  CHECK(f[1] > 0.0);
   // Wiggling in the corner region does not free the proxy.
   for (int i = 0; i < 200; ++i) {
     const double x = -61 + 2 * std::sin(i * 0.3);
     const double y = 119 + 2 * std::cos(i * 0.7);
-    const PlanarScriptForce g = at_mm(*script, x, y);
+    const Vec2 g = at_mm(*script, x, y);
     CHECK(proxy_x_mm(g, x) >= -58 - 1e-9);
     CHECK(proxy_y_mm(g, y) >= 122 - 1e-9);
   }
@@ -70,19 +70,19 @@ TEST_CASE("maze: a fast sweep never pops through the thin fin") {
     // One call moves the handle from the left of the fin to jump_mm beyond it (up to
     // 40 m/s at 1 kHz), then it goes on sweeping to the right.
     for (double x = -44.75 + jump_mm; x <= -44.75 + jump_mm + 10; x += 1.0) {
-      const PlanarScriptForce f = at_mm(*script, x, 150);
+      const Vec2 f = at_mm(*script, x, 150);
       CHECK(proxy_x_mm(f, x) == doctest::Approx(-45.25).epsilon(1e-12));
-      CHECK(f.x_N < 0.0);  // pulled back to the side it came from
+      CHECK(f[0] < 0.0);  // pulled back to the side it came from
     }
     // A penetration renderer would push through the nearer far face: the proxy does not.
-    const PlanarScriptForce inside = at_mm(*script, -44.9, 150);
+    const Vec2 inside = at_mm(*script, -44.9, 150);
     CHECK(proxy_x_mm(inside, -44.9) == doctest::Approx(-45.25).epsilon(1e-12));
-    CHECK(inside.x_N < 0.0);
+    CHECK(inside[0] < 0.0);
   }
   // Diagonal sweeps across the fin at any slope are held too.
   auto script = start_maze();
   at_mm(*script, -52, 140);
-  const PlanarScriptForce f = at_mm(*script, -38, 152);
+  const Vec2 f = at_mm(*script, -38, 152);
   CHECK(proxy_x_mm(f, -38) == doctest::Approx(-45.25).epsilon(1e-12));
   CHECK(proxy_y_mm(f, 152) == doctest::Approx(152).epsilon(1e-9));  // slid along the fin to level
 }
@@ -93,15 +93,15 @@ TEST_CASE("maze: the proxy slides along a wall and comes off it at its end") {
   // Pressed 3 mm into the ledge's top (y = 140 mm) from above, sliding right.
   at_mm(*script, -2, 141);
   for (double x = -2; x <= 20; x += 0.5) {
-    const PlanarScriptForce f = at_mm(*script, x, 137);
+    const Vec2 f = at_mm(*script, x, 137);
     CHECK(proxy_y_mm(f, 137) == doctest::Approx(140).epsilon(1e-12));
     CHECK(proxy_x_mm(f, x) == doctest::Approx(x).epsilon(1e-9));
-    CHECK(f.y_N == doctest::Approx(0.6));
+    CHECK(f[1] == doctest::Approx(0.6));
   }
   // Back out above the ledge: no force.
-  const PlanarScriptForce free = at_mm(*script, 20, 145);
-  CHECK(free.x_N == 0.0);
-  CHECK(free.y_N == 0.0);
+  const Vec2 free = at_mm(*script, 20, 145);
+  CHECK(free[0] == 0.0);
+  CHECK(free[1] == 0.0);
 }
 
 TEST_CASE("maze: open loop pushes out of a wall through the nearest free face, never into another wall") {

@@ -57,7 +57,7 @@ std::string load_error(const std::string& source, int axes) {
 }
 
 PlanarScriptInput at(double x_m, double y_m, double vx = 0.0, double vy = 0.0, double t_s = 0.0) {
-  return PlanarScriptInput{x_m, y_m, vx, vy, t_s, 0.001};
+  return PlanarScriptInput{Vec2{{x_m, y_m}}, Vec2{{vx, vy}}, t_s, 0.001};
 }
 
 // Bit-equal (so +0 and -0 differ, and a NaN equals only the same NaN).
@@ -167,9 +167,9 @@ TEST_CASE("planar scripts: the twins' defaults are the course's haplink scenes")
         EffectInputOf<2> input;
         input.x_m = Vec2{{x, y}};
         const Vec2 expected = sum_effects_N(builtin, input, none);
-        const PlanarScriptForce got = script->planar_force_N(at(x, y));
-        REQUIRE(same_bits(expected[0], got.x_N));
-        REQUIRE(same_bits(expected[1], got.y_N));
+        const Vec2 got = script->force_N(at(x, y));
+        REQUIRE(same_bits(expected[0], got[0]));
+        REQUIRE(same_bits(expected[1], got[1]));
       }
     }
   }
@@ -188,16 +188,16 @@ TEST_CASE("planar scripts: bumps.lua is -grad U of its two Gaussians, and conser
   const double h = 1e-7;
   for (double x = -0.07; x <= 0.04; x += 0.0013) {
     for (double y = 0.09; y <= 0.165; y += 0.0017) {
-      const PlanarScriptForce f = script->planar_force_N(at(x, y));
+      const Vec2 f = script->force_N(at(x, y));
       const double gx = (U(x + h, y) - U(x - h, y)) / (2 * h);
       const double gy = (U(x, y + h) - U(x, y - h)) / (2 * h);
-      REQUIRE(f.x_N == doctest::Approx(-gx).epsilon(1e-6).scale(1.0));
-      REQUIRE(f.y_N == doctest::Approx(-gy).epsilon(1e-6).scale(1.0));
+      REQUIRE(f[0] == doctest::Approx(-gx).epsilon(1e-6).scale(1.0));
+      REQUIRE(f[1] == doctest::Approx(-gy).epsilon(1e-6).scale(1.0));
     }
   }
   // The steepest slope of the hill pushes with peak_force, away from its centre.
-  const PlanarScriptForce slope = script->planar_force_N(at(hx - w, hy));
-  CHECK(slope.x_N == doctest::Approx(-1.0).epsilon(1e-3));
+  const Vec2 slope = script->force_N(at(hx - w, hy));
+  CHECK(slope[0] == doctest::Approx(-1.0).epsilon(1e-3));
   // Work round a closed loop through both is zero (trapezoid rule over 20 000 steps).
   double work_J = 0.0;
   const int steps = 20000;
@@ -208,9 +208,9 @@ TEST_CASE("planar scripts: bumps.lua is -grad U of its two Gaussians, and conser
   for (int i = 0; i < steps; ++i) {
     const auto [x0, y0] = point(i);
     const auto [x1, y1] = point(i + 1);
-    const PlanarScriptForce f0 = script->planar_force_N(at(x0, y0));
-    const PlanarScriptForce f1 = script->planar_force_N(at(x1, y1));
-    work_J += 0.5 * ((f0.x_N + f1.x_N) * (x1 - x0) + (f0.y_N + f1.y_N) * (y1 - y0));
+    const Vec2 f0 = script->force_N(at(x0, y0));
+    const Vec2 f1 = script->force_N(at(x1, y1));
+    work_J += 0.5 * ((f0[0] + f1[0]) * (x1 - x0) + (f0[1] + f1[1]) * (y1 - y0));
   }
   CHECK(std::abs(work_J) < 1e-9);
 }
@@ -239,19 +239,19 @@ TEST_CASE("planar scripts: mass_spring.lua integrates the puck as its header say
       qx = qx + wx * h;
       qy = qy + wy * h;
     }
-    const PlanarScriptForce f = script->planar_force_N(PlanarScriptInput{x, y, 0, 0, t, dt});
-    REQUIRE(f.x_N == doctest::Approx(-kc * (x - qx)).epsilon(1e-12).scale(1.0));
-    REQUIRE(f.y_N == doctest::Approx(-kc * (y - qy)).epsilon(1e-12).scale(1.0));
+    const Vec2 f = script->force_N(PlanarScriptInput{Vec2{{x, y}}, Vec2{}, t, dt});
+    REQUIRE(f[0] == doctest::Approx(-kc * (x - qx)).epsilon(1e-12).scale(1.0));
+    REQUIRE(f[1] == doctest::Approx(-kc * (y - qy)).epsilon(1e-12).scale(1.0));
   }
   // Held still at the first call, the puck starts at rest: the series spring's force.
   auto fresh = start("mass_spring.lua");
-  const PlanarScriptForce first = fresh->planar_force_N(at(ax + 0.01, ay));
-  CHECK(first.x_N == doctest::Approx(-0.01 * kc * k / (kc + k)).epsilon(1e-3));
-  CHECK(std::abs(first.y_N) < 1e-12);
+  const Vec2 first = fresh->force_N(at(ax + 0.01, ay));
+  CHECK(first[0] == doctest::Approx(-0.01 * kc * k / (kc + k)).epsilon(1e-3));
+  CHECK(std::abs(first[1]) < 1e-12);
   // reset() starts the puck over.
   fresh->reset();
-  const PlanarScriptForce again = fresh->planar_force_N(at(ax + 0.01, ay));
-  CHECK(same_bits(again.x_N, first.x_N));
+  const Vec2 again = fresh->force_N(at(ax + 0.01, ay));
+  CHECK(same_bits(again[0], first[0]));
 }
 
 TEST_CASE("planar scripts: vortex.lua pushes round its centre, Rankine profile") {
@@ -262,17 +262,17 @@ TEST_CASE("planar scripts: vortex.lua pushes round its centre, Rankine profile")
       const double dx = x - cx, dy = y - cy;
       const double r2 = dx * dx + dy * dy;
       const double gain = r2 <= R * R ? F0 / R : F0 * R / r2;
-      const PlanarScriptForce f = script->planar_force_N(at(x, y));
-      REQUIRE(same_bits(f.x_N, -gain * dy));
-      REQUIRE(same_bits(f.y_N, gain * dx));
+      const Vec2 f = script->force_N(at(x, y));
+      REQUIRE(same_bits(f[0], -gain * dy));
+      REQUIRE(same_bits(f[1], gain * dx));
       // Tangential: no push towards or away from the centre.
-      REQUIRE(std::abs(f.x_N * dx + f.y_N * dy) < 1e-15);
+      REQUIRE(std::abs(f[0] * dx + f[1] * dy) < 1e-15);
     }
   }
   // Peak F0 on the core's rim, anticlockwise.
-  const PlanarScriptForce rim = script->planar_force_N(at(cx + R, cy));
-  CHECK(rim.y_N == doctest::Approx(F0));
-  CHECK(rim.x_N == 0.0);
+  const Vec2 rim = script->force_N(at(cx + R, cy));
+  CHECK(rim[1] == doctest::Approx(F0));
+  CHECK(rim[0] == 0.0);
 }
 
 TEST_CASE("planar scripts: magnet.lua pulls towards its point as the 1-D magnet does along a line") {
@@ -289,24 +289,24 @@ TEST_CASE("planar scripts: magnet.lua pulls towards its point as the 1-D magnet 
       } else if (r < R) {
         magnitude = Fmax / (1 - edge) * ((ds / r) * (ds / r) - edge);
       }
-      const PlanarScriptForce f = script->planar_force_N(at(x, y));
+      const Vec2 f = script->force_N(at(x, y));
       const double expected_x = r > 0 ? -magnitude * dx / r : 0.0;
       const double expected_y = r > 0 ? -magnitude * dy / r : 0.0;
-      REQUIRE(f.x_N == doctest::Approx(expected_x).epsilon(1e-12).scale(1.0));
-      REQUIRE(f.y_N == doctest::Approx(expected_y).epsilon(1e-12).scale(1.0));
+      REQUIRE(f[0] == doctest::Approx(expected_x).epsilon(1e-12).scale(1.0));
+      REQUIRE(f[1] == doctest::Approx(expected_y).epsilon(1e-12).scale(1.0));
     }
   }
-  const PlanarScriptForce snap = script->planar_force_N(at(mx + ds, my));
-  CHECK(snap.x_N == doctest::Approx(-Fmax));
-  CHECK(std::abs(script->planar_force_N(at(mx, my + R)).y_N) < 1e-12);
+  const Vec2 snap = script->force_N(at(mx + ds, my));
+  CHECK(snap[0] == doctest::Approx(-Fmax));
+  CHECK(std::abs(script->force_N(at(mx, my + R))[1]) < 1e-12);
 }
 
 TEST_CASE("planar scripts: s has x, y, vx, vy, t, dt, read-only, needs hides what is not declared") {
   auto script = ScriptInstance::create(inline_program(
       "function force(s) return s.x + 10 * s.vx + 100 * s.t + 1000 * s.dt, s.y + 10 * s.vy end", 2));
-  const PlanarScriptForce f = script->planar_force_N(PlanarScriptInput{1, 2, 3, 4, 5, 0.5});
-  CHECK(f.x_N == 1 + 30 + 500 + 500);
-  CHECK(f.y_N == 2 + 40);
+  const Vec2 f = script->force_N(PlanarScriptInput{Vec2{{1, 2}}, Vec2{{3, 4}}, 5, 0.5});
+  CHECK(f[0] == 1 + 30 + 500 + 500);
+  CHECK(f[1] == 2 + 40);
   CHECK(load_error("needs = { velocity = false } function force(s) return s.vy, 0 end", 2)
             .find("s.vy is not available: the script declares needs.velocity = false") != std::string::npos);
   CHECK(load_error("function force(s) s.y = 1 return 0, 0 end", 2).find("s is read-only") != std::string::npos);
@@ -334,26 +334,26 @@ TEST_CASE("planar scripts: a bad return disables the script with one message, 0 
     auto script = ScriptInstance::create(inline_program(
         std::string("function force(s) if s.x > 0.01 then return ") + c.returns + " end return 0.5, -0.5 end", 2));
     script->reset();
-    const PlanarScriptForce ok = script->planar_force_N(at(0.0, 0.1));
-    CHECK(ok.x_N == 0.5);
-    CHECK(ok.y_N == -0.5);
-    const PlanarScriptForce bad = script->planar_force_N(at(0.02, 0.1, 0, 0, 0.25));
-    CHECK(bad.x_N == 0.0);
-    CHECK(bad.y_N == 0.0);
+    const Vec2 ok = script->force_N(at(0.0, 0.1));
+    CHECK(ok[0] == 0.5);
+    CHECK(ok[1] == -0.5);
+    const Vec2 bad = script->force_N(at(0.02, 0.1, 0, 0, 0.25));
+    CHECK(bad[0] == 0.0);
+    CHECK(bad[1] == 0.0);
     CHECK(script->disabled());
     CHECK(script->fault_count() == 1);
     CHECK(script->fault_time_s() == 0.25);
     CHECK(std::string(script->fault_message()).find(c.message) == 0);
-    const PlanarScriptForce after = script->planar_force_N(at(0.0, 0.1));
-    CHECK(after.x_N == 0.0);
-    CHECK(after.y_N == 0.0);
+    const Vec2 after = script->force_N(at(0.0, 0.1));
+    CHECK(after[0] == 0.0);
+    CHECK(after[1] == 0.0);
     CHECK(script->skipped_calls() == 1);
     CHECK(script->fault_count() == 1);
   }
   // A limit overrun is a fault of its own kind, as in 1-D.
   auto runaway = ScriptInstance::create(
       inline_program("function force(s) if s.x > 0.01 then while true do end end return 0, 0 end", 2));
-  runaway->planar_force_N(at(0.02, 0.1));
+  runaway->force_N(at(0.02, 0.1));
   CHECK(runaway->fault() == ScriptFault::instruction_budget);
 }
 
@@ -473,8 +473,8 @@ TEST_CASE("planar scripts: steady state allocates nothing per call") {
     const auto sweep = [&] {
       for (int i = 0; i < 10000; ++i) {
         const double phase = 0.01 * i;
-        script->planar_force_N(PlanarScriptInput{-0.015 + 0.04 * std::sin(phase), 0.127 + 0.03 * std::cos(phase),
-                                                 0.1, -0.1, 0.001 * i, 0.001});
+        script->force_N(PlanarScriptInput{Vec2{{-0.015 + 0.04 * std::sin(phase), 0.127 + 0.03 * std::cos(phase)}},
+                                          Vec2{{0.1, -0.1}}, 0.001 * i, 0.001});
       }
     };
     sweep();

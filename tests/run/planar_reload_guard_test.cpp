@@ -107,11 +107,10 @@ TEST_CASE("planar reload watcher: an edit of a 2-D script the scene uses is a ne
   REQUIRE(next != nullptr);
   REQUIRE(next->scripts.size() == 1);
   PlanarScriptInput at;
-  at.x_m = 0.01;
-  at.y_m = 0.02;
-  const PlanarScriptForce force = next->scripts[0]->planar_force_N(at);
-  CHECK(force.x_N == doctest::Approx(-1.0));
-  CHECK(force.y_N == doctest::Approx(-2.0));
+  at.x_m = Vec2{{0.01, 0.02}};
+  const Vec2 force = next->scripts[0]->force_N(at);
+  CHECK(force[0] == doctest::Approx(-1.0));
+  CHECK(force[1] == doctest::Approx(-2.0));
   // A script of the other dimension is a located load error; the running version stays.
   scratch.write("field.lua", "function force(s) return -100 * s.x end\n");
   watcher.poll();
