@@ -65,18 +65,18 @@ py::object validate(const py::object& scene_value, const py::object& scenarios, 
   if (!seed.is_none()) options.seed = whole(seed, option::seed, what + ": seed");
 
   nlohmann::json report;
-  if (loaded.axes == 2) {
+  if (loaded.axes() == 2) {
     if (options.noise_counts >= 0.0) throw InputError(what + ": noise: not yet for a 2-DOF environment");
     if (!start.is_none()) options.free_start_planar_m = point(start, option::run_start, what + ": start");
     const std::vector<PlanarValidateKind> kinds = scenario_kinds<PlanarValidateKind>(
         scenarios, kPlanarValidateNames, planar_validate_kind_named,
         "one of sweep, press, swipe, release, hold, shake, free");
-    options.thresholds = loaded.planar->validate;
+    options.thresholds = loaded.of<2>().validate;
     py::gil_scoped_release release;
     PlanarValidationReport planar;
     run_interruptible([&](const std::atomic<bool>&) {
       try {
-        planar = validate_planar_scene(loaded.planar->scene, kinds, options);
+        planar = validate_planar_scene(loaded.of<2>().scene, kinds, options);
       } catch (const InputError& error) {
         // As the CLI says it.
         throw InputError(loaded.path + ": a scenario cannot start where it asks (" + error.what() + ")");
@@ -87,10 +87,10 @@ py::object validate(const py::object& scene_value, const py::object& scenarios, 
     if (!start.is_none()) options.free_start_m = quantity(start, option::free_start, what + ": start");
     const std::vector<ScenarioKind> kinds = scenario_kinds<ScenarioKind>(
         scenarios, kScenarioNames, scenario_kind_named, "one of sweep, press, release, hold, shake, free");
-    options.thresholds = loaded.capstan->validate;
+    options.thresholds = loaded.of<1>().validate;
     py::gil_scoped_release release;
     run_interruptible([&](const std::atomic<bool>&) {
-      report = report_to_json(validate_scene(loaded.capstan->scene, kinds, options));
+      report = report_to_json(validate_scene(loaded.of<1>().scene, kinds, options));
     });
   }
   return json_object(report);

@@ -105,8 +105,7 @@ py::dict flat_parameters(const py::list& effects) {
 
 template <int N>
 const SceneOf<N>& compiled(const LoadedScene& s) {
-  if constexpr (N == 1) return s.capstan->scene;
-  else return s.planar->scene;
+  return s.of<N>().scene;
 }
 
 // Script faults and what the points mean, as the CLI prints them on stderr: here Python
@@ -218,7 +217,7 @@ double probe_scalar(const py::object& value, const QuantityOption& option, const
 py::dict probe(const LoadedScene& s, const py::object& x, const py::object& y, const py::object& v,
                const py::object& vx, const py::object& vy, const py::object& t) {
   const double t_s = probe_scalar(t, option::probe_time, "t");
-  if (s.axes == 1) {
+  if (s.axes() == 1) {
     if (!y.is_none()) throw InputError("Scene.probe: y: only for a 2-DOF environment (its device a planar profile)");
     if (!vx.is_none() || !vy.is_none()) throw InputError("Scene.probe: vx, vy: only for a 2-DOF environment; use v");
     const Array xs = Array::ensure(x);
@@ -268,12 +267,7 @@ LoadedScene load_scene(const std::string& path) {
   LoadedScene s;
   s.path = path;
   py::gil_scoped_release release;
-  s.axes = environment_axes(path);
-  if (s.axes == 2) {
-    s.planar = std::make_shared<const PlanarEnvironment>(load_planar_environment(path));
-  } else {
-    s.capstan = std::make_shared<const Environment>(load_environment(path));
-  }
+  s.environment = std::make_shared<const AnyEnvironment>(load_any_environment(path));
   return s;
 }
 
@@ -297,16 +291,12 @@ LoadedScene loads_scene(const py::handle& source, const py::object& base_dir_val
   s.path = name;
   {
     py::gil_scoped_release release;
-    s.axes = environment_text_axes(text, name, base_dir);
-    if (s.axes == 2) {
-      s.planar = std::make_shared<const PlanarEnvironment>(compile_planar_environment(text, name, base_dir));
-    } else {
-      s.capstan = std::make_shared<const Environment>(compile_environment(text, name, base_dir));
-    }
+    s.environment = std::make_shared<const AnyEnvironment>(compile_any_environment(text, name, base_dir));
   }
   // Its load warnings on stderr, as load() and the command line print a file's.
-  const auto& warnings = s.axes == 2 ? s.planar->scene.load_warnings : s.capstan->scene.load_warnings;
-  for (const std::string& warning : warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  for (const std::string& warning : s.visit([](const auto& e) { return e.scene.load_warnings; })) {
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  }
   return s;
 }
 
@@ -369,35 +359,35 @@ void bind_scene(py::module_& m) {
 Immutable; pass it to simulate() and validate() to run the loaded version without reading
 the file again.)")
       .def_property_readonly("path", [](const LoadedScene& s) { return s.path; }, "The file it was loaded from.")
-      .def_property_readonly("name", [](const LoadedScene& s) { return s.axes == 1 ? compiled<1>(s).name : compiled<2>(s).name; },
+      .def_property_readonly("name", [](const LoadedScene& s) { return s.visit([](const auto& e) { return e.scene.name; }); },
                              "The environment's name.")
-      .def_property_readonly("rate", [](const LoadedScene& s) { return s.axes == 1 ? compiled<1>(s).rate_hz : compiled<2>(s).rate_hz; },
+      .def_property_readonly("rate", [](const LoadedScene& s) { return s.visit([](const auto& e) { return e.scene.rate_hz; }); },
                              "The tick rate in Hz.")
-      .def_property_readonly("axes", [](const LoadedScene& s) { return s.axes; }, "1 (the Hapkit) or 2 (a planar device).")
-      .def_property_readonly("device", [](const LoadedScene& s) { return s.axes == 1 ? compiled<1>(s).device.name : compiled<2>(s).device.name; },
+      .def_property_readonly("axes", [](const LoadedScene& s) { return s.axes(); }, "1 (the Hapkit) or 2 (a planar device).")
+      .def_property_readonly("device", [](const LoadedScene& s) { return s.visit([](const auto& e) { return e.scene.device.name; }); },
                              "The device profile's name (\"hapkit3\").")
-      .def_property_readonly("effects", [](const LoadedScene& s) { return s.axes == 1 ? effect_list(compiled<1>(s)) : effect_list(compiled<2>(s)); },
+      .def_property_readonly("effects", [](const LoadedScene& s) { return s.visit([](const auto& e) { return effect_list(e.scene); }); },
                              "The compiled effects in file order (disabled ones are left out): one dict each, "
                              "its \"type\" and its parameters in SI (names carry the units; points are (x, y)).")
       .def_property_readonly("parameters", [](const LoadedScene& s) {
             // Read-only (a Scene is immutable): assigning raises TypeError instead of
             // changing a copy nobody reads.
-            const py::dict flat = flat_parameters(s.axes == 1 ? effect_list(compiled<1>(s)) : effect_list(compiled<2>(s)));
+            const py::dict flat = flat_parameters(s.visit([](const auto& e) { return effect_list(e.scene); }));
             return py::module_::import("types").attr("MappingProxyType")(flat);
           },
           "Every numeric parameter of the effects, flat and read-only: {\"effects[0].stiffness_N_per_m\": 500.0, ...}; "
           "script parameters as \"effects[i].params.NAME\". To change one, edit the environment's dict and "
           "hapscene.loads() it.")
       .def_property_readonly("load_warnings", [](const LoadedScene& s) {
-            return s.axes == 1 ? compiled<1>(s).load_warnings : compiled<2>(s).load_warnings;
+            return s.visit([](const auto& e) { return e.scene.load_warnings; });
           },
           "The load warnings (the CLI prints them on stderr as \"warning: ...\").")
       .def("probe", &probe, py::arg("x"), py::arg("y") = py::none(), py::kw_only(), py::arg("v") = py::none(),
            py::arg("vx") = py::none(), py::arg("vy") = py::none(), py::arg("t") = 0.0, kProbeDoc)
       .def("__repr__", [](const LoadedScene& s) {
-        const std::string name = s.axes == 1 ? compiled<1>(s).name : compiled<2>(s).name;
-        return "<hapscene.Scene " + name + " from " + s.path + ", " + std::to_string(s.axes) + " axis" +
-               (s.axes == 1 ? "" : "es") + ">";
+        const std::string name = s.visit([](const auto& e) { return e.scene.name; });
+        return "<hapscene.Scene " + name + " from " + s.path + ", " + std::to_string(s.axes()) + " axis" +
+               (s.axes() == 1 ? "" : "es") + ">";
       });
 
   m.def("effect_types", &effect_types,

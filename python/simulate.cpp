@@ -144,7 +144,7 @@ py::dict summary_dict(const SceneOf<N>& scene, const RunSettings& settings, cons
 }
 
 py::dict run_capstan(const LoadedScene& loaded, const SimulateArgs& a) {
-  const Scene& scene = loaded.capstan->scene;
+  const Scene& scene = loaded.of<1>().scene;
   RunSettings settings = common_settings(a, scene.rate_hz);
   HandConfig& hand = settings.simulation.hand;
   if (!a.hand.is_none()) {
@@ -196,7 +196,7 @@ py::dict run_capstan(const LoadedScene& loaded, const SimulateArgs& a) {
 }
 
 py::dict run_planar_scene(const LoadedScene& loaded, const SimulateArgs& a) {
-  const PlanarScene& scene = loaded.planar->scene;
+  const PlanarScene& scene = loaded.of<2>().scene;
   RunSettings settings = common_settings(a, scene.rate_hz);
   if (settings.noise_counts >= 0.0) throw InputError(std::string(kWhat) + ": noise: not yet for a 2-DOF environment");
   if (settings.device != "sim") {
@@ -305,7 +305,7 @@ void bind_simulate(py::module_& m) {
          const py::object& release, const py::object& noise, const py::object& seed, const py::object& device) {
         const LoadedScene loaded = scene_argument(scene, kWhat);
         const SimulateArgs args{duration, hand, hold, start, hand_stiffness, hand_damping, release, noise, seed, device};
-        return loaded.axes == 1 ? run_capstan(loaded, args) : run_planar_scene(loaded, args);
+        return loaded.axes() == 1 ? run_capstan(loaded, args) : run_planar_scene(loaded, args);
       },
       py::arg("scene"), py::kw_only(), py::arg("duration") = py::none(), py::arg("hand") = py::none(),
       py::arg("hold") = py::none(), py::arg("start") = py::none(), py::arg("hand_stiffness") = py::none(),
