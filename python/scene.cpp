@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -14,9 +15,9 @@
 #include "engine/base/errors.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/cli/option_definitions.hpp"
+#include "engine/cli/probe_columns.hpp"
 #include "engine/effects/effect_keys.hpp"
 #include "engine/harness/open_loop.hpp"
-#include "engine/harness/planar_open_loop.hpp"
 #include "python/interruptible.hpp"
 #include "python/values.hpp"
 
@@ -144,69 +145,53 @@ Array array_like(const Array& shape_of, const std::vector<double>& values) {
   return out;
 }
 
-py::dict probe_capstan(const LoadedScene& s, const Array& x, double v_m_per_s, double t_s) {
-  const Scene& scene = compiled<1>(s);
-  const std::vector<double> x_m(x.data(), x.data() + x.size());
-  std::vector<double> force_N, output_N, v(x_m.size(), v_m_per_s);
-  ScriptBehaviour behaviour;
-  ScriptFaultLog faults;
-  {
-    py::gil_scoped_release release;
-    run_interruptible([&](const std::atomic<bool>&) {
-      OpenLoop open_loop(scene, t_s);
-      OpenLoopScan scan = open_loop.scan(x_m, v_m_per_s);
-      output_N.resize(x_m.size());
-      for (std::size_t i = 0; i < x_m.size(); ++i) output_N[i] = open_loop.output_N(x_m[i], scan.force_N[i]);
-      force_N = std::move(scan.force_N);
-      // Where a script faulted: NaN, not the 0 N a disabled script answers (as the CSV's empty fields).
-      for (std::size_t i = 0; i < scan.script_faulted.size(); ++i) {
-        if (scan.script_faulted[i]) force_N[i] = output_N[i] = std::numeric_limits<double>::quiet_NaN();
-      }
-      behaviour = std::move(scan.behaviour);
-      faults = open_loop.faults();
-    });
+// The open-loop force at each point (coordinates[k]: axis k of every point, all of one
+// shape), as the CLI's probe computes it: one column per axis and quantity
+// (probe_columns.hpp), each shaped like the coordinates.
+template <int N>
+py::dict probe_scene(const LoadedScene& s, const std::array<Array, N>& coordinates, const Axes<N>& v_m_per_s,
+                     double t_s) {
+  const SceneOf<N>& scene = compiled<N>(s);
+  const Array& shape = coordinates[0];
+  std::vector<Axes<N>> points(static_cast<std::size_t>(shape.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if constexpr (N == 1) {
+      points[i] = coordinates[0].data()[i];
+    } else {
+      for (int k = 0; k < N; ++k) points[i][k] = coordinates[static_cast<std::size_t>(k)].data()[i];
+    }
   }
-  warn_lines(behaviour, t_s, faults, "in the workspace");
-  py::dict out;
-  out["x_m"] = array_like(x, x_m);
-  out["v_m_per_s"] = array_like(x, v);
-  out["force_N"] = array_like(x, force_N);
-  out["output_N"] = array_like(x, output_N);
-  return out;
-}
-
-py::dict probe_planar(const LoadedScene& s, const Array& x, const Array& y, const Vec2& v_m_per_s, double t_s) {
-  const PlanarScene& scene = compiled<2>(s);
-  std::vector<Vec2> points(x.size());
-  for (py::ssize_t i = 0; i < x.size(); ++i) points[i] = Vec2{{x.data()[i], y.data()[i]}};
-  std::vector<double> columns[8];
-  for (auto& c : columns) c.resize(points.size());
+  // Position, velocity, asked force, commanded force: N columns each.
+  std::vector<double> columns[4 * N];
+  for (auto& column : columns) column.resize(points.size());
   ScriptBehaviour behaviour;
   ScriptFaultLog faults;
   {
     py::gil_scoped_release release;
     run_interruptible([&](const std::atomic<bool>&) {
-      PlanarOpenLoop open_loop(scene, t_s);
-      const PlanarOpenLoopScan scan = open_loop.scan(points, v_m_per_s);
+      OpenLoopOf<N> open_loop(scene, t_s);
+      const OpenLoopScanOf<N> scan = open_loop.scan(points, v_m_per_s);
       for (std::size_t i = 0; i < points.size(); ++i) {
-        const Vec2& force_N = scan.force_N[i];
-        const Vec2 output_N = open_loop.output_N(points[i], force_N);
+        const Axes<N>& force_N = scan.force_N[i];
+        const Axes<N> output_N = open_loop.output_N(points[i], force_N);
+        // Where a script faulted: NaN, not the 0 N a disabled script answers (as the CSV's empty fields).
         const double nan = std::numeric_limits<double>::quiet_NaN();
         const bool faulted = !scan.script_faulted.empty() && scan.script_faulted[i];
-        const double row[8] = {points[i][0], points[i][1], v_m_per_s[0], v_m_per_s[1],
-                               faulted ? nan : force_N[0], faulted ? nan : force_N[1],
-                               faulted ? nan : output_N[0], faulted ? nan : output_N[1]};
-        for (int c = 0; c < 8; ++c) columns[c][i] = row[c];
+        for (int k = 0; k < N; ++k) {
+          columns[k][i] = component(points[i], k);
+          columns[N + k][i] = component(v_m_per_s, k);
+          columns[2 * N + k][i] = faulted ? nan : component(force_N, k);
+          columns[3 * N + k][i] = faulted ? nan : component(output_N, k);
+        }
       }
       behaviour = scan.behaviour;
       faults = open_loop.faults();
     });
   }
-  warn_lines(behaviour, t_s, faults, "in the grid");
-  static const char* kNames[8] = {"x_m",       "y_m",       "vx_m_per_s", "vy_m_per_s",
-                                  "force_x_N", "force_y_N", "output_x_N", "output_y_N"};
+  warn_lines(behaviour, t_s, faults, N == 1 ? "in the workspace" : "in the grid");
+  const std::vector<std::string> names = probe_columns<N>();
   py::dict out;
-  for (int c = 0; c < 8; ++c) out[kNames[c]] = array_like(x, columns[c]);
+  for (std::size_t c = 0; c < names.size(); ++c) out[names[c].c_str()] = array_like(shape, columns[c]);
   return out;
 }
 
@@ -224,7 +209,7 @@ py::dict probe(const LoadedScene& s, const py::object& x, const py::object& y, c
     if (!xs) throw InputError("Scene.probe: x: expected numbers (a float or an array)");
     check_points(static_cast<std::size_t>(xs.size()));
     check_range(xs.data(), static_cast<std::size_t>(xs.size()), option::probe_position, "x");
-    return probe_capstan(s, xs, v.is_none() ? 0.0 : probe_scalar(v, option::probe_velocity, "v"), t_s);
+    return probe_scene<1>(s, {xs}, v.is_none() ? 0.0 : probe_scalar(v, option::probe_velocity, "v"), t_s);
   }
   if (y.is_none()) throw InputError("Scene.probe: y is required for a 2-DOF environment");
   if (!v.is_none()) throw InputError("Scene.probe: v: a 2-DOF environment takes vx and vy");
@@ -237,7 +222,7 @@ py::dict probe(const LoadedScene& s, const py::object& x, const py::object& y, c
   check_range(ys.data(), static_cast<std::size_t>(ys.size()), option::probe_position, "y");
   const Vec2 v_m_per_s{{vx.is_none() ? 0.0 : probe_scalar(vx, option::probe_velocity, "vx"),
                         vy.is_none() ? 0.0 : probe_scalar(vy, option::probe_velocity, "vy")}};
-  return probe_planar(s, xs, ys, v_m_per_s, t_s);
+  return probe_scene<2>(s, {xs, ys}, v_m_per_s, t_s);
 }
 
 constexpr const char* kProbeDoc = R"(probe(x, y=None, *, v=None, vx=None, vy=None, t=0.0) -> dict[str, numpy.ndarray]

@@ -26,6 +26,7 @@
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
+#include "engine/cli/probe_columns.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/devices/planar/planar_profile.hpp"
 #include "engine/harness/open_loop.hpp"
@@ -200,23 +201,12 @@ Axes<N> parse_velocity(const Arguments& arguments, const std::string& text) {
   }
 }
 
-// The CSV's header: position, velocity, asked force and commanded force, one column per
-// axis (x_m,v_m_per_s,force_N,output_N in 1-D; x_m,y_m,vx_m_per_s,... in 2-D).
+// The CSV's header (probe_columns.hpp).
 template <int N>
 std::string probe_header() {
-  if constexpr (N == 1) {
-    return "x_m,v_m_per_s,force_N,output_N\n";
-  } else {
-    std::string header;
-    const auto columns = [&](const std::string& before, const std::string& after) {
-      for (int i = 0; i < N; ++i) header += (header.empty() ? "" : ",") + before + kAxisNames[i] + after;
-    };
-    columns("", "_m");
-    columns("v", "_m_per_s");
-    columns("force_", "_N");
-    columns("output_", "_N");
-    return header + "\n";
-  }
+  std::string header;
+  for (const std::string& column : probe_columns<N>()) header += (header.empty() ? "" : ",") + column;
+  return header + "\n";
 }
 
 // One value per axis, comma-separated, each the shortest text that reads back.
