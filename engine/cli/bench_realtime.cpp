@@ -45,11 +45,11 @@ Percentiles percentiles_of(std::vector<double> values) {
   return {at(0.5), at(0.99)};
 }
 
-enum class Pacing { hot, cold, warm };
+enum class CacheState { hot, cold, warm };
 
 // One pass over the readings with a fresh state: each tick's compute (step() between two
 // clock reads, as the runner times it), paced as asked.
-Percentiles time_ticks(const Scene& scene, const std::vector<std::int32_t>& counts, Pacing pacing) {
+Percentiles time_ticks(const Scene& scene, const std::vector<std::int32_t>& counts, CacheState pacing) {
   TickState state = make_tick_state(scene);
   std::vector<double> compute_ns;
   compute_ns.reserve(counts.size());
@@ -57,8 +57,8 @@ Percentiles time_ticks(const Scene& scene, const std::vector<std::int32_t>& coun
   TickWarmer warmer(scene);
   std::int64_t deadline_ns = monotonic_now_ns() + period_ns;
   for (const std::int32_t raw : counts) {
-    if (pacing == Pacing::cold) wait_until(monotonic_loop_clock(), deadline_ns, [] {});
-    if (pacing == Pacing::warm) wait_until(monotonic_loop_clock(), deadline_ns, [&] { warmer.warm(scene, state); });
+    if (pacing == CacheState::cold) wait_until(monotonic_loop_clock(), deadline_ns, [] {});
+    if (pacing == CacheState::warm) wait_until(monotonic_loop_clock(), deadline_ns, [&] { warmer.warm(scene, state); });
     warmer.note_reading(raw);
     const std::int64_t begin_ns = monotonic_now_ns();
     step(scene, raw, &state);
@@ -114,9 +114,9 @@ int bench_realtime(Arguments& arguments) {
   std::vector<std::string> goals;
   char goal[200];
   for (const Row& row : rows) {
-    const Percentiles hot = time_ticks(row.scene, row.counts, Pacing::hot);
-    const Percentiles cold = time_ticks(row.scene, row.counts, Pacing::cold);
-    const Percentiles warm = time_ticks(row.scene, row.counts, Pacing::warm);
+    const Percentiles hot = time_ticks(row.scene, row.counts, CacheState::hot);
+    const Percentiles cold = time_ticks(row.scene, row.counts, CacheState::cold);
+    const Percentiles warm = time_ticks(row.scene, row.counts, CacheState::warm);
     print_out("%-10s %-16s %8.0f %8.0f %9.0f %9.0f %9.0f %9.0f\n", row.environment.c_str(), row.implementation,
               hot.p50_ns, hot.p99_ns, cold.p50_ns, cold.p99_ns, warm.p50_ns, warm.p99_ns);
     flush_out();

@@ -15,13 +15,6 @@ namespace {
   throw InputError(located_message(reader.file(), pointer, message));
 }
 
-// "[x, y]": the form of a vector of `count` components, for messages.
-std::string bracket_form(int count) {
-  std::string form = "[";
-  for (int i = 0; i < count; ++i) form += std::string(i ? ", " : "") + kAxisNames[i];
-  return form + "]";
-}
-
 // "a 2-D vector [x, y] of lengths in m (or strings with a unit)": what a vector key takes.
 std::string vector_form(Quantity quantity, int count) {
   const std::string unit(si_unit(quantity));
@@ -58,6 +51,13 @@ Vec2 vector_at(const ObjectReader& parent, const nlohmann::json& value, const st
 }
 
 }  // namespace
+
+std::string bracket_form(int count) {
+  std::string form = "[";
+  for (int i = 0; i < count; ++i) form += std::string(i ? ", " : "") + kAxisNames[i];
+  return form + "]";
+}
+
 
 bool read_components(ObjectReader& reader, std::string_view key, Quantity quantity, Range component, int count,
                      double* out) {

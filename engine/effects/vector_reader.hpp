@@ -3,6 +3,7 @@
 // axis (today the planar one): vectors [x, y] (each a number in SI or a string with a unit,
 // "10 mm"), directions, point lists, a shape's solid side and friction. Errors carry the file and the JSON pointer down to the component:
 // "env.json: /effects/2/center/1: must be in [-1000, 1000] m, got 5000 m".
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -35,5 +36,8 @@ bool read_solid_inside(ObjectReader& reader);
 // An optional "friction": {"static": mu_s, "dynamic": mu_d} with mu_s >= mu_d; zeros when
 // absent.
 FrictionCoefficients read_friction(ObjectReader& reader);
+
+// "[x, y]": the written form of a vector of `count` components (messages, schemas).
+std::string bracket_form(int count);
 
 }  // namespace hapscene

@@ -14,10 +14,10 @@
 namespace hapscene {
 namespace {
 
-constexpr double kLeft_px = 80.0;
+constexpr double kPlaneLeft_px = 80.0;
 constexpr double kLegend_px = 200.0;        // right of the field: legend and colour bar
 constexpr double kPanelTitle_px = 50.0;       // title and the run's line
-constexpr double kBottom_px = 48.0;
+constexpr double kPlaneBottom_px = 48.0;
 constexpr double kMaxFieldHeight_px = 560.0;
 constexpr double kMargin = 0.04;            // of the workspace box's size, each side
 constexpr int kTimePanelHeight_px = 260;
@@ -407,9 +407,9 @@ PlanarFieldView planar_field_view(const PlanarScene& scene, int figure_width_px,
   view.min_m = low - margin;
   view.max_m = high + margin;
   const Vec2 span = view.max_m - view.min_m;
-  const double max_width_px = std::max(100.0, figure_width_px - kLeft_px - kLegend_px);
+  const double max_width_px = std::max(100.0, figure_width_px - kPlaneLeft_px - kLegend_px);
   view.scale_px_per_m = std::min(max_width_px / span[0], kMaxFieldHeight_px / span[1]);
-  view.left_px = kLeft_px;
+  view.left_px = kPlaneLeft_px;
   view.top_px = panel_top_px + kPanelTitle_px;
   view.width_px = span[0] * view.scale_px_per_m;
   view.height_px = span[1] * view.scale_px_per_m;
@@ -467,7 +467,7 @@ std::string planar_figure_svg(const PlanarScene& scene, const PlanarFigureOption
   const PlanarFieldGrid grid = planar_field_grid(scene, options.grid);
   if (faults != nullptr) faults->merge(grid.faults);
   std::string body = field_panel_svg(scene, view, grid, records, what, proxy_label, field_top_px);
-  double height_px = view.top_px + view.height_px + kBottom_px;
+  double height_px = view.top_px + view.height_px + kPlaneBottom_px;
   if (!records.empty()) {
     for (const PlotPanel& panel : planar_time_panels(scene, records, what, proxy_label)) {
       body += render_panel_svg(panel, height_px, options.width_px, kTimePanelHeight_px);

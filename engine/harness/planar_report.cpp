@@ -15,7 +15,7 @@ using nlohmann::json;
 
 json vec(const Vec2& v) { return position_json(v); }
 
-constexpr const char* kSceneDescription = "the environment as loaded";
+constexpr const char* kPlanarSceneDescription = "the environment as loaded";
 
 std::string pose_text(const PlanarPoseBound& pose) {
   return printf_string("%.3g N/m (%s) at (%.1f, %.1f) mm", pose.bound_N_per_m, pose.name, pose.x_m[0] * 1e3,
@@ -31,7 +31,7 @@ json pose_json(const PlanarPoseBound& pose) {
 }  // namespace
 
 std::string format_planar_report_line(const PlanarValidationReport& report) {
-  return format_report_line(report.scene_name, report.source_path, report_sections(report, kSceneDescription));
+  return format_report_line(report.scene_name, report.source_path, report_sections(report, kPlanarSceneDescription));
 }
 
 std::string format_planar_report_table(const PlanarValidationReport& report) {
@@ -52,12 +52,12 @@ std::string format_planar_report_table(const PlanarValidationReport& report) {
            pose_text(b.lowest) + ", highest " + pose_text(b.highest) + "\n";
   }
   out += format_hand_line(report.options);
-  return out + format_report_rows(report_sections(report, kSceneDescription));
+  return out + format_report_rows(report_sections(report, kPlanarSceneDescription));
 }
 
 std::string format_planar_report_summary(const PlanarValidationReport& report) {
   return format_report_summary(report_table_header(format_planar_report_table(report)),
-                               report_sections(report, kSceneDescription));
+                               report_sections(report, kPlanarSceneDescription));
 }
 
 json planar_report_to_json(const PlanarValidationReport& report) {

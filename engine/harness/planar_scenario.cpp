@@ -9,17 +9,17 @@
 #include "engine/base/format.hpp"
 #include "engine/devices/planar/simulated_planar.hpp"
 #include "engine/harness/planar_shape_list.hpp"
+#include "engine/harness/scenario_timing.hpp"
 
 namespace hapscene {
 namespace {
 
-constexpr double kSweepSpeed_m_per_s = 0.1;
+constexpr double kRasterSpeed_m_per_s = 0.1;
 constexpr int kSweepRows = 7;
 constexpr double kSpeed_m_per_s = 0.05;        // line, circle, press approach
 constexpr double kPressSpeed_m_per_s = 0.02;   // into the shape and out
 constexpr double kPressDepth_m = 0.010;
-constexpr double kPressHold_s = 0.5;
-constexpr double kSettle_s = 0.3;              // after the path, before the run ends
+constexpr double kShapePressHold_s = 0.5;     // press: held this long at its depth
 
 // Length of a polyline from `start` through `points`.
 double path_length_m(const Vec2& start_m, const std::vector<Vec2>& points_m) {
@@ -64,7 +64,7 @@ PlanarScenario build_planar_scenario(PlanarScenarioKind kind, const PlanarScene&
   switch (kind) {
     case PlanarScenarioKind::sweep: {
       hand.motion = PlanarHandMotion::sweep;
-      hand.speed_m_per_s = speed_m_per_s = kSweepSpeed_m_per_s;
+      hand.speed_m_per_s = speed_m_per_s = kRasterSpeed_m_per_s;
       hand.sweep_min_m = low + margin;
       hand.sweep_max_m = high - margin;
       hand.sweep_pitch_m = (hand.sweep_max_m[1] - hand.sweep_min_m[1]) / (kSweepRows - 1);
@@ -125,7 +125,7 @@ PlanarScenario build_planar_scenario(PlanarScenarioKind kind, const PlanarScene&
       const Vec2 deep_m = surface_m + kPressDepth_m * inward;
       const double t_surface = approach_m / kSpeed_m_per_s;
       const double t_deep = t_surface + kPressDepth_m / kPressSpeed_m_per_s;
-      const double t_held = t_deep + kPressHold_s;
+      const double t_held = t_deep + kShapePressHold_s;
       const double t_out = t_held + kPressDepth_m / kPressSpeed_m_per_s;
       const double t_back = t_out + t_surface;
       hand.motion = PlanarHandMotion::path;
@@ -135,14 +135,14 @@ PlanarScenario build_planar_scenario(PlanarScenarioKind kind, const PlanarScene&
       hand.path.push_back({t_held, deep_m, true});
       hand.path.push_back({t_out, surface_m, true});
       if (t_back > t_out) hand.path.push_back({t_back, s.start_m, true});
-      s.duration_s = t_back + kSettle_s;
+      s.duration_s = t_back + scenario_timing::kSettle_s;
       s.description = std::string("into the ") + planar_shape_kind_name(shape.kind) +
                       printf_string(" at (%.1f, %.1f) mm, 10 mm deep, held 0.5 s, and back", surface_m[0] * 1e3,
                                     surface_m[1] * 1e3);
       return s;
     }
   }
-  s.duration_s = travel_m / speed_m_per_s + kSettle_s;
+  s.duration_s = travel_m / speed_m_per_s + scenario_timing::kSettle_s;
   return s;
 }
 

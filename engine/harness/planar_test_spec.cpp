@@ -85,7 +85,7 @@ PlanarRegion parse_region(ObjectReader& r, std::string_view key) {
   return result;
 }
 
-PlanarScenarioExpectation parse_scenario(ObjectReader& r) {
+PlanarScenarioExpectation parse_planar_scenario(ObjectReader& r) {
   PlanarScenarioExpectation e;
   e.pointer = r.pointer();
   e.scenario = r.string("scenario");
@@ -127,7 +127,7 @@ PlanarSpec parse_planar_spec(const std::string& path) {
   else r.get("never_exceeds");
   spec.closed_loop.passes_validate = optional_bool(r, "passes_validate");
   for_each_object_in(r, "scenarios",
-                     [&](ObjectReader& e) { spec.closed_loop.scenarios.push_back(parse_scenario(e)); });
+                     [&](ObjectReader& e) { spec.closed_loop.scenarios.push_back(parse_planar_scenario(e)); });
   r.finish();
   return spec;
 }

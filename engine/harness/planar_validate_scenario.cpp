@@ -20,7 +20,6 @@ constexpr double kMinPressDepth_m = 0.001;           // a place the workspace le
 constexpr double kSwipeGap_m = 0.010;                // swipe: from this far in front, to this far beyond
 constexpr double kSwipeSpeed_m_per_s = 0.5;
 constexpr double kSwipeBackSpeed_m_per_s = 0.1;
-constexpr double kSettle_s = 0.3;                    // after a path, before the run ends
 constexpr double kThicknessStep_m = 5e-5;
 constexpr double kThicknessReach_m = 0.020;
 

@@ -18,5 +18,6 @@ inline constexpr double kShakeAmplitude_m = 0.002;
 inline constexpr double kShakeFrequency_Hz = 8.0;
 inline constexpr double kShakeDuration_s = 1.5;
 inline constexpr double kFreeDuration_s = 1.5;
+inline constexpr double kSettle_s = 0.3;                       // 2-D: after a path, before the run ends
 
 }  // namespace hapscene::scenario_timing

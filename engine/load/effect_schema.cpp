@@ -5,12 +5,13 @@
 
 #include "engine/base/object_reader.hpp"
 #include "engine/effects/effect_keys.hpp"
+#include "engine/effects/vector_reader.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace hapscene {
 namespace {
 
-using json = nlohmann::ordered_json;
+using Schema = nlohmann::ordered_json;  // key order as written
 
 // The schemas' name of a quantity (its "#/$defs/KIND_text" string form).
 std::string kind_of(Quantity quantity) {
@@ -24,14 +25,14 @@ std::string kind_of(Quantity quantity) {
 }
 
 // A bound as JSON: a whole number when it is one (as people write them), else a double.
-json bound(double value) {
+Schema bound(double value) {
   if (std::fabs(value) < 1e15 && value == std::floor(value)) return static_cast<long long>(value);
   return value;
 }
 
 // A number (SI) within the key's range, or a string with a unit of its quantity.
-json quantity(Quantity quantity_kind, const Range& range, const std::string& description) {
-  json number = {{"type", "number"}};
+Schema quantity(Quantity quantity_kind, const Range& range, const std::string& description) {
+  Schema number = {{"type", "number"}};
   number[range.min_excluded ? "exclusiveMinimum" : "minimum"] = bound(range.min);
   number["maximum"] = bound(range.max);
   const std::string kind = kind_of(quantity_kind);
@@ -47,27 +48,20 @@ json quantity(Quantity quantity_kind, const Range& range, const std::string& des
 }
 
 // An array of exactly `count` items.
-json vector_of(const json& item, int count, const std::string& description) {
-  json items = json::array();
+Schema vector_of(const Schema& item, int count, const std::string& description) {
+  Schema items = Schema::array();
   for (int i = 0; i < count; ++i) items.push_back(item);
   return {{"type", "array"}, {"prefixItems", items}, {"minItems", count}, {"maxItems", count}, {"items", false},
           {"description", description}};
 }
 
-// "[x, y]": the written form of a vector of `count` components.
-std::string bracket_form(int count) {
-  std::string form = "[";
-  for (int i = 0; i < count; ++i) form += std::string(i ? ", " : "") + kAxisNames[i];
-  return form + "]";
-}
-
-json with_description(json schema, std::string_view description) {
+Schema with_description(Schema schema, std::string_view description) {
   if (!description.empty()) schema["description"] = std::string(description);
   return schema;
 }
 
 // One key's schema in an effect of `axes` axes.
-json key_schema(const EffectKey& key, int axes) {
+Schema key_schema(const EffectKey& key, int axes) {
   const std::string description(key.description);
   const std::string unit(si_unit(key.quantity));
   const std::string component_form =
@@ -92,7 +86,7 @@ json key_schema(const EffectKey& key, int axes) {
               {"maxItems", key.max_items},
               {"description", description}};
     case KeyForm::friction: {
-      const json coefficient = quantity(key.quantity, key.range, "");
+      const Schema coefficient = quantity(key.quantity, key.range, "");
       return {{"type", "object"},
               {"properties", {{"static", coefficient}, {"dynamic", coefficient}}},
               {"additionalProperties", false},
@@ -102,13 +96,13 @@ json key_schema(const EffectKey& key, int axes) {
     case KeyForm::refused:
       break;
   }
-  return json();
+  return Schema();
 }
 
 // One effect type: a closed object of its "type", "enabled" and declared keys.
-json effect_schema(const EffectDeclaration& declaration) {
-  json properties = {{"type", {{"const", std::string(declaration.type)}}}, {"enabled", {{"type", "boolean"}}}};
-  json required = {"type"};
+Schema effect_schema(const EffectDeclaration& declaration) {
+  Schema properties = {{"type", {{"const", std::string(declaration.type)}}}, {"enabled", {{"type", "boolean"}}}};
+  Schema required = {"type"};
   for (const EffectKey& key : declaration.keys) {
     if (key.form == KeyForm::refused) continue;  // not a key of this form: additionalProperties refuses it
     properties[std::string(key.name)] = key_schema(key, declaration.axes);
@@ -193,7 +187,7 @@ std::string effect_reference_markdown() {
 }
 
 nlohmann::ordered_json effect_schemas() {
-  json out = json::object();
+  Schema out = Schema::object();
 #define HAPSCENE_EFFECT_SCHEMAS(N)                                                           \
   for (const EffectDeclaration& declaration : SceneParts<N>::Effects::kDeclarations) {      \
     out["effect_" + std::to_string(N) + "d_" + std::string(declaration.type)] = effect_schema(declaration); \

@@ -11,10 +11,10 @@
 namespace hapscene {
 namespace {
 
-const char* kWhat = "--device hil";
+const char* kHilPairWhat = "--device hil";
 
 PlanarModel checked_model(const PlanarProfile& profile) {
-  require_hapkit_joints(profile, kWhat);
+  require_hapkit_joints(profile, kHilPairWhat);
   return compile_planar_model(profile);
 }
 
@@ -35,7 +35,7 @@ HilPair::HilPair(const PlanarProfile& profile, const HilPairConfig& config)
     substep(h_s, /*move_plant=*/false);
   }
   for (std::size_t i = 0; i < 2; ++i) {
-    const std::string which = std::string(kWhat) + ": joint " + std::to_string(i + 1) + "'s simulated board: ";
+    const std::string which = std::string(kHilPairWhat) + ": joint " + std::to_string(i + 1) + "'s simulated board: ";
     if (joints_[i].board.lost()) throw std::runtime_error(which + joints_[i].board.failure() + " during the handshake");
     if (joints_[i].link.state() != LinkState::running) {
       throw std::runtime_error(which + "no handshake within " + printf_string("%g", config.handshake_timeout_s) +

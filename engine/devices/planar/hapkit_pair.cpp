@@ -14,7 +14,7 @@
 namespace hapscene {
 namespace {
 
-const char* kWhat = "--device serial";
+const char* kSerialPairWhat = "--device serial";
 
 // Two paths naming one device (the same string, a symlink to the other, or the same
 // character device) would drive one board as both joints.
@@ -26,7 +26,7 @@ void refuse_same_device(const std::array<std::string, 2>& paths) {
            (S_ISCHR(a.st_mode) && S_ISCHR(b.st_mode) && a.st_rdev == b.st_rdev);
   }
   if (same) {
-    throw InputError(std::string(kWhat) + ":" + paths[0] + "," + paths[1] +
+    throw InputError(std::string(kSerialPairWhat) + ":" + paths[0] + "," + paths[1] +
                      ": both paths name the same device; joint 1 and joint 2 need one board each");
   }
 }
@@ -55,7 +55,7 @@ std::string usb_serial_of(const std::string& path, const std::string& root, cons
 
 // The paths, once the profile and the paths are known to make a two-board device.
 std::array<std::string, 2> checked_paths(const PlanarProfile& profile, const HapkitPairConfig& config) {
-  require_hapkit_joints(profile, kWhat);
+  require_hapkit_joints(profile, kSerialPairWhat);
   refuse_same_device(config.paths);
   check_board_identities(profile, config.paths, devices_root());
   return config.paths;
@@ -72,7 +72,7 @@ void check_board_identities(const PlanarProfile& profile, const std::array<std::
   const std::array<std::string, 2> found{usb_serial_of(paths[0], devices_root, ports),
                                          usb_serial_of(paths[1], devices_root, ports)};
   if (found[0] == wanted[1] && found[1] == wanted[0]) {
-    throw InputError(std::string(kWhat) + ":" + paths[0] + "," + paths[1] + ": the cables are swapped: " + paths[0] +
+    throw InputError(std::string(kSerialPairWhat) + ":" + paths[0] + "," + paths[1] + ": the cables are swapped: " + paths[0] +
                      " is joint 2's board (USB serial " + found[0] + ") and " + paths[1] + " joint 1's (" + found[1] +
                      "), as profile \"" + profile.name + "\" names them; give serial:" + paths[1] + "," + paths[0] + place);
   }
@@ -80,11 +80,11 @@ void check_board_identities(const PlanarProfile& profile, const std::array<std::
     if (found[i] == wanted[i]) continue;
     const std::string joint = "joint " + std::to_string(i + 1);
     if (found[i].empty()) {
-      throw InputError(std::string(kWhat) + " (" + joint + "): " + paths[i] +
+      throw InputError(std::string(kSerialPairWhat) + " (" + joint + "): " + paths[i] +
                        ": no USB serial number to check against profile \"" + profile.name + "\"'s board_serials (\"" +
                        wanted[i] + "\"): not a USB board, or one without a serial number (`hapscene devices` lists them)" + place);
     }
-    throw InputError(std::string(kWhat) + " (" + joint + "): " + paths[i] + " is the board with USB serial " + found[i] +
+    throw InputError(std::string(kSerialPairWhat) + " (" + joint + "): " + paths[i] + " is the board with USB serial " + found[i] +
                      ", not " + joint + "'s (\"" + wanted[i] + "\") as profile \"" + profile.name + "\" names it" + place);
   }
 }
@@ -93,30 +93,30 @@ std::array<std::string, 2> parse_board_pair(const std::string& paths_text) {
   const std::size_t comma = paths_text.find(',');
   const std::string usage = " (a 2-DOF scene takes serial:PATH1,PATH2: joint 1's board, then joint 2's)";
   if (comma == std::string::npos) {
-    throw InputError(std::string(kWhat) + ":" + paths_text + ": one port for a 2-DOF scene" + usage);
+    throw InputError(std::string(kSerialPairWhat) + ":" + paths_text + ": one port for a 2-DOF scene" + usage);
   }
   const std::array<std::string, 2> paths{paths_text.substr(0, comma), paths_text.substr(comma + 1)};
   if (paths[1].find(',') != std::string::npos) {
-    throw InputError(std::string(kWhat) + ":" + paths_text + ": more than two ports" + usage);
+    throw InputError(std::string(kSerialPairWhat) + ":" + paths_text + ": more than two ports" + usage);
   }
   if (paths[0].empty() || paths[1].empty()) {
-    throw InputError(std::string(kWhat) + ":" + paths_text + ": an empty port path" + usage);
+    throw InputError(std::string(kSerialPairWhat) + ":" + paths_text + ": an empty port path" + usage);
   }
   return paths;
 }
 
 HapkitPair::HapkitPair(const PlanarProfile& profile, const HapkitPairConfig& config)
     : paths_(checked_paths(profile, config)),
-      boards_{std::make_unique<Board>(paths_[0], config.baud, std::string(kWhat) + " (joint 1): " + paths_[0],
+      boards_{std::make_unique<Board>(paths_[0], config.baud, std::string(kSerialPairWhat) + " (joint 1): " + paths_[0],
                                       joint_link_config(config.link, profile, 0)),
-              std::make_unique<Board>(paths_[1], config.baud, std::string(kWhat) + " (joint 2): " + paths_[1],
+              std::make_unique<Board>(paths_[1], config.baud, std::string(kSerialPairWhat) + " (joint 2): " + paths_[1],
                                       joint_link_config(config.link, profile, 1))},
       pair_(boards_[0]->link, boards_[1]->link) {
   start_ns_ = monotonic_now_ns();
   // Both handshakes at once: boards that reset when their port opens boot together.
   const std::array<BoardToOpen, 2> open{
-      BoardToOpen{&boards_[0]->link, std::string(kWhat) + " joint 1's board " + paths_[0]},
-      BoardToOpen{&boards_[1]->link, std::string(kWhat) + " joint 2's board " + paths_[1]}};
+      BoardToOpen{&boards_[0]->link, std::string(kSerialPairWhat) + " joint 1's board " + paths_[0]},
+      BoardToOpen{&boards_[1]->link, std::string(kSerialPairWhat) + " joint 2's board " + paths_[1]}};
   complete_handshakes(open, config.handshake_timeout_s, config.baud);
   // The run's own soft start covers the first contact.
   (void)boards_[0]->link.take_restart();

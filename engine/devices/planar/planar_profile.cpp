@@ -29,7 +29,7 @@ constexpr Range kJointViscous_N_m_s_per_rad{0.0, 100.0};
 constexpr Range kJointCoulomb_N_m{0.0, 100.0};
 constexpr Range kJointStopStiffness_N_m_per_rad{0.0, 1e6, true};
 constexpr long long kMaxCountsPerRevolution = 1LL << 24;
-constexpr std::size_t kMaxPolygonPoints = 1024;
+constexpr std::size_t kMaxWorkspacePolygonPoints = 1024;
 
 // The array at `key` with exactly `count` entries (count 0: any size within [3, max]).
 const nlohmann::json& array_at(ObjectReader& reader, std::string_view key, std::size_t count, std::string_view what) {
@@ -218,8 +218,8 @@ PlanarWorkspace parse_workspace(ObjectReader& reader) {
   } else {
     workspace.is_box = false;
     const nlohmann::json& points = array_at(reader, "polygon", 0, "an array of [x, y] points");
-    if (points.size() < 3 || points.size() > kMaxPolygonPoints) {
-      reader.fail("polygon", "needs 3 to " + std::to_string(kMaxPolygonPoints) + " points, got " +
+    if (points.size() < 3 || points.size() > kMaxWorkspacePolygonPoints) {
+      reader.fail("polygon", "needs 3 to " + std::to_string(kMaxWorkspacePolygonPoints) + " points, got " +
                                  std::to_string(points.size()));
     }
     double twice_area = 0.0;
