@@ -8,7 +8,6 @@
 namespace hapscene {
 namespace {
 
-constexpr double kVertexSnap = PolygonOutline::kVertexSnap;
 // Work per tick at most: steps (a straight move, a slide along an edge or a decision on
 // a vertex) and straight moves (each a query of the grid along the path). A proxy left
 // far behind the handle (which went through the solid) catches up over the next ticks;
