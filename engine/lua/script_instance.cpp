@@ -158,7 +158,7 @@ template <int N>
     // One value is kept, as the VM's call keeps one.
     if (count < 1 || !std::isfinite(results[0])) return false;
     *force_N = results[0];
-  } else {
+  } else if constexpr (N <= detail::ForceProgram::kMaxResults) {
     if (count != N) return false;
     for (int i = 0; i < N; ++i) {
       if (!std::isfinite(results[i])) return false;
