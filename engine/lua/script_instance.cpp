@@ -287,11 +287,7 @@ static_assert(kMaxAxes < static_cast<int>(std::size(kCountWords)), "every count 
 void write_force_names(int axes, char* out, std::size_t size) {
   std::size_t used = 0;
   out[0] = '\0';
-  for (int i = 0; i < axes && used < size; ++i) {
-    const int written = std::snprintf(out + used, size - used, "%sf%s", i == 0 ? "" : ", ", kAxisNames[i]);
-    if (written < 0) return;
-    used += static_cast<std::size_t>(written);
-  }
+  for (int i = 0; i < axes; ++i) detail::append_text(out, size, &used, "%sf%s", i == 0 ? "" : ", ", kAxisNames[i]);
 }
 
 // Why the `results` values force(s) returned (on the stack's top) are not the N finite
@@ -309,19 +305,18 @@ void record_bad_results(ScriptVm* vm, int results, int axes) {
   got[0] = '\0';
   if (results == axes && numbers) {
     // The right count, but a value that is not finite: each value as it was.
-    for (int k = 0; k < results && used < sizeof got; ++k) {
+    for (int k = 0; k < results; ++k) {
       char number[32];
       describe_number(lua_tonumber(L, -results + k), number, sizeof number);
-      used += static_cast<std::size_t>(std::snprintf(got + used, sizeof got - used, "%s%s", k == 0 ? "" : ", ", number));
+      detail::append_text(got, sizeof got, &used, "%s%s", k == 0 ? "" : ", ", number);
     }
     detail::record_fault(vm, ScriptFault::bad_return, "%s:%d: force(s) returned %s, expected %s finite numbers %s (N)",
                          name, vm->force_line, got, expected, forces);
   } else if (results == axes) {
     // The right count, not all numbers: "a number and a nil".
-    for (int k = 0; k < results && used < sizeof got; ++k) {
+    for (int k = 0; k < results; ++k) {
       const char* joint = k == 0 ? "" : k + 1 == results ? " and " : ", ";
-      used += static_cast<std::size_t>(
-          std::snprintf(got + used, sizeof got - used, "%sa %s", joint, luaL_typename(L, -results + k)));
+      detail::append_text(got, sizeof got, &used, "%sa %s", joint, luaL_typename(L, -results + k));
     }
     detail::record_fault(vm, ScriptFault::bad_return, "%s:%d: force(s) returned %s, expected %s finite numbers %s (N)",
                          name, vm->force_line, got, expected, forces);

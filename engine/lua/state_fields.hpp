@@ -67,18 +67,23 @@ constexpr bool is_velocity_field(int field) noexcept {
 
 // Text for messages, written into out (size bytes, always terminated); no allocation, so
 // the sandbox's C functions may call them where a Lua error can follow.
+
+// Appends printf-style text at out + *used (out holds size bytes, *used of them written
+// so far): cut at the end, always terminated. The one writer of the texts below.
+template <typename... Values>
+void append_text(char* out, std::size_t size, std::size_t* used, const char* pattern, Values... values) noexcept {
+  if (*used >= size) return;
+  const int written = std::snprintf(out + *used, size - *used, pattern, values...);
+  if (written > 0) *used += static_cast<std::size_t>(written);
+}
+
 // "x, v, t, dt" or "x, y, vx, vy, t, dt": the fields of a scene of `axes` axes.
 inline void write_state_field_list(int axes, char* out, std::size_t size) noexcept {
   std::size_t used = 0;
   out[0] = '\0';
   for (const int f : {position_field(0), velocity_field(0), kFieldT, kFieldDt}) {
     const int count = f == kFieldT || f == kFieldDt ? 1 : axes;
-    for (int i = 0; i < count && used < size; ++i) {
-      const int written = std::snprintf(out + used, size - used, "%s%s", used == 0 ? "" : ", ",
-                                        state_field_name(f + i, axes));
-      if (written < 0) return;
-      used += static_cast<std::size_t>(written);
-    }
+    for (int i = 0; i < count; ++i) append_text(out, size, &used, "%s%s", used == 0 ? "" : ", ", state_field_name(f + i, axes));
   }
 }
 
@@ -89,10 +94,7 @@ inline void write_scenes_with_field(const char* name, const char* joint, char* o
   out[0] = '\0';
   for (const int n : kSceneAxes) {
     int field = 0;
-    if (!find_state_field(name, n, &field) || used >= size) continue;
-    const int written = std::snprintf(out + used, size - used, "%s%d-D", used == 0 ? "" : joint, n);
-    if (written < 0) return;
-    used += static_cast<std::size_t>(written);
+    if (find_state_field(name, n, &field)) append_text(out, size, &used, "%s%d-D", used == 0 ? "" : joint, n);
   }
 }
 
@@ -101,14 +103,12 @@ inline void write_state_at_rest(int axes, char* out, std::size_t size) noexcept 
   std::size_t used = 0;
   out[0] = '\0';
   for (const int f : {position_field(0), velocity_field(0)}) {
-    for (int i = 0; i < axes && used < size; ++i) {
-      const int written = std::snprintf(out + used, size - used, "%s%s = 0 %s", used == 0 ? "" : ", ",
-                                        state_field_name(f + i, axes), is_velocity_field(f) ? "m/s" : "m");
-      if (written < 0) return;
-      used += static_cast<std::size_t>(written);
+    for (int i = 0; i < axes; ++i) {
+      append_text(out, size, &used, "%s%s = 0 %s", used == 0 ? "" : ", ", state_field_name(f + i, axes),
+                  is_velocity_field(f) ? "m/s" : "m");
     }
   }
-  if (used < size) std::snprintf(out + used, size - used, ", t = 0 s");
+  append_text(out, size, &used, "%s", ", t = 0 s");
 }
 
 }  // namespace hapscene::detail
