@@ -11,11 +11,8 @@
 #include "engine/base/errors.hpp"
 #include "engine/base/units.hpp"
 #include "engine/cli/option_definitions.hpp"
-#include "engine/harness/planar_report.hpp"
-#include "engine/harness/planar_validate.hpp"
-#include "engine/harness/report.hpp"
 #include "engine/harness/test_spec.hpp"
-#include "engine/harness/validate.hpp"
+#include "engine/harness/validate_kind.hpp"
 #include "python/harness.hpp"
 #include "python/interruptible.hpp"
 #include "python/scene.hpp"
@@ -26,24 +23,38 @@ namespace {
 
 constexpr const char* kValidate = "hapscene.validate";
 
-// Scenario names as the CLI's --scenario reads them (each once; a near miss suggested).
-template <typename Kind, typename Names>
-std::vector<Kind> scenario_kinds(const py::object& value, const Names& known, auto&& named, const std::string& list) {
-  std::vector<Kind> kinds;
-  if (value.is_none()) return kinds;
-  for (const std::string& name : names(value, std::string(kValidate) + ": scenarios")) {
-    const std::optional<Kind> kind = named(name);
-    if (!kind) {
-      const std::string suggestion = nearest_name(name, known);
-      throw InputError(std::string(kValidate) + ": scenarios: unknown scenario \"" + name + "\" (" + list +
-                       (suggestion.empty() ? ")" : "; did you mean \"" + suggestion + "\"?)"));
-    }
-    if (std::find(kinds.begin(), kinds.end(), *kind) != kinds.end()) {
-      throw InputError(std::string(kValidate) + ": scenarios: \"" + name + "\" is listed twice");
-    }
-    kinds.push_back(*kind);
+// The free scenario's start: a length in 1-D, an (x, y) point in 2-D.
+void read_start(const py::object& value, const std::string& what, double* x_m) {
+  *x_m = quantity(value, option::free_start, what);
+}
+void read_start(const py::object& value, const std::string& what, Vec2* x_m) {
+  *x_m = point(value, option::run_start, what);
+}
+
+// validate on an environment of N axes, its options and scenarios read as that kind
+// reads them (engine/harness/validate_kind.hpp), as the CLI does.
+template <int N>
+nlohmann::json validate_of(const EnvironmentOf<N>& environment, HarnessOptions options, const py::object& scenarios,
+                           const py::object& start, const std::string& what) {
+  using Kind = ValidateKindOf<N>;
+  if (const std::string problem = harness_options_problem<N>(options); !problem.empty()) {
+    throw InputError(what + ": " + problem);
   }
-  return kinds;
+  if (!start.is_none()) {
+    typename Kind::Point start_m{};
+    read_start(start, what + ": start", &start_m);
+    Kind::set_free_start(&options, start_m);
+  }
+  const std::vector<std::string> listed =
+      scenarios.is_none() ? std::vector<std::string>{} : names(scenarios, what + ": scenarios");
+  if (const std::string problem = scenario_list_problem<N>(listed); !problem.empty()) {
+    throw InputError(what + ": scenarios: " + problem);
+  }
+  const std::vector<ValidateScenarioOf<N>> kinds = scenario_list<N>(listed);
+  py::gil_scoped_release release;
+  nlohmann::json report;
+  run_interruptible([&](const std::atomic<bool>&) { report = report_to_json(validate_environment(environment, kinds, options)); });
+  return report;
 }
 
 py::object json_object(const nlohmann::json& report) {
@@ -64,35 +75,8 @@ py::object validate(const py::object& scene_value, const py::object& scenarios, 
   options.noise_counts = optional_quantity(noise, option::noise, what + ": noise").value_or(-1.0);
   if (!seed.is_none()) options.seed = whole(seed, option::seed, what + ": seed");
 
-  nlohmann::json report;
-  if (loaded.axes() == 2) {
-    if (options.noise_counts >= 0.0) throw InputError(what + ": noise: not yet for a 2-DOF environment");
-    if (!start.is_none()) options.free_start_planar_m = point(start, option::run_start, what + ": start");
-    const std::vector<PlanarValidateKind> kinds = scenario_kinds<PlanarValidateKind>(
-        scenarios, kPlanarValidateNames, planar_validate_kind_named,
-        "one of sweep, press, swipe, release, hold, shake, free");
-    options.thresholds = loaded.of<2>().validate;
-    py::gil_scoped_release release;
-    PlanarValidationReport planar;
-    run_interruptible([&](const std::atomic<bool>&) {
-      try {
-        planar = validate_planar_scene(loaded.of<2>().scene, kinds, options);
-      } catch (const InputError& error) {
-        // As the CLI says it.
-        throw InputError(loaded.path + ": a scenario cannot start where it asks (" + error.what() + ")");
-      }
-    });
-    report = planar_report_to_json(planar);
-  } else {
-    if (!start.is_none()) options.free_start_m = quantity(start, option::free_start, what + ": start");
-    const std::vector<ScenarioKind> kinds = scenario_kinds<ScenarioKind>(
-        scenarios, kScenarioNames, scenario_kind_named, "one of sweep, press, release, hold, shake, free");
-    options.thresholds = loaded.of<1>().validate;
-    py::gil_scoped_release release;
-    run_interruptible([&](const std::atomic<bool>&) {
-      report = report_to_json(validate_scene(loaded.of<1>().scene, kinds, options));
-    });
-  }
+  const nlohmann::json report =
+      loaded.visit([&](const auto& environment) { return validate_of(environment, options, scenarios, start, what); });
   return json_object(report);
 }
 

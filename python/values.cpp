@@ -3,6 +3,7 @@
 #include <string>
 
 #include "engine/base/errors.hpp"
+#include "engine/base/format.hpp"
 
 namespace hapscene::python {
 
@@ -54,14 +55,7 @@ Vec2 point(const py::handle& value, const QuantityOption& option, const std::str
 std::vector<std::string> names(const py::handle& value, const std::string& what) {
   std::vector<std::string> out;
   if (py::isinstance<py::str>(value)) {
-    const std::string list = value.cast<std::string>();
-    std::size_t begin = 0;
-    while (begin <= list.size()) {
-      const std::size_t end = std::min(list.find(',', begin), list.size());
-      out.push_back(list.substr(begin, end - begin));
-      begin = end + 1;
-    }
-    return out;
+    return split_names(value.cast<std::string>());
   }
   if (!py::isinstance<py::sequence>(value)) throw InputError(what + ": expected a list of names or a str");
   for (const py::handle item : value) {

@@ -1,11 +1,14 @@
 #pragma once
 // printf-style formatting into a std::string, for report lines and messages (not for the
 // tick: it allocates). Lines longer than 511 characters are cut. And printable(): text
-// from files and scripts made safe to print.
+// from files and scripts made safe to print; split_names() for the options that take a
+// comma-separated list.
+#include <algorithm>
 #include <cstddef>
 #include <cstdio>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace hapscene {
 
@@ -84,6 +87,18 @@ inline std::string printable(std::string_view text) {
   std::string out(4 * text.size() + 1, '\0');
   out.resize(write_printable(text, out.data(), out.size()));
   return out;
+}
+
+// The names of a comma-separated list, as written ("a,,b": "a", "", "b"; "": one empty name).
+inline std::vector<std::string> split_names(std::string_view list) {
+  std::vector<std::string> names;
+  std::size_t begin = 0;
+  while (begin <= list.size()) {
+    const std::size_t end = std::min(list.find(',', begin), list.size());
+    names.emplace_back(list.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  return names;
 }
 
 }  // namespace hapscene

@@ -19,31 +19,12 @@ HarnessOptions take_harness_options(Arguments& arguments) {
   return o;
 }
 
-std::vector<ScenarioKind> take_scenarios(Arguments& arguments) {
-  return parse_scenarios(arguments, arguments.take_value("scenario"));
+void parse_free_start(const Arguments& arguments, const std::string& text, double* x_m) {
+  *x_m = parse_option_quantity(text, option::free_start, arguments.command() + ": --start");
 }
 
-std::vector<ScenarioKind> parse_scenarios(const Arguments& arguments, const std::optional<std::string>& list) {
-  std::vector<ScenarioKind> kinds;
-  if (!list) return kinds;
-  std::size_t begin = 0;
-  while (begin <= list->size()) {
-    const std::size_t end = std::min(list->find(',', begin), list->size());
-    const std::string name = list->substr(begin, end - begin);
-    const std::optional<ScenarioKind> kind = scenario_kind_named(name);
-    if (!kind) {
-      std::string message = "--scenario: unknown scenario \"" + name + "\" (one of sweep, press, release, hold, shake, free";
-      const std::string suggestion = nearest_name(name, kScenarioNames);
-      arguments.fail(message + (suggestion.empty() ? ")" : "; did you mean \"" + suggestion + "\"?)"));
-    }
-    // Each scenario once: a list is not a way to run one scenario a thousand times.
-    if (std::find(kinds.begin(), kinds.end(), *kind) != kinds.end()) {
-      arguments.fail("--scenario: \"" + name + "\" is listed twice");
-    }
-    kinds.push_back(*kind);
-    begin = end + 1;
-  }
-  return kinds;
+void parse_free_start(const Arguments& arguments, const std::string& text, Vec2* x_m) {
+  *x_m = parse_planar_point(arguments, "start", text, option::run_start);
 }
 
 Vec2 parse_planar_point(const Arguments& arguments, const std::string& name, const std::string& text,
@@ -55,30 +36,6 @@ Vec2 parse_planar_point(const Arguments& arguments, const std::string& name, con
   const std::string what = arguments.command() + ": --" + name;
   return Vec2{{parse_option_quantity(text.substr(0, comma), option, what + " X"),
                parse_option_quantity(text.substr(comma + 1), option, what + " Y")}};
-}
-
-std::vector<PlanarValidateKind> parse_planar_scenarios(const Arguments& arguments,
-                                                       const std::optional<std::string>& list) {
-  std::vector<PlanarValidateKind> kinds;
-  if (!list) return kinds;
-  std::size_t begin = 0;
-  while (begin <= list->size()) {
-    const std::size_t end = std::min(list->find(',', begin), list->size());
-    const std::string name = list->substr(begin, end - begin);
-    const std::optional<PlanarValidateKind> kind = planar_validate_kind_named(name);
-    if (!kind) {
-      const std::string suggestion = nearest_name(name, kPlanarValidateNames);
-      arguments.fail("--scenario: unknown scenario \"" + name +
-                     "\" for a 2-DOF environment (one of sweep, press, swipe, release, hold, shake, free" +
-                     (suggestion.empty() ? ")" : "; did you mean \"" + suggestion + "\"?)"));
-    }
-    if (std::find(kinds.begin(), kinds.end(), *kind) != kinds.end()) {
-      arguments.fail("--scenario: \"" + name + "\" is listed twice");
-    }
-    kinds.push_back(*kind);
-    begin = end + 1;
-  }
-  return kinds;
 }
 
 }  // namespace hapscene

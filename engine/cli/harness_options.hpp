@@ -5,10 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/format.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/option_definitions.hpp"
-#include "engine/harness/planar_validate_scenario.hpp"
 #include "engine/harness/scenario.hpp"
+#include "engine/harness/validate_kind.hpp"
 
 namespace hapscene {
 
@@ -19,14 +20,21 @@ HarnessOptions take_harness_options(Arguments& arguments);
 Vec2 parse_planar_point(const Arguments& arguments, const std::string& name, const std::string& text,
                         const QuantityOption& option);
 
-// --scenario NAME[,NAME...] for a 2-DOF environment (validate's planar scenarios); empty
-// when not given (all of them).
-std::vector<PlanarValidateKind> parse_planar_scenarios(const Arguments& arguments,
-                                                       const std::optional<std::string>& list);
+// --start of validate's free scenario for a scene of N axes: X (one axis) or X,Y (two),
+// into `options`.
+void parse_free_start(const Arguments& arguments, const std::string& text, double* x_m);
+void parse_free_start(const Arguments& arguments, const std::string& text, Vec2* x_m);
 
-// Takes --scenario NAME[,NAME...]; empty when not given (all scenarios).
-std::vector<ScenarioKind> take_scenarios(Arguments& arguments);
-// The same for a list already taken (`list` empty: not given).
-std::vector<ScenarioKind> parse_scenarios(const Arguments& arguments, const std::optional<std::string>& list);
+// --scenario NAME[,NAME...] (taken already: `list` empty when not given) for a scene of N
+// axes: the scenarios in order, empty when not given (all of them). Fails `arguments`
+// (exit 2) on an unknown or repeated name (scenario_list_problem).
+template <int N>
+std::vector<ValidateScenarioOf<N>> parse_scenarios(const Arguments& arguments, const std::optional<std::string>& list) {
+  if (!list) return {};
+  const std::vector<std::string> names = split_names(*list);
+  const std::string problem = scenario_list_problem<N>(names);
+  if (!problem.empty()) arguments.fail("--scenario: " + problem);
+  return scenario_list<N>(names);
+}
 
 }  // namespace hapscene

@@ -138,7 +138,7 @@ int plot_command(std::vector<std::string> args) {
   if (texts.start) {
     options.free_start_m = parse_option_quantity(*texts.start, option::free_start, "hapscene plot: --start");
   }
-  const std::vector<ScenarioKind> kinds = parse_scenarios(arguments, texts.scenario);
+  const std::vector<ScenarioKind> kinds = parse_scenarios<1>(arguments, texts.scenario);
   if (kinds.size() > 1) arguments.fail("--scenario: plot draws one scenario");
 
   const Environment environment = load_environment(files[0]);

@@ -11,8 +11,10 @@
 // options; its --start is X,Y (the free scenario's start, default the profile's home).
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
+#include <exception>
+#include <optional>
 #include <string>
+#include <variant>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
@@ -23,125 +25,124 @@
 #include "engine/cli/output_file.hpp"
 #include "engine/cli/per_file.hpp"
 #include "engine/cli/standard_output.hpp"
-#include "engine/harness/figures.hpp"
-#include "engine/harness/planar_report.hpp"
-#include "engine/harness/planar_validate.hpp"
-#include "engine/harness/report.hpp"
+#include "engine/harness/validate_kind.hpp"
 #include "engine/load/environment.hpp"
 
 namespace hapscene {
+namespace {
+
+// What `validate` prints and writes, from its options.
+struct ValidateOutputs {
+  std::optional<std::string> report_path;
+  std::optional<std::string> plot_path;
+  bool quiet{};
+  bool verbose{};
+};
+
+// The harness options and scenarios for a scene of N axes: --start and --scenario read as
+// that kind reads them (engine/harness/validate_kind.hpp). Fails `arguments` (exit 2) on
+// an option the kind refuses.
+template <int N>
+HarnessOptions options_for(const Arguments& arguments, HarnessOptions options, const std::optional<std::string>& start_text) {
+  const std::string problem = harness_options_problem<N>(options);
+  if (!problem.empty()) arguments.fail("--" + problem);
+  if (start_text) {
+    typename ValidateKindOf<N>::Point start{};
+    parse_free_start(arguments, *start_text, &start);
+    ValidateKindOf<N>::set_free_start(&options, start);
+  }
+  return options;
+}
+
+// Validates one loaded environment, prints its verdict and writes its files; returns the
+// file's exit code.
+template <int N>
+int validate_one(const Arguments& arguments, const EnvironmentOf<N>& environment, const HarnessOptions& options,
+                 const std::optional<std::string>& start_text, const std::optional<std::string>& scenario_text,
+                 const ValidateOutputs& out, bool first) {
+  ValidationReportOf<N> report =
+      validate_environment(environment, parse_scenarios<N>(arguments, scenario_text), options_for<N>(arguments, options, start_text));
+  // The printed forms name the file in printable form (the JSON report escapes it).
+  const std::string source_path = report.source_path;
+  report.source_path = printable(source_path);
+  if (out.quiet) {
+    print_out("%s", format_report_line(report).c_str());
+  } else {
+    print_out("%s%s", first ? "" : "\n", (out.verbose ? format_report_table(report) : format_report_summary(report)).c_str());
+  }
+  report.source_path = source_path;
+  if (out.report_path) write_output_file(*out.report_path, report_to_json(report).dump(2) + "\n");
+  if (out.plot_path) write_output_file(*out.plot_path, validation_figure_svg(environment.scene, report));
+  return report.pass ? kExitOk : kExitFailure;
+}
+
+}  // namespace
 
 int validate_command(std::vector<std::string> args) {
   Arguments arguments(std::move(args), "hapscene validate");
   // --start and --scenario mean different things for 1-DOF and 2-DOF environments: taken
   // as text, read once the files' axes are known.
   const std::optional<std::string> start_text = arguments.take_value("start");
-  HarnessOptions options = take_harness_options(arguments);
+  const HarnessOptions options = take_harness_options(arguments);
   const std::optional<std::string> scenario_text = arguments.take_value("scenario");
-  const std::optional<std::string> report_path = arguments.take_value("report");
-  const std::optional<std::string> plot_path = arguments.take_value("plot");
-  const bool quiet = arguments.take_flag("quiet");
+  ValidateOutputs out;
+  out.report_path = arguments.take_value("report");
+  out.plot_path = arguments.take_value("plot");
+  out.quiet = arguments.take_flag("quiet");
   // The table of every check; by default a line per scenario and the failed checks.
-  const bool verbose = arguments.take_flag("verbose");
-  if (quiet && verbose) arguments.fail("--quiet and --verbose contradict each other: give one");
+  out.verbose = arguments.take_flag("verbose");
+  if (out.quiet && out.verbose) arguments.fail("--quiet and --verbose contradict each other: give one");
   const std::vector<std::string> files = arguments.positionals();
   if (files.empty()) arguments.fail("expected at least one environment file");
-  if ((report_path || plot_path) && files.size() != 1) {
+  if ((out.report_path || out.plot_path) && files.size() != 1) {
     arguments.fail("--report and --plot take one environment file");
-  }
-
-  // The axes of each file (one that cannot be read is left to its load, which reports it);
-  // the options each kind of file takes are checked before anything runs.
-  std::vector<int> axes(files.size(), 1);
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    try {
-      axes[i] = environment_axes(files[i]);
-    } catch (const InputError&) {
-      axes[i] = 1;
-    }
-  }
-  const bool any_planar = std::find(axes.begin(), axes.end(), 2) != axes.end();
-  const bool any_capstan = std::find(axes.begin(), axes.end(), 1) != axes.end();
-  std::vector<ScenarioKind> kinds;
-  std::vector<PlanarValidateKind> planar_kinds;
-  if (any_capstan) {
-    if (start_text) options.free_start_m = parse_option_quantity(*start_text, option::free_start, "hapscene validate: --start");
-    kinds = parse_scenarios(arguments, scenario_text);
-  }
-  if (any_planar) {
-    // The planar simulator's sensors have no noise model yet: refused rather than ignored.
-    if (options.noise_counts >= 0.0) arguments.fail("--noise: not yet for a 2-DOF environment");
-    if (start_text) options.free_start_planar_m = parse_planar_point(arguments, "start", *start_text, option::run_start);
-    planar_kinds = parse_planar_scenarios(arguments, scenario_text);
   }
 
   // Output files that would overwrite an input or each other, or cannot be written where
   // they are asked for, are refused before anything runs.
   {
     std::vector<std::pair<std::string, std::string>> outputs;
-    if (report_path) outputs.emplace_back("report", *report_path);
-    if (plot_path) outputs.emplace_back("plot", *plot_path);
+    if (out.report_path) outputs.emplace_back("report", *out.report_path);
+    if (out.plot_path) outputs.emplace_back("plot", *out.plot_path);
     const std::string problem = output_path_problem(outputs, files);
     if (!problem.empty()) arguments.fail(problem);
   }
+
+  // Each file is loaded once, before anything runs: the options each kind of file takes are
+  // checked first. A file that cannot be loaded keeps its error for its turn.
+  std::vector<std::optional<AnyEnvironment>> loaded(files.size());
+  std::vector<std::exception_ptr> load_errors(files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    try {
+      loaded[i] = load_any_environment(files[i]);
+    } catch (const std::exception&) {
+      load_errors[i] = std::current_exception();
+    }
+  }
+  const auto any_of_axes = [&](int axes) {
+    return std::any_of(loaded.begin(), loaded.end(), [&](const auto& e) { return e && axes_of(*e) == axes; });
+  };
+#define HAPSCENE_CHECK_OPTIONS(N)                  \
+  if (any_of_axes(N)) {                           \
+    options_for<N>(arguments, options, start_text); \
+    parse_scenarios<N>(arguments, scenario_text);  \
+  }
+  HAPSCENE_FOR_EACH_AXES(HAPSCENE_CHECK_OPTIONS)
+#undef HAPSCENE_CHECK_OPTIONS
 
   // Each file its own verdict: one that is invalid input prints its error (and, with
   // --quiet, a FAIL line) and the others still run (engine/cli/per_file.hpp).
   int exit_code = kExitOk;
   for (std::size_t i = 0; i < files.size(); ++i) {
     const int file_code = run_for_file([&] {
-      if (axes[i] == 2) {
-        const PlanarEnvironment environment = load_planar_environment(files[i]);
-        const PlanarScene& scene = environment.scene;
-        HarnessOptions file_options = options;
-        file_options.thresholds = environment.validate;
-        PlanarValidationReport report;
-        try {
-          report = validate_planar_scene(scene, planar_kinds, file_options);
-        } catch (const InputError& error) {
-          throw InputError(files[i] + ": a scenario cannot start where it asks (" + error.what() + ")");
-        }
-        // The printed forms name the file in printable form (the JSON report escapes it);
-        // the records are not needed for that.
-        PlanarValidationReport shown;
-        shown.scene_name = report.scene_name;
-        shown.source_path = printable(report.source_path);
-        shown.rate_hz = report.rate_hz;
-        shown.bound = report.bound;
-        shown.scripts = report.scripts;
-        shown.options = report.options;
-        shown.scene_checks = report.scene_checks;
-        for (const PlanarScenarioResult& s : report.scenarios) {
-          shown.scenarios.push_back({s.scenario, s.metrics, s.checks, {}, {}, s.pass});
-        }
-        if (quiet) {
-          print_out("%s", format_planar_report_line(shown).c_str());
-        } else {
-          print_out("%s%s", i > 0 ? "\n" : "",
-                    (verbose ? format_planar_report_table(shown) : format_planar_report_summary(shown)).c_str());
-        }
-        if (report_path) write_output_file(*report_path, planar_report_to_json(report).dump(2) + "\n");
-        if (plot_path) write_output_file(*plot_path, planar_validation_figure_svg(scene, report));
-        return report.pass ? kExitOk : kExitFailure;
-      }
-      const Environment environment = load_environment(files[i]);
-      const Scene& scene = environment.scene;
-      HarnessOptions file_options = options;
-      file_options.thresholds = environment.validate;
-      const ValidationReport report = validate_scene(scene, kinds, file_options);
-      // The printed forms name the file in printable form (the JSON report escapes it).
-      ValidationReport shown = report;
-      shown.source_path = printable(report.source_path);
-      if (quiet) {
-        print_out("%s", format_report_line(shown).c_str());
-      } else {
-        print_out("%s%s", i > 0 ? "\n" : "", (verbose ? format_report_table(shown) : format_report_summary(shown)).c_str());
-      }
-      if (report_path) write_output_file(*report_path, report_to_json(report).dump(2) + "\n");
-      if (plot_path) write_output_file(*plot_path, validation_figure_svg(scene, report));
-      return report.pass ? kExitOk : kExitFailure;
+      if (load_errors[i]) std::rethrow_exception(load_errors[i]);
+      return std::visit(
+          [&](const auto& environment) {
+            return validate_one(arguments, environment, options, start_text, scenario_text, out, i == 0);
+          },
+          *loaded[i]);
     });
-    if (file_code == kExitInvalidInput && quiet) print_out("FAIL %s: invalid input (see the error above)\n", printable(files[i]).c_str());
+    if (file_code == kExitInvalidInput && out.quiet) print_out("FAIL %s: invalid input (see the error above)\n", printable(files[i]).c_str());
     exit_code = worst_exit_code(exit_code, file_code);
   }
   flush_out();

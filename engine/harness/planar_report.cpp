@@ -30,11 +30,11 @@ json pose_json(const PlanarPoseBound& pose) {
 
 }  // namespace
 
-std::string format_planar_report_line(const PlanarValidationReport& report) {
+std::string format_report_line(const PlanarValidationReport& report) {
   return format_report_line(report.scene_name, report.source_path, report_sections(report, kPlanarSceneDescription));
 }
 
-std::string format_planar_report_table(const PlanarValidationReport& report) {
+std::string format_report_table(const PlanarValidationReport& report) {
   const PlanarStiffnessBound& b = report.bound;
   std::string out = printf_string("validate %s (%s): 2 axes, %g Hz, stiffest shape or spring %.0f N/m%s\n",
                                   report.scene_name.c_str(), report.source_path.c_str(), report.rate_hz,
@@ -55,12 +55,12 @@ std::string format_planar_report_table(const PlanarValidationReport& report) {
   return out + format_report_rows(report_sections(report, kPlanarSceneDescription));
 }
 
-std::string format_planar_report_summary(const PlanarValidationReport& report) {
-  return format_report_summary(report_table_header(format_planar_report_table(report)),
+std::string format_report_summary(const PlanarValidationReport& report) {
+  return format_report_summary(report_table_header(format_report_table(report)),
                                report_sections(report, kPlanarSceneDescription));
 }
 
-json planar_report_to_json(const PlanarValidationReport& report) {
+json report_to_json(const PlanarValidationReport& report) {
   const PlanarStiffnessBound& b = report.bound;
   json poses = json::array();
   for (const PlanarPoseBound& pose : b.poses) poses.push_back(pose_json(pose));
@@ -108,7 +108,7 @@ json planar_report_to_json(const PlanarValidationReport& report) {
   return out;
 }
 
-std::string planar_validation_figure_svg(const PlanarScene& scene, const PlanarValidationReport& report) {
+std::string validation_figure_svg(const PlanarScene& scene, const PlanarValidationReport& report) {
   const PlanarScenarioResult* shown = nullptr;
   for (const PlanarScenarioResult& s : report.scenarios) {
     if (s.scenario.applicable && !s.pass) {

@@ -30,10 +30,7 @@
 #include "engine/base/object_reader.hpp"
 #include "engine/base/file_replace.hpp"
 #include "engine/base/json_source.hpp"
-#include "engine/harness/planar_report.hpp"
-#include "engine/harness/planar_validate.hpp"
-#include "engine/harness/report.hpp"
-#include "engine/harness/validate.hpp"
+#include "engine/harness/validate_kind.hpp"
 #include "engine/load/environment.hpp"
 #include "engine/serve/connection_gate.hpp"
 #include "engine/serve/live_job.hpp"
@@ -357,27 +354,9 @@ struct LiveViewOf<N>::Impl {
       std::optional<json> out = run_job<json>(
           [version, file = path, dir = base_dir] {
             setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
-            json result;
-            if constexpr (N == 1) {
-              const Environment environment = compile_environment(version, file, dir);
-              HarnessOptions options;
-              options.thresholds = environment.validate;
-              const ValidationReport report = validate_scene(environment.scene, {}, options);
-              result = {{"pass", report.pass}, {"table", format_report_table(report)}, {"report", report_to_json(report)}};
-            } else {
-              const PlanarEnvironment environment = compile_planar_environment(version, file, dir);
-              HarnessOptions options;
-              options.thresholds = environment.validate;
-              PlanarValidationReport report = validate_planar_scene(environment.scene, {}, options);
-              for (PlanarScenarioResult& s : report.scenarios) {
-                s.records.clear();
-                s.proxies_m.clear();
-              }
-              result = {{"pass", report.pass},
-                        {"table", format_planar_report_table(report)},
-                        {"report", planar_report_to_json(report)}};
-            }
-            return result;
+            const EnvironmentOf<N> environment = compile_environment_of<N>(version, file, dir);
+            const ValidationReportOf<N> report = validate_environment(environment, {}, HarnessOptions{});
+            return json{{"pass", report.pass}, {"table", format_report_table(report)}, {"report", report_to_json(report)}};
           },
           stopping);
       if (!out) {

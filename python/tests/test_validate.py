@@ -52,6 +52,26 @@ def test_validate_error_from_the_engine_is_the_cli_message():
     assert cli.stderr == f"error: {caught.value}\n"
 
 
+def test_validate_errors_read_by_the_kind_are_the_cli_messages():
+    # One reading of the scenarios, the start and the noise for every number of axes
+    # (engine/harness/validate_kind.hpp): Python says what the CLI says, prefixed.
+    planar = "environments/planar/haplink_box_inside.json"
+    for args, kwargs, cli_prefix, py_prefix in [
+        (["--scenario", "swep"], {"scenarios": "swep"}, "--scenario: ", "scenarios: "),
+        (["--scenario", "hold,hold"], {"scenarios": "hold,hold"}, "--scenario: ", "scenarios: "),
+        (["--noise", "1"], {"noise": 1}, "--", ""),
+    ]:
+        cli = run_cli("validate", planar, *args, check_code=2)
+        with pytest.raises(hapscene.InputError) as caught:
+            hapscene.validate(planar, **kwargs)
+        said = str(caught.value)
+        assert said.startswith("hapscene.validate: " + py_prefix), said
+        problem = said[len("hapscene.validate: " + py_prefix):]
+        assert cli.stderr == f"error: hapscene validate: {cli_prefix}{problem}\n"
+    with pytest.raises(hapscene.InputError, match=r'unknown scenario "swep" for a 2-DOF environment \(one of sweep, press, swipe'):
+        hapscene.validate(planar, scenarios="swep")
+
+
 def test_validate_errors():
     with pytest.raises(hapscene.InputError, match=r'unknown scenario "swep" \(one of .*did you mean "sweep"\?\)'):
         hapscene.validate("environments/wall.json", scenarios="swep")

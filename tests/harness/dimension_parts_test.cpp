@@ -55,13 +55,13 @@ TEST_CASE("dimension parts: the 1-D and 2-D reports write the same rows, summary
   fill(&one);
   fill(&two);
   CHECK(format_report_line(one) == "FAIL twin (twin.json): 1 of 2 checks failed: press/passivity\n");
-  CHECK(format_planar_report_line(two) == format_report_line(one));
-  CHECK(rows(format_planar_report_table(two)) == rows(format_report_table(one)));
+  CHECK(format_report_line(two) == format_report_line(one));
+  CHECK(rows(format_report_table(two)) == rows(format_report_table(one)));
   CHECK(rows(format_report_table(one)).ends_with("\nresult: FAIL (1 of 2 checks failed: press/passivity)\n"));
-  CHECK(rows(format_planar_report_summary(two)) == rows(format_report_summary(one)));
+  CHECK(rows(format_report_summary(two)) == rows(format_report_summary(one)));
   // The JSON both write alike: the frame, the options and a scenario's entry.
   const nlohmann::json a = report_to_json(one);
-  const nlohmann::json b = planar_report_to_json(two);
+  const nlohmann::json b = report_to_json(two);
   CHECK(a["schema"] == b["schema"]);
   CHECK(a["scene_checks"] == b["scene_checks"]);
   CHECK(a["scenarios"][0]["checks"] == b["scenarios"][0]["checks"]);

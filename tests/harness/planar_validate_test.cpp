@@ -267,7 +267,7 @@ TEST_CASE("planar validate: the JSON report keeps the schema and adds the 2-D fi
   options.free_start_planar_m = Vec2{{-0.01, 0.15}};
   const PlanarValidationReport report =
       validate_planar_scene(env.scene, {PlanarValidateKind::release, PlanarValidateKind::swipe}, options);
-  const nlohmann::json j = planar_report_to_json(report);
+  const nlohmann::json j = report_to_json(report);
   CHECK(j["schema"] == "hapscene-validate/2");
   CHECK(j["axes"] == 2);
   CHECK(j["scene"]["axes"] == 2);
