@@ -39,9 +39,9 @@ struct ValidateOutputs {
   bool verbose{};
 };
 
-// The harness options and scenarios for a scene of N axes: --start and --scenario read as
-// that kind reads them (engine/harness/validate_kind.hpp). Fails `arguments` (exit 2) on
-// an option the kind refuses.
+// The harness options for a scene of N axes: --start read as that kind reads it
+// (engine/harness/validate_kind.hpp). Fails `arguments` (exit 2) on an option the kind
+// refuses (--noise where its sensors have no noise model).
 template <int N>
 HarnessOptions options_for(const Arguments& arguments, HarnessOptions options, const std::optional<std::string>& start_text) {
   const std::string problem = harness_options_problem<N>(options);
