@@ -20,8 +20,8 @@ HarnessOptions take_harness_options(Arguments& arguments);
 Vec2 parse_planar_point(const Arguments& arguments, const std::string& name, const std::string& text,
                         const QuantityOption& option);
 
-// --start of validate's free scenario for a scene of N axes: X (one axis) or X,Y (two),
-// into `options`.
+// --start of validate's free scenario: X for one axis (into a double), X,Y for two (a
+// Vec2), each in the option's range; fails `arguments` (exit 2) otherwise.
 void parse_free_start(const Arguments& arguments, const std::string& text, double* x_m);
 void parse_free_start(const Arguments& arguments, const std::string& text, Vec2* x_m);
 
