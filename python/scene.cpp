@@ -15,7 +15,7 @@
 #include "engine/base/errors.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/cli/option_definitions.hpp"
-#include "engine/cli/probe_columns.hpp"
+#include "engine/base/axis_columns.hpp"
 #include "engine/effects/effect_keys.hpp"
 #include "engine/harness/open_loop.hpp"
 #include "python/interruptible.hpp"
@@ -147,7 +147,7 @@ Array array_like(const Array& shape_of, const std::vector<double>& values) {
 
 // The open-loop force at each point (coordinates[k]: axis k of every point, all of one
 // shape), as the CLI's probe computes it: one column per axis and quantity
-// (probe_columns.hpp), each shaped like the coordinates.
+// (axis_columns.hpp), each shaped like the coordinates.
 template <int N>
 py::dict probe_scene(const LoadedScene& s, const std::array<Array, N>& coordinates, const Axes<N>& v_m_per_s,
                      double t_s) {
@@ -189,7 +189,7 @@ py::dict probe_scene(const LoadedScene& s, const std::array<Array, N>& coordinat
     });
   }
   warn_lines(behaviour, t_s, faults, N == 1 ? "in the workspace" : "in the grid");
-  const std::vector<std::string> names = probe_columns<N>();
+  const std::vector<std::string> names = handle_state_columns<N>();
   py::dict out;
   for (std::size_t c = 0; c < names.size(); ++c) out[names[c].c_str()] = array_like(shape, columns[c]);
   return out;

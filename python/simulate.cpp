@@ -10,8 +10,10 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "engine/base/axis_columns.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/cli/option_definitions.hpp"
@@ -143,127 +145,133 @@ py::dict summary_dict(const SceneOf<N>& scene, const RunSettings& settings, cons
   return d;
 }
 
-py::dict run_capstan(const LoadedScene& loaded, const SimulateArgs& a) {
-  const Scene& scene = loaded.of<1>().scene;
-  RunSettings settings = common_settings(a, scene.rate_hz);
-  HandConfig& hand = settings.simulation.hand;
+// A simulated run's device, per device kind: its options (hand, hold, start, noise) read
+// with the GIL held; open() then opens the device without it. hand_name names the hand
+// for the summary; counters() are the kind's own summary values, read before the device
+// closes.
+struct CapstanSimulation {
+  DeviceProfile profile;
+  SimulationConfig simulation;
+  std::string hand_name;
+  std::unique_ptr<DeviceOf<1>> open(const RunSettings& settings) const {
+    return open_device(settings.device, profile, simulation, settings.link);
+  }
+  static std::vector<std::pair<const char*, std::uint64_t>> counters(const DeviceOf<1>& /*device*/) { return {}; }
+};
+
+CapstanSimulation simulation_of(const SceneOf<1>& scene, const SimulateArgs& a, const RunSettings& settings) {
+  CapstanSimulation out{scene.device, settings.simulation, {}};
+  HandConfig& hand = out.simulation.hand;
   if (!a.hand.is_none()) {
     hand.motion = static_cast<HandMotion>(
         motion_index(kHandMotionNames, a.hand, "use sweep, hold, release, shake or none"));
   }
   if (!a.hold.is_none()) hand.hold_m = quantity(a.hold, option::hold, std::string(kWhat) + ": hold");
-  if (!a.start.is_none()) settings.simulation.start_x_m = quantity(a.start, option::run_start, std::string(kWhat) + ": start");
-
-  RecordedRunOf<1> recorded;
-  std::string report;
-  bool faulted = false;
-  {
-    py::gil_scoped_release release;
-    DeviceProfile profile = scene.device;
-    if (settings.noise_counts >= 0.0) profile.plant.sensor_noise_counts = settings.noise_counts;
-    std::unique_ptr<Device> device;
-    try {
-      device = open_device(settings.device, profile, settings.simulation, settings.link);
-    } catch (const InputError& error) {
-      throw InputError(std::string(kWhat) + ": " + error.what());
-    }
-    run_interruptible([&](const std::atomic<bool>& stop) {
-      settings.options.stop_requested = &stop;
-      recorded = record_run<1>(scene, *device, loaded.path, settings);
-    });
-    report = device->report();
-    faulted = run_faulted(recorded.run, *device);
-  }
-  if (recorded.dropped > 0) throw std::runtime_error("hapscene.simulate: the run went past its reservation");
-  const auto& v = recorded.samples;
-  const auto& t = recorded.truths;
-  const std::size_t n = v.size();
-  py::dict out;
-  out["t_s"] = column(n, [&](std::size_t i) { return v[i].t_s; });
-  out["x_m"] = column(n, [&](std::size_t i) { return v[i].x_m; });
-  out["v_m_per_s"] = column(n, [&](std::size_t i) { return v[i].v_m_per_s; });
-  out["force_N"] = column(n, [&](std::size_t i) { return v[i].force_N; });
-  out["output_N"] = column(n, [&](std::size_t i) { return v[i].output_N; });
-  out["duty"] = column(n, [&](std::size_t i) { return v[i].command.duty; });
-  out["direction"] = flag_column(n, [&](std::size_t i) { return v[i].command.direction_high; });
-  out["x_true_m"] = column(n, [&](std::size_t i) { return t[i].x_m; });
-  out["v_true_m_per_s"] = column(n, [&](std::size_t i) { return t[i].v_m_per_s; });
-  out["motor_force_N"] = column(n, [&](std::size_t i) { return t[i].motor_force_N; });
-  out["hand_force_N"] = column(n, [&](std::size_t i) { return t[i].hand_force_N; });
-  const std::string hand_name(kHandMotionNames[static_cast<int>(hand.motion)]);
-  out["summary"] = summary_dict<1>(scene, settings, hand_name, recorded, report, faulted);
+  if (!a.start.is_none()) out.simulation.start_x_m = quantity(a.start, option::run_start, std::string(kWhat) + ": start");
+  if (settings.noise_counts >= 0.0) out.profile.plant.sensor_noise_counts = settings.noise_counts;
+  out.hand_name = kHandMotionNames[static_cast<int>(hand.motion)];
   return out;
 }
 
-py::dict run_planar_scene(const LoadedScene& loaded, const SimulateArgs& a) {
-  const PlanarScene& scene = loaded.of<2>().scene;
-  RunSettings settings = common_settings(a, scene.rate_hz);
+struct PlanarSimulation {
+  const PlanarProfile* profile{};
+  PlanarSimulationConfig simulation;
+  Vec2 start_m{};
+  std::string hand_name;
+  std::unique_ptr<DeviceOf<2>> open(const RunSettings& settings) {
+    try {
+      simulation.start_q_rad = planar_joint_angles_at(*profile, start_m);
+    } catch (const InputError& error) {
+      throw InputError(std::string("start: ") + error.what());  // simulate_of names the function
+    }
+    return open_planar_device(settings.device, *profile, simulation, settings.link);
+  }
+  static std::vector<std::pair<const char*, std::uint64_t>> counters(const DeviceOf<2>& device) {
+    const PlanarPlant* plant = simulated_planar_plant(device);
+    return {{"plant_linkage_faults", plant != nullptr ? plant->linkage_faults() : 0}};
+  }
+};
+
+PlanarSimulation simulation_of(const SceneOf<2>& scene, const SimulateArgs& a, const RunSettings& settings) {
   if (settings.noise_counts >= 0.0) throw InputError(std::string(kWhat) + ": noise: not yet for a 2-DOF environment");
   if (settings.device != "sim") {
     throw InputError(std::string(kWhat) + ": device: a 2-DOF scene runs in simulated time on \"sim\" only");
   }
-  const Vec2 start_m =
-      a.start.is_none() ? scene.device.home_m : point(a.start, option::run_start, std::string(kWhat) + ": start");
+  PlanarSimulation out;
+  out.profile = &scene.device;
+  out.start_m = a.start.is_none() ? scene.device.home_m : point(a.start, option::run_start, std::string(kWhat) + ": start");
   PlanarHandMotion motion = PlanarHandMotion::sweep;
   if (!a.hand.is_none()) {
     motion = static_cast<PlanarHandMotion>(motion_index(
         kPlanarHandMotionNames, a.hand, "a 2-DOF run takes sweep, line, circle, hold, release, shake or none"));
   }
-  const Vec2 hold_m = a.hold.is_none() ? start_m : point(a.hold, option::hold, std::string(kWhat) + ": hold");
-  PlanarSimulationConfig simulation;
-  simulation.hand = planar_run_hand(scene, motion, settings.simulation.hand, hold_m);
-  simulation.noise_seed = settings.simulation.noise_seed;
+  const Vec2 hold_m = a.hold.is_none() ? out.start_m : point(a.hold, option::hold, std::string(kWhat) + ": hold");
+  out.simulation.hand = planar_run_hand(scene, motion, settings.simulation.hand, hold_m);
+  out.simulation.noise_seed = settings.simulation.noise_seed;
+  out.hand_name = kPlanarHandMotionNames[static_cast<int>(motion)];
+  return out;
+}
 
-  RecordedRunOf<2> recorded;
+// Every tick's values as numpy arrays, named as the log's columns (telemetry_log.hpp),
+// then the simulator's true state per axis: x_true_m, v_true_m_per_s, motor_force_N,
+// hand_force_N (1-D); x_true_m, y_true_m, vx_true_m_per_s, ..., hand_force_y_N (2-D).
+template <int N>
+void add_columns(const RecordedRunOf<N>& recorded, py::dict* out) {
+  using Sample = TelemetrySampleOf<N>;
+  using Truth = TruthSampleOf<N>;
+  const auto& v = recorded.samples;
+  const auto& t = recorded.truths;
+  const std::size_t n = v.size();
+  const std::vector<std::string> logged = telemetry_columns<N>();
+  std::size_t c = 0;
+  (*out)[logged[c++].c_str()] = column(n, [&](std::size_t i) { return v[i].t_s; });
+  for (Axes<N> Sample::*quantity : {&Sample::x_m, &Sample::v_m_per_s, &Sample::force_N, &Sample::output_N}) {
+    for (int k = 0; k < N; ++k) (*out)[logged[c++].c_str()] = column(n, [&](std::size_t i) { return component(v[i].*quantity, k); });
+  }
+  for (int k = 0; k < N; ++k) {
+    (*out)[logged[c++].c_str()] = column(n, [&](std::size_t i) { return motor_of(v[i].command, k).duty; });
+    (*out)[logged[c++].c_str()] = flag_column(n, [&](std::size_t i) { return motor_of(v[i].command, k).direction_high; });
+  }
+  const std::vector<std::string> truths =
+      axis_columns<N>({{"", "_true_m"}, {"v", "_true_m_per_s"}, {"motor_force_", "_N"}, {"hand_force_", "_N"}});
+  c = 0;
+  for (Axes<N> Truth::*quantity : {&Truth::x_m, &Truth::v_m_per_s, &Truth::motor_force_N, &Truth::hand_force_N}) {
+    for (int k = 0; k < N; ++k) (*out)[truths[c++].c_str()] = column(n, [&](std::size_t i) { return component(t[i].*quantity, k); });
+  }
+}
+
+// `hapscene run --sim-time --log` of a scene with N axes, in memory.
+template <int N>
+py::dict simulate_of(const EnvironmentOf<N>& environment, const std::string& path, const SimulateArgs& a) {
+  const SceneOf<N>& scene = environment.scene;
+  RunSettings settings = common_settings(a, scene.rate_hz);
+  auto simulation = simulation_of(scene, a, settings);
+
+  RecordedRunOf<N> recorded;
   std::string report;
   bool faulted = false;
-  std::uint64_t linkage_faults = 0;
+  std::vector<std::pair<const char*, std::uint64_t>> counters;
   {
     py::gil_scoped_release release;
+    std::unique_ptr<DeviceOf<N>> device;
     try {
-      simulation.start_q_rad = planar_joint_angles_at(scene.device, start_m);
-    } catch (const InputError& error) {
-      throw InputError(std::string(kWhat) + ": start: " + error.what());
-    }
-    std::unique_ptr<DeviceOf<2>> device;
-    try {
-      device = open_planar_device(settings.device, scene.device, simulation, settings.link);
+      device = simulation.open(settings);
     } catch (const InputError& error) {
       throw InputError(std::string(kWhat) + ": " + error.what());
     }
     run_interruptible([&](const std::atomic<bool>& stop) {
       settings.options.stop_requested = &stop;
-      recorded = record_run<2>(scene, *device, loaded.path, settings);
+      recorded = record_run<N>(scene, *device, path, settings);
     });
     report = device->report();
-    if (const auto* simulated = dynamic_cast<const SimulatedPlanar*>(device.get())) {
-      linkage_faults = simulated->plant().linkage_faults();
-    }
+    counters = simulation.counters(*device);
     faulted = run_faulted(recorded.run, *device);
   }
   if (recorded.dropped > 0) throw std::runtime_error("hapscene.simulate: the run went past its reservation");
-  const auto& v = recorded.samples;
-  const auto& t = recorded.truths;
-  const std::size_t n = v.size();
   py::dict out;
-  out["t_s"] = column(n, [&](std::size_t i) { return v[i].t_s; });
-  const char* axis[2] = {"x", "y"};
-  for (int k = 0; k < 2; ++k) out[(std::string(axis[k]) + "_m").c_str()] = column(n, [&](std::size_t i) { return v[i].x_m[k]; });
-  for (int k = 0; k < 2; ++k) out[(std::string("v") + axis[k] + "_m_per_s").c_str()] = column(n, [&](std::size_t i) { return v[i].v_m_per_s[k]; });
-  for (int k = 0; k < 2; ++k) out[(std::string("force_") + axis[k] + "_N").c_str()] = column(n, [&](std::size_t i) { return v[i].force_N[k]; });
-  for (int k = 0; k < 2; ++k) out[(std::string("output_") + axis[k] + "_N").c_str()] = column(n, [&](std::size_t i) { return v[i].output_N[k]; });
-  for (int k = 0; k < 2; ++k) {
-    const std::string motor = std::to_string(k + 1);
-    out[("duty_" + motor).c_str()] = column(n, [&](std::size_t i) { return v[i].command.motor[k].duty; });
-    out[("direction_" + motor).c_str()] = flag_column(n, [&](std::size_t i) { return v[i].command.motor[k].direction_high; });
-  }
-  for (int k = 0; k < 2; ++k) out[(std::string(axis[k]) + "_true_m").c_str()] = column(n, [&](std::size_t i) { return t[i].x_m[k]; });
-  for (int k = 0; k < 2; ++k) out[(std::string("v") + axis[k] + "_true_m_per_s").c_str()] = column(n, [&](std::size_t i) { return t[i].v_m_per_s[k]; });
-  for (int k = 0; k < 2; ++k) out[(std::string("motor_force_") + axis[k] + "_N").c_str()] = column(n, [&](std::size_t i) { return t[i].motor_force_N[k]; });
-  for (int k = 0; k < 2; ++k) out[(std::string("hand_force_") + axis[k] + "_N").c_str()] = column(n, [&](std::size_t i) { return t[i].hand_force_N[k]; });
-  const std::string hand_name(kPlanarHandMotionNames[static_cast<int>(motion)]);
-  py::dict summary = summary_dict<2>(scene, settings, hand_name, recorded, report, faulted);
-  summary["plant_linkage_faults"] = linkage_faults;
+  add_columns<N>(recorded, &out);
+  py::dict summary = summary_dict<N>(scene, settings, simulation.hand_name, recorded, report, faulted);
+  for (const auto& [name, count] : counters) summary[name] = count;
   out["summary"] = summary;
   return out;
 }
@@ -305,7 +313,7 @@ void bind_simulate(py::module_& m) {
          const py::object& release, const py::object& noise, const py::object& seed, const py::object& device) {
         const LoadedScene loaded = scene_argument(scene, kWhat);
         const SimulateArgs args{duration, hand, hold, start, hand_stiffness, hand_damping, release, noise, seed, device};
-        return loaded.axes() == 1 ? run_capstan(loaded, args) : run_planar_scene(loaded, args);
+        return loaded.visit([&](const auto& environment) { return simulate_of(environment, loaded.path, args); });
       },
       py::arg("scene"), py::kw_only(), py::arg("duration") = py::none(), py::arg("hand") = py::none(),
       py::arg("hold") = py::none(), py::arg("start") = py::none(), py::arg("hand_stiffness") = py::none(),

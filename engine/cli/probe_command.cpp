@@ -20,13 +20,13 @@
 #include <variant>
 #include <vector>
 
+#include "engine/base/axis_columns.hpp"
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
 #include "engine/base/object_reader.hpp"
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/option_definitions.hpp"
-#include "engine/cli/probe_columns.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/devices/planar/planar_profile.hpp"
 #include "engine/harness/open_loop.hpp"
@@ -201,12 +201,10 @@ Axes<N> parse_velocity(const Arguments& arguments, const std::string& text) {
   }
 }
 
-// The CSV's header (probe_columns.hpp).
+// The CSV's header (axis_columns.hpp).
 template <int N>
 std::string probe_header() {
-  std::string header;
-  for (const std::string& column : probe_columns<N>()) header += (header.empty() ? "" : ",") + column;
-  return header + "\n";
+  return csv_header_line(handle_state_columns<N>()) + "\n";
 }
 
 // One value per axis, comma-separated, each the shortest text that reads back.

@@ -22,6 +22,10 @@ struct MotorCommand {
   bool direction_high{};    // level of the direction pin
 };
 
+// Motor `i` of a command; a one-motor command is its own motor 0. Code written over N reads
+// each motor of a DeviceIo<N>::Command so (the planar command's overload: planar_model.hpp).
+constexpr const MotorCommand& motor_of(const MotorCommand& command, int /*i*/) noexcept { return command; }
+
 // A profile's kinematics, combined into the few constants a tick uses.
 struct Kinematics {
   double x_m_per_count{};           // handle_radius * slope * pi / 180

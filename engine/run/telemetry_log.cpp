@@ -21,36 +21,33 @@ void append_number(double value, std::string* out) {
 }
 
 // Each axis's value, then a comma.
-void append_axes(double value, std::string* out) {
-  append_number(value + 0.0, out);  // + 0.0: no "-0"
-  *out += ',';
-}
-void append_axes(const Vec2& value, std::string* out) {
-  append_axes(value[0], out);
-  append_axes(value[1], out);
-}
-
-// Each motor's duty and direction.
-void append_command(const MotorCommand& command, std::string* out) {
-  append_axes(command.duty, out);
-  *out += command.direction_high ? '1' : '0';
-}
-void append_command(const PlanarMotorCommand& command, std::string* out) {
-  append_command(command.motor[0], out);
-  *out += ',';
-  append_command(command.motor[1], out);
+template <int N>
+void append_axes(const Axes<N>& value, std::string* out) {
+  for (int i = 0; i < N; ++i) {
+    append_number(component(value, i) + 0.0, out);  // + 0.0: no "-0"
+    *out += ',';
+  }
 }
 
-const char* csv_header(int axes) { return axes == 1 ? kTelemetryCsvHeader : kPlanarTelemetryCsvHeader; }
+// Each motor's duty and direction, separated by commas.
+template <int N>
+void append_command(const typename SceneParts<N>::Command& command, std::string* out) {
+  for (int i = 0; i < N; ++i) {
+    const MotorCommand& motor = motor_of(command, i);
+    if (i > 0) *out += ',';
+    append_axes<1>(motor.duty, out);
+    *out += motor.direction_high ? '1' : '0';
+  }
+}
 
 }  // namespace
 
 template <int N>
 std::string telemetry_csv_line(const TelemetrySampleOf<N>& s) {
   std::string line;
-  append_axes(s.t_s, &line);
-  for (const Axes<N>& value : {s.x_m, s.v_m_per_s, s.force_N, s.output_N}) append_axes(value, &line);
-  append_command(s.command, &line);
+  append_axes<1>(s.t_s, &line);
+  for (const Axes<N>& value : {s.x_m, s.v_m_per_s, s.force_N, s.output_N}) append_axes<N>(value, &line);
+  append_command<N>(s.command, &line);
   line += '\n';
   return line;
 }
@@ -88,7 +85,7 @@ template <int N>
 TelemetryLogOf<N>::TelemetryLogOf(const std::string& path, std::size_t capacity) : ring_(capacity), path_(path) {
   file_ = open_log_file(path);
   errno = 0;
-  if (std::fputs(csv_header(N), file_) < 0 || std::fputc('\n', file_) == EOF) note_write_error(errno);
+  if (std::fputs(csv_header_line(telemetry_columns<N>()).c_str(), file_) < 0 || std::fputc('\n', file_) == EOF) note_write_error(errno);
   writer_ = std::thread([this] { drain_loop(); });
 }
 

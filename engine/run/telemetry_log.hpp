@@ -5,7 +5,7 @@
 //
 // CSV columns (the header line, exactly):
 //   t_s,x_m,v_m_per_s,force_N,output_N,duty,direction
-// t_s tick time since the start; x_m measured handle position; v_m_per_s estimated
+// (written by telemetry_columns below). t_s tick time since the start; x_m measured handle position; v_m_per_s estimated
 // velocity (0 when the scene needs none); force_N what the effects asked for; output_N
 // what the device was commanded after safety; duty the PWM duty in [0, 1]; direction the
 // direction pin (1 high, 0 low). Numbers in their shortest exact form.
@@ -16,15 +16,27 @@
 #include <cstdio>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
+#include "engine/base/axis_columns.hpp"
 #include "engine/run/runner.hpp"
 #include "engine/run/telemetry_ring.hpp"
 
 namespace hapscene {
 
-inline constexpr const char* kTelemetryCsvHeader = "t_s,x_m,v_m_per_s,force_N,output_N,duty,direction";
-inline constexpr const char* kPlanarTelemetryCsvHeader =
-    "t_s,x_m,y_m,vx_m_per_s,vy_m_per_s,force_x_N,force_y_N,output_x_N,output_y_N,duty_1,direction_1,duty_2,direction_2";
+// The log's columns for N axes: t_s, the handle's state (axis_columns.hpp), then each
+// motor's duty and direction (one motor per axis). The header line is these, joined.
+template <int N>
+std::vector<std::string> telemetry_columns() {
+  std::vector<std::string> columns{"t_s"};
+  for (std::string& column : handle_state_columns<N>()) columns.push_back(std::move(column));
+  for (int motor = 0; motor < N; ++motor) {
+    columns.push_back(motor_column<N>("duty", motor));
+    columns.push_back(motor_column<N>("direction", motor));
+  }
+  return columns;
+}
 inline constexpr std::size_t kDefaultTelemetryCapacity = 1u << 16;  // 65 s at 1 kHz
 
 // One tick of a scene with N axes.

@@ -152,6 +152,14 @@ TEST_CASE("telemetry log: the CSV of a simulated run equals the traced ticks exa
   std::filesystem::remove(path);
 }
 
+// The header lines are a public interface (docs/reference/telemetry.md, scripts that read the
+// logs): the names written over N give exactly the documented lines.
+TEST_CASE("telemetry log: the header lines of one and of two axes") {
+  CHECK(csv_header_line(telemetry_columns<1>()) == "t_s,x_m,v_m_per_s,force_N,output_N,duty,direction");
+  CHECK(csv_header_line(telemetry_columns<2>()) ==
+        "t_s,x_m,y_m,vx_m_per_s,vy_m_per_s,force_x_N,force_y_N,output_x_N,output_y_N,duty_1,direction_1,duty_2,direction_2");
+}
+
 TEST_CASE("telemetry log: never written through a link planted at its path, nor into a pipe" *
           doctest::test_suite("threaded")) {
   const auto dir = std::filesystem::temp_directory_path() / ("hapscene_log_link_" + std::to_string(::getpid()));

@@ -137,6 +137,11 @@ struct PlanarMotorCommand {
   bool saturated{};     // a motor needed more than its drive gives: both were scaled
 };
 
+// Motor `i` of the command (kinematics.hpp's motor_of, for two motors).
+constexpr const MotorCommand& motor_of(const PlanarMotorCommand& command, int i) noexcept {
+  return command.motor[static_cast<std::size_t>(i)];
+}
+
 // Joint torques (tau = J^T F) to motor torques: the coupling's transpose (virtual work:
 // q2 depends on q1, so joint 1's motor also carries coupling * tau2), then per motor the
 // ratio and the direction.
