@@ -1,47 +1,34 @@
-#include "engine/harness/planar_test_spec.hpp"
-
+// Test specs of 2-DOF (planar) environments (docs/reference/test-specs.md, "Test specs in
+// 2-D"): the 1-D format with vectors (SpecKindOf<2>). `forces` at points "at": [x, y] with
+// "v": [vx, vy] and "force": [fx, fy] (tolerance on the magnitude of the difference),
+// `zero_outside` a box region, and `never_exceeds` over a grid of the workspace, all open
+// loop as the 2-D `probe` computes them; every script fault in the workspace, at rest, in
+// motion or later in time, fails the spec. Then validate's seven 2-D scenarios
+// (test_spec_kind.hpp).
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
-#include "engine/base/json_source.hpp"
-#include "engine/base/object_reader.hpp"
 #include "engine/base/units.hpp"
 #include "engine/effects/vector_reader.hpp"
 #include "engine/harness/pace.hpp"
-#include "engine/harness/planar_checks.hpp"
 #include "engine/harness/planar_open_loop.hpp"
+#include "engine/harness/planar_validate.hpp"
 #include "engine/harness/planar_validate_scenario.hpp"
-#include "engine/harness/test_spec_parts.hpp"
-#include "engine/load/environment.hpp"
+#include "engine/harness/test_spec_kind.hpp"
 
 namespace hapscene {
 namespace {
 
+// The grid the region checks and the scans for faults use: every 1 mm of the workspace
+// box, on both axes.
+constexpr double kPlanarSpecGridStep_m = kPlanarFaultScanStep_m;
+
 // The velocities of the region checks (zero_outside, never_exceeds) besides rest, as the
 // 1-D spec's +/-0.1 m/s, along each axis (only when the scene reads velocity).
 constexpr double kRegionScanSpeed_m_per_s = 0.1;
-
-struct PlanarForceExpectation {
-  std::string pointer;
-  Vec2 x_m{}, v_m_per_s{}, force_N{};
-  double tolerance_N{};
-};
-struct PlanarRegion {
-  Vec2 min_m{}, max_m{};
-  bool contains(const Vec2& p) const {
-    return p[0] >= min_m[0] && p[0] <= max_m[0] && p[1] >= min_m[1] && p[1] <= max_m[1];
-  }
-};
-struct PlanarSpec {
-  std::string environment_path;
-  std::vector<PlanarForceExpectation> forces;
-  std::optional<PlanarRegion> zero_outside_m;
-  std::optional<double> never_exceeds_N;
-  PlanarClosedLoopExpectations closed_loop;
-};
 
 Range range_of(const ValueRange& range) { return Range{range.min, range.max, range.min_exclusive}; }
 // Any finite force component a spec may state.
@@ -56,8 +43,10 @@ void refuse_axis_form(ObjectReader& r, std::string_view key, const std::string& 
   }
 }
 
-PlanarForceExpectation parse_force(ObjectReader& f) {
-  PlanarForceExpectation e;
+}  // namespace
+
+SpecKindOf<2>::Force SpecKindOf<2>::parse_force(ObjectReader& f) {
+  Force e;
   e.pointer = f.pointer();
   refuse_axis_form(f, "x", "a point is \"at\": [x, y] (lengths in m, or strings with a unit)");
   e.x_m = read_vector(f, "at", Quantity::length_m, range_of(value_range::probe_position));
@@ -68,14 +57,16 @@ PlanarForceExpectation parse_force(ObjectReader& f) {
   return e;
 }
 
-PlanarRegion parse_region(ObjectReader& r, std::string_view key) {
+std::optional<SpecKindOf<2>::Region> SpecKindOf<2>::parse_zero_outside(ObjectReader& r) {
+  constexpr std::string_view key = "zero_outside";
   const nlohmann::json* value = r.get(key);
+  if (value == nullptr) return std::nullopt;
   if (!value->is_object()) {
     r.fail(key, "expected a region {\"min\": [x, y], \"max\": [x, y]} in a 2-D spec, got " + json_type_name(*value) +
                     (value->is_array() ? " (the 1-D form [a, b])" : ""));
   }
   ObjectReader region(*value, r.pointer_to(key), r.file());
-  PlanarRegion result;
+  Region result;
   result.min_m = read_vector(region, "min", Quantity::length_m, kRegionComponent_m);
   result.max_m = read_vector(region, "max", Quantity::length_m, kRegionComponent_m);
   if (!(result.min_m[0] <= result.max_m[0] && result.min_m[1] <= result.max_m[1])) {
@@ -85,52 +76,32 @@ PlanarRegion parse_region(ObjectReader& r, std::string_view key) {
   return result;
 }
 
-PlanarScenarioExpectation parse_planar_scenario(ObjectReader& r) {
-  PlanarScenarioExpectation e;
-  e.pointer = r.pointer();
-  e.scenario = r.string("scenario");
-  if (!planar_validate_kind_named(e.scenario)) {
-    const std::string suggestion = nearest_name(e.scenario, kPlanarValidateNames);
-    r.fail("scenario", "unknown 2-D scenario \"" + e.scenario + "\"" +
-                           (suggestion.empty() ? "" : " (did you mean \"" + suggestion + "\"?)"));
+void SpecKindOf<2>::parse_options(ObjectReader& o, HarnessOptions* options) {
+  parse_hand_options(o, options);
+  // The planar simulator's sensors have no noise model yet (validate refuses --noise too).
+  if (o.has("noise")) o.fail("noise", "not yet for a 2-DOF environment");
+  if (!o.has("start")) o.get("start");
+  if (o.has("start")) {
+    const nlohmann::json* start = o.get("start");
+    if (!start->is_array()) {
+      o.fail("start", "a 1-D spec's form: this spec's environment is 2-DOF, so \"start\" is [x, y]");
+    }
+    options->free_start_planar_m = read_vector(o, "start", Quantity::length_m, range_of(value_range::free_start));
   }
-  parse_scenario_expectation_keys(r, kPlanarCheckNames, "2-D check", &e);
-  r.finish();
-  return e;
+  o.finish();
 }
 
-PlanarSpec parse_planar_spec(const std::string& path) {
-  const nlohmann::json root = read_json_file(path);
-  ObjectReader r(root, "", path);
-  PlanarSpec spec;
-  spec.environment_path = spec_environment_path(r, path);
-  r.string_or("description", "");
-  if (const nlohmann::json* options = r.get("options")) {
-    ObjectReader o(*options, r.pointer_to("options"), path);
-    parse_hand_options(o, &spec.closed_loop.options);
-    // The planar simulator's sensors have no noise model yet (validate refuses --noise too).
-    if (o.has("noise")) o.fail("noise", "not yet for a 2-DOF environment");
-    if (!o.has("start")) o.get("start");
-    if (o.has("start")) {
-      const nlohmann::json* start = o.get("start");
-      if (!start->is_array()) {
-        o.fail("start", "a 1-D spec's form: this spec's environment is 2-DOF, so \"start\" is [x, y]");
-      }
-      spec.closed_loop.start_m = read_vector(o, "start", Quantity::length_m, range_of(value_range::free_start));
-    }
-    o.finish();
+std::string SpecKindOf<2>::parse_scenario_name(ObjectReader& r) {
+  const std::string name = r.string("scenario");
+  if (!planar_validate_kind_named(name)) {
+    const std::string suggestion = nearest_name(name, kPlanarValidateNames);
+    r.fail("scenario", "unknown 2-D scenario \"" + name + "\"" +
+                           (suggestion.empty() ? "" : " (did you mean \"" + suggestion + "\"?)"));
   }
-  for_each_object_in(r, "forces", [&](ObjectReader& f) { spec.forces.push_back(parse_force(f)); });
-  if (r.has("zero_outside")) spec.zero_outside_m = parse_region(r, "zero_outside");
-  else r.get("zero_outside");
-  if (r.has("never_exceeds")) spec.never_exceeds_N = r.quantity("never_exceeds", Quantity::force_N, Bound::positive);
-  else r.get("never_exceeds");
-  spec.closed_loop.passes_validate = optional_bool(r, "passes_validate");
-  for_each_object_in(r, "scenarios",
-                     [&](ObjectReader& e) { spec.closed_loop.scenarios.push_back(parse_planar_scenario(e)); });
-  r.finish();
-  return spec;
+  return name;
 }
+
+namespace {
 
 std::string mm_pair(const Vec2& x_m) { return printf_string("(%g, %g) mm", x_m[0] * 1e3, x_m[1] * 1e3); }
 std::string vector_text(const Vec2& v, const char* unit, const char* format = "%g") {
@@ -151,19 +122,11 @@ std::vector<Vec2> region_velocities(const PlanarScene& scene) {
 
 }  // namespace
 
-void run_planar_test_spec(const std::string& spec_path, SpecResult* out) {
-  const PlanarSpec spec = parse_planar_spec(spec_path);
+void run_spec(const std::string& spec_path, const SpecOf<2>& spec, const EnvironmentOf<2>& environment, SpecResult* out) {
   SpecResult& result = *out;
-  result.environment_path = spec.environment_path;
   const std::string referrer = spec_path + ": /environment: ";
-  std::optional<PlanarEnvironment> loaded;
-  try {
-    loaded.emplace(load_planar_environment(spec.environment_path));
-  } catch (const InputError& error) {
-    throw InputError(referrer + error.what());
-  }
-  const PlanarScene& scene = loaded->scene;
-  SpecOutcomes spec_outcomes(&result, expects_script_failure(spec.closed_loop.scenarios));
+  const PlanarScene& scene = environment.scene;
+  SpecOutcomes spec_outcomes(&result, expects_script_failure(spec.scenarios));
   const auto add = spec_outcomes.adder();
   // Budget errors (a script whose top level is slow) name the spec's environment.
   const auto located = [&](auto&& work) {
@@ -185,7 +148,7 @@ void run_planar_test_spec(const std::string& spec_path, SpecResult* out) {
   // Forces at given points and velocities, each from fresh instances. One open loop (one
   // creation budget) for them and the region checks.
   PlanarOpenLoop open_loop(scene);
-  for (const PlanarForceExpectation& e : spec.forces) {
+  for (const SpecKindOf<2>::Force& e : spec.forces) {
     Vec2 got_N{};
     located([&] { got_N = open_loop.output_N(e.x_m, open_loop.force_N(e.x_m, e.v_m_per_s)); });
     const double off_N = norm(got_N - e.force_N);
@@ -201,7 +164,7 @@ void run_planar_test_spec(const std::string& spec_path, SpecResult* out) {
     std::string first_nonzero;
     double largest_N = 0.0;
     std::string largest_where;
-    const PlanarRegion region = spec.zero_outside_m.value_or(PlanarRegion{});
+    const SpecKindOf<2>::Region region = spec.zero_outside_m.value_or(SpecKindOf<2>::Region{});
     for (const Vec2& v : region_velocities(scene)) {
       PlanarOpenLoopScan scan;
       located([&] { scan = open_loop.scan(grid, v); });
@@ -240,14 +203,18 @@ void run_planar_test_spec(const std::string& spec_path, SpecResult* out) {
     spec_outcomes.add_faults(motion);
   }
 
-  // Closed-loop expectations (2-D validate).
-  if (!spec.closed_loop.empty()) {
-    std::vector<std::pair<std::string, std::string>> run_faults;
-    std::vector<SpecOutcome> outcomes;
-    located([&] { outcomes = closed_loop_outcomes_2d(scene, loaded->validate, spec.closed_loop, &run_faults); });
-    for (const auto& [message, line] : run_faults) spec_outcomes.add_fault(message, line);
-    for (SpecOutcome& o : outcomes) add(std::move(o.what), o.pass, std::move(o.message));
+  // Closed-loop expectations: one run of 2-D validate (all seven scenarios) with the
+  // spec's options and the environment's "validate" thresholds.
+  if (!spec.passes_validate && spec.scenarios.empty()) return;
+  HarnessOptions options = spec.options;
+  options.thresholds = environment.validate;
+  std::optional<PlanarValidationReport> validated;
+  located([&] { validated.emplace(validate_planar_scene(scene, {}, options)); });
+  const PlanarValidationReport& report = *validated;
+  for (const PlanarScenarioResult& s : report.scenarios) {
+    for (const auto& f : s.metrics.script_faults) spec_outcomes.add_fault(f.message, f.text() + " in the " + s.scenario.name + " run");
   }
+  judge_closed_loop(report, spec.passes_validate, spec.scenarios, add);
 }
 
 }  // namespace hapscene

@@ -1,11 +1,12 @@
 #pragma once
-// What the 1-D and the 2-D test specs (test_spec.cpp, planar_spec_closed_loop.cpp) judge
-// alike once validate has run: `passes_validate` against the checks that failed, and a
-// scenario expectation (half-cycles, frequency, force, pass, checks that must fail)
-// against one scenario's result. Internal to the harness.
+// What test specs of every kind (test_spec_kind.hpp) judge alike once validate has run:
+// `passes_validate` against the checks that failed, and a scenario expectation
+// (half-cycles, frequency, force, pass, checks that must fail) against one scenario's
+// result. Internal to the harness.
 #include <algorithm>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/base/format.hpp"
@@ -13,6 +14,18 @@
 #include "engine/harness/metrics.hpp"
 
 namespace hapscene {
+
+// A scenario expectation, as written (docs/reference/test-specs.md): the scenario's name
+// (one of its kind's, checked when the spec is read) and what its run must show.
+struct ScenarioExpectation {
+  std::string pointer;  // "/scenarios/0"
+  std::string scenario;
+  std::optional<int> min_half_cycles, max_half_cycles;
+  std::optional<std::pair<double, double>> frequency_Hz;
+  std::optional<double> max_force_N;
+  std::optional<bool> pass;
+  std::vector<std::string> fail;  // checks that must fail
+};
 
 // "scene/effects, press/passivity, ...": every failed check of a report, or empty.
 // `Scenarios` holds results with `.scenario.name` and `.checks`.
@@ -72,6 +85,31 @@ void judge_scenario_expectation(const Expectation& e, const std::string& name, c
     add(e.pointer + "/fail", failed,
         name + ": check " + check + " fails: " +
             (found == s.checks.end() ? "not run" : (failed ? "yes, " : "no, ") + found->detail));
+  }
+}
+
+// Judges `passes_validate` and the scenario expectations against a validation `report` of
+// either kind (its scene checks and scenario results, each with `.scenario.name`,
+// `.scenario.applicable`, `.metrics`, `.pass` and `.checks`); `add(what, pass, message)`
+// takes each outcome.
+template <typename Report, typename Add>
+void judge_closed_loop(const Report& report, const std::optional<bool>& passes_validate,
+                       const std::vector<ScenarioExpectation>& scenarios, Add add) {
+  if (passes_validate) {
+    const std::string failed = failed_checks_text(report.scene_checks, report.scenarios);
+    add("/passes_validate", report.pass == *passes_validate,
+        std::string(*passes_validate ? "passes validate: " : "fails validate: ") +
+            (failed.empty() ? "every check passed" : "failed " + failed));
+  }
+  for (const ScenarioExpectation& e : scenarios) {
+    const auto found = std::find_if(report.scenarios.begin(), report.scenarios.end(),
+                                    [&](const auto& r) { return r.scenario.name == e.scenario; });
+    if (found == report.scenarios.end() || !found->scenario.applicable) {
+      add(e.pointer, false, e.scenario + ": not applicable to this environment");
+      continue;
+    }
+    const ScenarioSeen seen{found->metrics.oscillation, found->metrics.max_output_N, found->pass, found->checks};
+    judge_scenario_expectation(e, e.scenario, seen, add);
   }
 }
 

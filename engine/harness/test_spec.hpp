@@ -20,8 +20,9 @@ struct SpecResult {
 };
 
 // Loads the spec and its environment (InputError, located, for anything invalid), then
-// probes, validates and compares. A spec whose environment is a 2-DOF scene is run by
-// run_planar_test_spec (planar_test_spec.hpp: docs/reference/test-specs.md, "Test specs in 2-D").
+// probes, validates and compares. The environment's N picks the spec's format: a 2-DOF
+// scene's spec takes vectors and regions (docs/reference/test-specs.md, "Test specs in
+// 2-D"; test_spec_kind.hpp).
 SpecResult run_test_spec(const std::string& spec_path);
 
 // Every *.test.json under the given folders (recursively), sorted.

@@ -1,8 +1,8 @@
 #pragma once
-// What the 1-D and the 2-D test specs (test_spec.cpp, planar_test_spec.cpp) read alike:
+// What test specs of every kind (test_spec_kind.hpp) read alike:
 // the environment a spec names, quantities checked against the command line's ranges,
 // optional booleans, the virtual hand's options, a scenario expectation's keys; and how
-// both record outcomes and script faults. Internal to the harness.
+// every kind records outcomes and script faults. Internal to the harness.
 #include <algorithm>
 #include <cstddef>
 #include <iterator>

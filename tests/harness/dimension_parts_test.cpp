@@ -14,9 +14,10 @@
 #include "engine/harness/check_parts.hpp"
 #include "engine/harness/metrics_parts.hpp"
 #include "engine/harness/open_loop.hpp"
+#include "engine/harness/planar_checks.hpp"
 #include "engine/harness/planar_report.hpp"
-#include "engine/harness/planar_test_spec.hpp"
 #include "engine/harness/report.hpp"
+#include "engine/harness/spec_judging.hpp"
 #include "engine/harness/test_spec_parts.hpp"
 #include "tests/support.hpp"
 
@@ -116,13 +117,13 @@ TEST_CASE("dimension parts: a scenario expectation's keys are read alike, with e
   const auto parse = [](const std::string& text, bool planar) {
     const nlohmann::json value = nlohmann::json::parse(text);
     ObjectReader r(value, "/scenarios/0", "spec.test.json");
-    PlanarScenarioExpectation e;
+    ScenarioExpectation e;
     if (planar) parse_scenario_expectation_keys(r, kPlanarCheckNames, "2-D check", &e);
     else parse_scenario_expectation_keys(r, kCheckNames, "check", &e);
     r.finish();
     return e;
   };
-  const PlanarScenarioExpectation e =
+  const ScenarioExpectation e =
       parse(R"({"min_half_cycles": 2, "frequency": ["1 Hz", "3 Hz"], "pass": false, "fail": ["passivity"]})", true);
   CHECK(e.min_half_cycles == 2);
   CHECK(e.frequency_Hz->second == 3.0);

@@ -7,7 +7,6 @@
 #include <string>
 
 #include "engine/base/errors.hpp"
-#include "engine/harness/planar_test_spec.hpp"
 #include "engine/harness/test_spec.hpp"
 #include "tests/scratch_folder.hpp"
 #include "tests/support.hpp"
