@@ -126,6 +126,7 @@ void run_spec(const std::string& spec_path, const SpecOf<2>& spec, const Environ
   SpecResult& result = *out;
   const std::string referrer = spec_path + ": /environment: ";
   const PlanarScene& scene = environment.scene;
+  check_free_start(spec_path, spec, environment);
   SpecOutcomes spec_outcomes(&result, expects_script_failure(spec.scenarios));
   const auto add = spec_outcomes.adder();
   // Budget errors (a script whose top level is slow) name the spec's environment.

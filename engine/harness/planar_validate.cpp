@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 
+#include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
 #include "engine/devices/planar/simulated_planar.hpp"
 #include "engine/harness/pace.hpp"
@@ -114,6 +115,15 @@ PlanarValidationReport validate_planar_scene(const PlanarScene& scene, const std
     report.pass = report.pass && report.scenarios.back().pass;
   }
   return report;
+}
+
+std::string free_start_problem(const PlanarScene& scene, const HarnessOptions& options) {
+  try {
+    (void)planar_joint_angles_at(scene.device, options.free_start_planar_m.value_or(scene.device.home_m));
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "";
 }
 
 }  // namespace hapscene

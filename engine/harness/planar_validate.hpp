@@ -47,6 +47,11 @@ PlanarScenarioResult run_planar_validate_scenario(const PlanarScene& scene, cons
                                                   const HarnessOptions& options,
                                                   const PlanarScriptPotential* script_potential = nullptr);
 
+// Why the free scenario cannot start where `options` put it (the profile's home when
+// unset): the linkage cannot put its handle there. Empty when it can (validate.hpp's
+// free_start_problem, for two axes).
+std::string free_start_problem(const PlanarScene& scene, const HarnessOptions& options);
+
 // Runs the given scenarios (all seven when `kinds` is empty), with the scripts' stored
 // energy from planar_script_potential.
 PlanarValidationReport validate_planar_scene(const PlanarScene& scene, const std::vector<PlanarValidateKind>& kinds,

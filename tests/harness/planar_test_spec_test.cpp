@@ -106,6 +106,24 @@ TEST_CASE("planar spec: a 1-D form in a 2-D spec is refused with its place and t
   CHECK(error_of(R"({"environment": "broken.json"})").starts_with(spec + ": /environment: "));
 }
 
+// As in 1-D: a start the device cannot take is the spec's error, at its place, whether or
+// not the spec runs validate (it was the environment's error in the runs, and unchecked
+// without them).
+TEST_CASE("planar spec: a free start the linkage cannot reach is refused at /options/start") {
+  const test::ScratchFolder folder("planar_spec_start");
+  folder.write("box.json", kBoxEnvironment);
+  const std::string spec = (folder.dir / "box.test.json").string();
+  const auto error_of = [&](const std::string& text) { return spec_error(folder.write("box.test.json", text).string()); };
+  for (const std::string& expectations : {std::string(), std::string(R"(, "passes_validate": true)")}) {
+    CAPTURE(expectations);
+    CHECK(error_of(R"({"options": {"start": ["500 mm", "500 mm"]})" + expectations + "}")
+              .starts_with(spec + ": /options/start: the haplink cannot put its handle at (0.5, 0.5) m"));
+  }
+  // A start it reaches is taken.
+  const SpecResult reached = run_test_spec(folder.write("box.test.json", R"({"options": {"start": ["-16 mm", "142 mm"]}})").string());
+  CHECK(reached.pass);
+}
+
 TEST_CASE("planar spec: a 2-D form in a 1-D spec is refused with its place and the 1-D form") {
   const test::ScratchFolder folder("planar_spec_forms_1d");
   folder.write("wall.json", R"({"name": "w", "effects": [{"type": "wall", "position": "10 mm", "stiffness": "100 N/m"}]})");
