@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstddef>
 #include <iterator>
+#include <tuple>
+#include <type_traits>
 #include <variant>
 
 namespace hapscene {
@@ -67,6 +69,15 @@ using Vec2 = AxisVector<2>;
 template <template <int> class T>
 using AxesVariant = std::variant<T<1>, T<2>>;
 
+// One T<N> for each N of the list, side by side: AxesTuple<T> is std::tuple<T<1>, T<2>>;
+// axes_get<N>(tuple) is the T<N> (checked against the list below).
+template <template <int> class T>
+using AxesTuple = std::tuple<T<1>, T<2>>;
+template <int N, typename Tuple>
+constexpr auto& axes_get(Tuple& tuple) noexcept {
+  return std::get<N - 1>(tuple);
+}
+
 // The names of the task-space axes, in order (labels, CSV columns, messages).
 inline constexpr const char* kAxisNames[] = {"x", "y", "z"};
 // The largest N of the list: the size of buffers that hold one value per axis of any scene.
@@ -77,6 +88,11 @@ template <int N> struct AxesTag {};
 #define HAPSCENE_COUNT_AXES(N) +1
 static_assert(std::variant_size_v<AxesVariant<AxesTag>> == 0 HAPSCENE_FOR_EACH_AXES(HAPSCENE_COUNT_AXES),
               "AxesVariant names every N of HAPSCENE_FOR_EACH_AXES");
+static_assert(std::tuple_size_v<AxesTuple<AxesTag>> == 0 HAPSCENE_FOR_EACH_AXES(HAPSCENE_COUNT_AXES),
+              "AxesTuple names every N of HAPSCENE_FOR_EACH_AXES");
+#define HAPSCENE_IN_ORDER(N) &&std::is_same_v<std::tuple_element_t<(N) - 1, AxesTuple<AxesTag>>, AxesTag<N>>
+static_assert(true HAPSCENE_FOR_EACH_AXES(HAPSCENE_IN_ORDER), "AxesTuple holds T<N> at N - 1");
+#undef HAPSCENE_IN_ORDER
 #undef HAPSCENE_COUNT_AXES
 #define HAPSCENE_WITHIN_MAX(N) &&(N) >= 1 && (N) <= kMaxAxes
 #define HAPSCENE_IS_MAX(N) || (N) == kMaxAxes

@@ -69,6 +69,9 @@ class SceneExchangeOf {
 };
 
 using SceneExchange = SceneExchangeOf<1>;
+// A pointer to the exchange of N axes (RunOptions holds one per N: AxesTuple).
+template <int N>
+using SceneExchangePointer = SceneExchangeOf<N>*;
 
 // The loop's view: which scene to step this tick, and the cross-fade, if any.
 template <int N>

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 #include <system_error>
+#include <type_traits>
+#include <variant>
 
 #include "engine/base/object_reader.hpp"
 #include "engine/load/environment.hpp"
@@ -21,22 +23,17 @@ struct RefusedLoad : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-const char* axes_name(int axes) { return axes == 2 ? "2-DOF (planar)" : "1-DOF"; }
-
-// The default load: the environment file, compiled for N axes, with its script instances.
-// A file that now makes a scene of another axis count names another device: refused.
+// The default load: the environment file, loaded once for the N its device names, with its
+// script instances. A file that now makes a scene of another axis count names another
+// device: refused.
 template <int N>
 std::unique_ptr<LoadedSceneOf<N>> load_scene(const std::string& path) {
-  const int axes = environment_axes(path);
-  if (axes != N) {
-    throw RefusedLoad(std::string("the device cannot change during a run (the file now makes a ") + axes_name(axes) +
-                      " scene; this run's is " + axes_name(N) + ")");
-  }
-  if constexpr (N == 1) {
-    return make_loaded_scene<1>(load_environment_file(path));
-  } else {
-    return make_loaded_scene<N>(load_planar_environment_file(path));
-  }
+  AnyEnvironment environment = load_any_environment(path);
+  if (auto* same = std::get_if<EnvironmentOf<N>>(&environment)) return make_loaded_scene<N>(std::move(same->scene));
+  const char* now = std::visit([](const auto& e) { return SceneParts<std::decay_t<decltype(e)>::kAxes>::kKindName; },
+                               environment);
+  throw RefusedLoad(std::string("the device cannot change during a run (the file now makes a ") + now +
+                    " scene; this run's is " + SceneParts<N>::kKindName + ")");
 }
 
 }  // namespace

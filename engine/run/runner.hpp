@@ -38,11 +38,10 @@ struct RunOptions {
   Pacing pacing{Pacing::real_time};
   // Set from another thread (e.g. on Ctrl-C) to end the run at the next tick.
   const std::atomic<bool>* stop_requested{nullptr};
-  // Hot reload: scenes offered here replace the running one at a tick boundary (the
-  // exchange of the run's axis count: `reload` for 1-DOF scenes, `reload_planar` for
-  // 2-DOF ones; reload_exchange<N>() picks it).
-  SceneExchange* reload{nullptr};
-  SceneExchangeOf<2>* reload_planar{nullptr};
+  // Hot reload: scenes offered here replace the running one at a tick boundary (one
+  // exchange per axis count, null for none; set_reload_exchange<N> and reload_exchange<N>
+  // reach the run's).
+  AxesTuple<SceneExchangePointer> reload{};
   // Sustained overruns: this many deadline misses in a row (a single stall of k periods
   // counts k) is a warning, this many a fault: the device is commanded zero force and
   // the run ends. The fault counts only the misses the loop's own work made (the tick, the
@@ -86,24 +85,13 @@ OverrunLimits overrun_limits_at(const RunOptions& options, double rate_hz) noexc
 // The exchange a run of a scene with N axes takes its reloads from (null: no reload).
 template <int N>
 SceneExchangeOf<N>* reload_exchange(const RunOptions& options) noexcept {
-  if constexpr (N == 1) {
-    return options.reload;
-  } else if constexpr (N == 2) {
-    return options.reload_planar;
-  } else {
-    return nullptr;
-  }
+  return axes_get<N>(options.reload);
 }
 
 // Sets the exchange a run of a scene with N axes takes its reloads from.
 template <int N>
 void set_reload_exchange(RunOptions* options, SceneExchangeOf<N>* exchange) noexcept {
-  static_assert(N == 1 || N == 2, "hot reload: 1 or 2 axes");
-  if constexpr (N == 1) {
-    options->reload = exchange;
-  } else {
-    options->reload_planar = exchange;
-  }
+  axes_get<N>(options->reload) = exchange;
 }
 
 // The longest sliding window of deadlines the runner can judge (a fixed bit ring: no

@@ -32,6 +32,7 @@ struct SceneParts<1> {
   using Reading = DeviceIo<1>::Reading;  // the sensor's raw count
   using Command = DeviceIo<1>::Command;  // the motor driver's duty and direction
   using Effects = BuiltInEffects;
+  static constexpr const char* kKindName = "1-DOF";  // in messages
 };
 
 // Two axes: a planar linkage (the Haplink, pantographs), the 2-D effects.
@@ -43,6 +44,7 @@ struct SceneParts<2> {
   using Reading = DeviceIo<2>::Reading;  // each joint's counts or angle
   using Command = DeviceIo<2>::Command;  // each motor's command
   using Effects = PlanarBuiltInEffects;
+  static constexpr const char* kKindName = "2-DOF (planar)";
 };
 
 template <int N>

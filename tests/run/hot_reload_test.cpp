@@ -62,7 +62,8 @@ TEST_CASE("hot swap: a reloaded scene cross-fades in at a tick boundary, without
   SimulationConfig config;
   config.hand.motion = HandMotion::hold;  // a hand holding the handle at 0
   SimulatedHapkit device(first.device, config);
-  RunOptions options{.duration_s = 3.0, .pacing = Pacing::simulated_time, .reload = &exchange};
+  RunOptions options{.duration_s = 3.0, .pacing = Pacing::simulated_time};
+  set_reload_exchange<1>(&options, &exchange);
   const RunSummary summary = run_scene(first, device, options, &trace);
 
   CHECK(exchange.swaps() == 2);

@@ -60,7 +60,7 @@ TEST_CASE("planar hot swap: an offered scene cross-fades in at a tick boundary, 
   SimulatedPlanar device(first.device, config);
   ForceTrace trace;
   RunOptions options{.duration_s = 2.0, .pacing = Pacing::simulated_time};
-  options.reload_planar = &exchange;
+  set_reload_exchange<2>(&options, &exchange);
   CHECK(reload_exchange<2>(options) == &exchange);
   CHECK(reload_exchange<1>(options) == nullptr);
   // Offered after the soft start, at 0.8 s.

@@ -89,7 +89,8 @@ TEST_CASE("live status: draining logs while reloads swap and destroy script inst
   SimulationConfig config;
   config.hand.motion = HandMotion::hold;
   SimulatedHapkit device(first.device, config);
-  RunOptions options{.duration_s = 30.0, .pacing = Pacing::simulated_time, .reload = &exchange};
+  RunOptions options{.duration_s = 30.0, .pacing = Pacing::simulated_time};
+  set_reload_exchange<1>(&options, &exchange);
   const RunSummary summary = run_scene(first, device, options, &observers);
   done.store(true);
   reader.join();
