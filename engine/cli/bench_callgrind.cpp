@@ -47,7 +47,8 @@ int planar_callgrind(Arguments& arguments, const std::string& file, const std::s
     if (!lua) arguments.fail(file + ": --impl lua: a 2-DOF environment needs to be one spring (its Lua twin is timed)");
   }
   const PlanarScene& scene = lua ? *lua : loaded;
-  const std::vector<PlanarReading> readings = record_planar_readings(scene, 1.0);
+  // The same inputs for every implementation: 1 s of readings of the closed loop.
+  const std::vector<PlanarReading> readings = record_planar_readings(loaded, 1.0);
   const auto n = static_cast<long long>(readings.size());
   if (n == 0) arguments.fail(file + ": no readings recorded");
   double checksum = 0.0;
@@ -73,7 +74,7 @@ int planar_callgrind(Arguments& arguments, const std::string& file, const std::s
     }
     scripts = std::move(state.scripts);
   }
-  return report_callgrind_run(scene.name, impl, ticks, checksum, scripts);
+  return report_callgrind_run(loaded.name, impl, ticks, checksum, scripts);
 }
 
 }  // namespace
