@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "engine/bench/lab_baseline.hpp"
@@ -38,43 +39,90 @@ int report_callgrind_run(const std::string& scene, const std::string& impl, long
   return faulted ? 1 : 0;
 }
 
-// A 2-DOF environment: the hand-written 2-D code or step<2>() over 1 s of readings.
-int planar_callgrind(Arguments& arguments, const std::string& file, const std::string& impl, long long ticks) {
-  const PlanarScene loaded = load_planar_environment_file(file);
-  std::optional<PlanarScene> lua;
-  if (impl == "lua") {
-    lua = planar_lua_equivalent(loaded);
-    if (!lua) arguments.fail(file + ": --impl lua: a 2-DOF environment needs to be one spring (its Lua twin is timed)");
+// What a callgrind run differs in per device kind (overloads on the scene type): the
+// readings it replays (1 s of the closed loop), the Lua twin of --impl lua, and the
+// hand-written code of --impl baseline (the 1-D lab sketch; the 2-D course code).
+std::vector<std::int32_t> recorded_readings(const SceneOf<1>& scene) { return record_sensor_counts(scene, 1.0); }
+std::vector<PlanarReading> recorded_readings(const SceneOf<2>& scene) { return record_planar_readings(scene, 1.0); }
+
+std::optional<SceneOf<1>> lua_twin(Arguments& arguments, const std::string& file, const SceneOf<1>& scene,
+                                   const std::string& scripts_dir) {
+  std::optional<Scene> lua = lua_equivalent(scene, scripts_dir);
+  if (!lua) arguments.fail(file + ": not a single lab effect");
+  return lua;
+}
+std::optional<SceneOf<2>> lua_twin(Arguments& arguments, const std::string& file, const SceneOf<2>& scene,
+                                   const std::string& /*scripts_dir*/) {
+  std::optional<PlanarScene> lua = planar_lua_equivalent(scene);
+  if (!lua) arguments.fail(file + ": --impl lua: a 2-DOF environment needs to be one spring (its Lua twin is timed)");
+  return lua;
+}
+
+// The baseline's ticks over the readings; returns the sum of the duties it commanded.
+double baseline_ticks(Arguments& arguments, const std::string& file, const SceneOf<1>& scene,
+                      const std::vector<std::int32_t>& counts, long long ticks) {
+  LabBaselineKind kind{};
+  LabBaselineConstants constants;
+  if (!lab_baseline_for(scene, &kind, &constants)) arguments.fail(file + ": not a single lab effect");
+  LabBaselineState state;
+  void (*tick)(const LabBaselineConstants&, std::int32_t, LabBaselineState*) =
+      kind == LabBaselineKind::spring ? lab_spring_tick
+      : kind == LabBaselineKind::wall ? lab_wall_tick
+      : kind == LabBaselineKind::damper ? lab_damper_tick : lab_texture_tick;
+  const auto n = static_cast<long long>(counts.size());
+  double checksum = 0.0;
+  for (long long i = 0; i < ticks; ++i) {
+    tick(constants, counts[static_cast<std::size_t>(i % n)], &state);
+    checksum += state.duty;
   }
-  const PlanarScene& scene = lua ? *lua : loaded;
-  // The same inputs for every implementation: 1 s of readings of the closed loop.
-  const std::vector<PlanarReading> readings = record_planar_readings(loaded, 1.0);
+  return checksum;
+}
+double baseline_ticks(Arguments& arguments, const std::string& file, const SceneOf<2>& scene,
+                      const std::vector<PlanarReading>& readings, long long ticks) {
+  PlanarBaselineKind kind{};
+  PlanarBaselineConstants constants;
+  if (!planar_baseline_for(scene, &kind, &constants)) {
+    arguments.fail(file + ": the hand-written 2-D code is one inside box on the haplink or a 2DIY");
+  }
+  PlanarBaselineState state;
+  void (*tick)(const PlanarBaselineConstants&, const PlanarReading&, PlanarBaselineState*) =
+      kind == PlanarBaselineKind::haplink_box ? haplink_box_tick : five_bar_box_tick;
+  const auto n = static_cast<long long>(readings.size());
+  double checksum = 0.0;
+  for (long long i = 0; i < ticks; ++i) {
+    tick(constants, readings[static_cast<std::size_t>(i % n)], &state);
+    checksum += state.duty[0] + state.duty[1];
+  }
+  return checksum;
+}
+
+// --ticks ticks of one implementation on an environment of N axes.
+template <int N>
+int callgrind_of(Arguments& arguments, const std::string& file, const EnvironmentOf<N>& loaded, const std::string& impl,
+                 long long ticks, const std::string& scripts_dir) {
+  std::optional<SceneOf<N>> lua;
+  if (impl == "lua") lua = lua_twin(arguments, file, loaded.scene, scripts_dir);
+  const SceneOf<N>& scene = lua ? *lua : loaded.scene;
+  // The same inputs for every implementation: the environment's own closed loop.
+  const auto readings = recorded_readings(loaded.scene);
   const auto n = static_cast<long long>(readings.size());
   if (n == 0) arguments.fail(file + ": no readings recorded");
   double checksum = 0.0;
   ScriptList scripts;
   if (impl == "baseline") {
-    PlanarBaselineKind kind{};
-    PlanarBaselineConstants constants;
-    if (!planar_baseline_for(scene, &kind, &constants)) {
-      arguments.fail(file + ": the hand-written 2-D code is one inside box on the haplink or a 2DIY");
-    }
-    PlanarBaselineState state;
-    void (*tick)(const PlanarBaselineConstants&, const PlanarReading&, PlanarBaselineState*) =
-        kind == PlanarBaselineKind::haplink_box ? haplink_box_tick : five_bar_box_tick;
-    for (long long i = 0; i < ticks; ++i) {
-      tick(constants, readings[static_cast<std::size_t>(i % n)], &state);
-      checksum += state.duty[0] + state.duty[1];
-    }
+    checksum = baseline_ticks(arguments, file, scene, readings, ticks);
   } else {
-    TickStateOf<2> state = make_tick_state(scene);
+    TickStateOf<N> state = make_tick_state(scene);
     for (long long i = 0; i < ticks; ++i) {
       step(scene, readings[static_cast<std::size_t>(i % n)], &state);
-      checksum += state.command.motor[0].duty + state.command.motor[1].duty;
+      // The motors' duties, summed from the first (one motor: its duty, no added 0).
+      double duties = motor_of(state.command, 0).duty;
+      for (int k = 1; k < N; ++k) duties += motor_of(state.command, k).duty;
+      checksum += duties;
     }
     scripts = std::move(state.scripts);
   }
-  return report_callgrind_run(loaded.name, impl, ticks, checksum, scripts);
+  return report_callgrind_run(loaded.scene.name, impl, ticks, checksum, scripts);
 }
 
 }  // namespace
@@ -89,42 +137,9 @@ int bench_callgrind(Arguments& arguments) {
     arguments.fail("--impl: \"" + impl + "\" is not one of \"builtin\", \"lua\", \"baseline\"");
   }
 
-  if (environment_axes(files[0]) == 2) return planar_callgrind(arguments, files[0], impl, ticks);
-
-  // The same inputs for every implementation: 1 s of readings of the closed loop.
-  const Scene scene = load_environment_file(files[0]);
-  const std::vector<std::int32_t> counts = record_sensor_counts(scene, 1.0);
-  const auto n = static_cast<long long>(counts.size());
-  double checksum = 0.0;
-  ScriptList scripts;
-  if (impl == "baseline") {
-    LabBaselineKind kind{};
-    LabBaselineConstants constants;
-    if (!lab_baseline_for(scene, &kind, &constants)) arguments.fail(files[0] + ": not a single lab effect");
-    LabBaselineState state;
-    void (*tick)(const LabBaselineConstants&, std::int32_t, LabBaselineState*) =
-        kind == LabBaselineKind::spring ? lab_spring_tick
-        : kind == LabBaselineKind::wall ? lab_wall_tick
-        : kind == LabBaselineKind::damper ? lab_damper_tick : lab_texture_tick;
-    for (long long i = 0; i < ticks; ++i) {
-      tick(constants, counts[static_cast<std::size_t>(i % n)], &state);
-      checksum += state.duty;
-    }
-  } else {
-    std::optional<Scene> lua;
-    if (impl == "lua") {
-      lua = lua_equivalent(scene, scripts_dir);
-      if (!lua) arguments.fail(files[0] + ": not a single lab effect");
-    }
-    const Scene& run = lua ? *lua : scene;
-    TickState state = make_tick_state(run);
-    for (long long i = 0; i < ticks; ++i) {
-      step(run, counts[static_cast<std::size_t>(i % n)], &state);
-      checksum += state.command.duty;
-    }
-    scripts = std::move(state.scripts);
-  }
-  return report_callgrind_run(scene.name, impl, ticks, checksum, scripts);
+  const AnyEnvironment environment = load_any_environment(files[0]);
+  return std::visit([&](const auto& e) { return callgrind_of(arguments, files[0], e, impl, ticks, scripts_dir); },
+                    environment);
 }
 
 }  // namespace hapscene

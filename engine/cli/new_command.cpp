@@ -135,8 +135,8 @@ int new_command(std::vector<std::string> args) {
     // Which dimension: a 2-DOF environment names a planar device; a probe says it as well,
     // but the spec's own description is all that differs.
     const std::string environment_file = std::filesystem::path(environment).filename().string();
-    const bool planar = environment.ends_with(".json") && environment_axes(environment) == 2;
-    files.push_back({stem + ".test.json", spec_template(environment_file, planar ? 2 : 1)});
+    const int axes = environment.ends_with(".json") ? environment_axes(environment) : 1;
+    files.push_back({stem + ".test.json", spec_template(environment_file, axes)});
     next = "hapscene test " + stem + ".test.json";
   } else {
     const PlanarPlacement planar = kind->axes == 2 ? placement_on(device.value_or("haplink"), stem) : PlanarPlacement{};
