@@ -60,6 +60,22 @@ using SimulationTruth = SimulationTruthOf<1>;
 template <int N>
 struct DeviceIo;
 
+// The tick stages of a compiled device model (the scene's SceneParts<N>::DeviceModel), as
+// step() calls them, and the variants of them it compiles ahead: a model family whose
+// sensor, linkage and drive branches are decided at compile time. Each model's header
+// specialises it with:
+//   Variant, kGeneral           the variants; kGeneral decides the family at run time
+//   kVariantsAhead              whether any other variant is compiled (step() asks first)
+//   dispatch(model, f)          calls f.template operator()<V>() with the variant compiled
+//                               for the model's family and returns true; false when there
+//                               is none (the general tick runs)
+//   sense<V>, command<V>        the model's sense_position_m and motor_command for V
+//   kSteadyTick, steady_reading whether step() has a call-free tick for a steady reading
+//                               (one that cannot need the sensor's rare paths), and the test
+// so that step<N> names no device kind.
+template <typename Model>
+struct TickStages;
+
 // One joint (the Hapkit): the sensor's counts (an MR sensor's raw, wrapping counts, or
 // counts already unwrapped by the board, or an encoder's; the device model tells them
 // apart) and one duty and direction.

@@ -62,4 +62,29 @@ inline MotorCommand motor_command(const DeviceModel& model, const SensorState& s
 constexpr PoseTrust pose_trust(const DeviceModel&, const SensorState&) noexcept { return PoseTrust::trusted; }
 constexpr bool command_saturated(const MotorCommand&) noexcept { return false; }
 
+// The capstan model's tick stages (device.hpp): one family, nothing compiled ahead; a
+// reading within the flip counter's window is steady (it cannot be a flip of the sensor).
+template <>
+struct TickStages<DeviceModel> {
+  enum class Variant { general };
+  static constexpr Variant kGeneral = Variant::general;
+  static constexpr bool kVariantsAhead = false;
+  template <typename F>
+  static constexpr bool dispatch(const DeviceModel& /*model*/, F&& /*f*/) noexcept { return false; }
+  template <Variant>
+  [[gnu::always_inline]] static double sense(const DeviceModel& model, std::int32_t raw_counts,
+                                             SensorState* sensor) noexcept {
+    return sense_position_m(model, raw_counts, sensor);
+  }
+  template <Variant>
+  [[gnu::always_inline]] static void command(const DeviceModel& model, const SensorState& sensor, double force_N,
+                                             MotorCommand* command) noexcept {
+    *command = motor_command(model, sensor, force_N);
+  }
+  static constexpr bool kSteadyTick = true;
+  [[gnu::always_inline]] static bool steady_reading(const SensorState& sensor, std::int32_t raw_counts) noexcept {
+    return sensor.flip_counter.within_window(raw_counts);
+  }
+};
+
 }  // namespace hapscene

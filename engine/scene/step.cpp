@@ -84,43 +84,31 @@ template <bool kScripts, int N>
   return force_N;
 }
 
-// The device model's stages for a tick compiled for device family kFamily (a planar
-// model's PlanarFamily; 1-D models have one family).
-template <PlanarFamily kFamily, typename Model, typename Reading, typename Sensor>
-[[gnu::always_inline]] inline auto sense_stage(const Model& model, const Reading& reading, Sensor* sensor) noexcept {
-  if constexpr (std::is_same_v<Model, PlanarTickModel>) {
-    return sense_position_m<kFamily>(model, reading, sensor);
-  } else {
-    return sense_position_m(model, reading, sensor);
-  }
-}
-template <PlanarFamily kFamily, typename Model, typename Sensor, typename Force, typename Command>
-[[gnu::always_inline]] inline void command_stage(const Model& model, const Sensor& sensor, const Force& force_N,
-                                                 Command* command) noexcept {
-  if constexpr (std::is_same_v<Model, PlanarTickModel>) {
-    motor_command<kFamily>(model, sensor, force_N, command);
-  } else {
-    *command = motor_command(model, sensor, force_N);
-  }
-}
+// The scene's device model's tick stages and the variants step() compiles ahead
+// (TickStages, engine/devices/device.hpp).
+template <int N>
+using TickStagesOf = TickStages<typename SceneParts<N>::DeviceModel>;
+template <int N>
+using TickVariantOf = typename TickStagesOf<N>::Variant;
 
 // One tick of a scene with N axes, written once for every N. Each case is its own
 // instantiation (step_tick, out of line, reached from step() by a tail call): scripts,
-// cross-fades, built-in effects alone; a planar tick of built-in effects alone is also
-// compiled for each PlanarFamily, its sensor, linkage and drive branches decided. The
-// device model's two functions (sense_position_m, motor_command) are overloaded per
-// device model and inlined. The common 1-DOF tick, built-in effects in the steady state
-// (kSteady, see steady_tick), is inlined into step() itself: it makes no call at all (the
-// flip counter's and the soft start's rare paths are known not to run), so it saves no
-// registers and keeps its values in them.
-template <int N, bool kFading, bool kScripts, PlanarFamily kFamily = PlanarFamily::general, bool kSteady = false>
+// cross-fades, built-in effects alone; a tick of built-in effects alone is also compiled
+// for each variant the device model compiles ahead (kVariant: a planar family, its
+// sensor, linkage and drive branches decided). The device model's two stages (sense,
+// command) are its model's and inlined. Where the model has a steady tick (kSteady, see
+// steady_tick: the 1-DOF capstan's), the common tick of built-in effects in the steady
+// state is inlined into step() itself: it makes no call at all (the flip counter's and
+// the soft start's rare paths are known not to run), so it saves no registers and keeps
+// its values in them.
+template <int N, bool kFading, bool kScripts, TickVariantOf<N> kVariant = TickStagesOf<N>::kGeneral, bool kSteady = false>
 [[gnu::always_inline]] inline void tick_body(const SceneOf<N>& scene,
                                              const typename SceneParts<N>::Reading& reading,
                                              TickStateOf<N>* state, const CrossfadeOf<N>* fade) noexcept {
   // Sensor: the device model turns the reading into the handle position. (The tick count
   // converts as signed: one instruction, and runs never reach 2^63 ticks.)
   state->t_s = static_cast<double>(static_cast<std::int64_t>(state->tick)) * scene.period_s;
-  state->x_m = sense_stage<kFamily>(scene.device_model, reading, &state->sensor);
+  state->x_m = TickStagesOf<N>::template sense<kVariant>(scene.device_model, reading, &state->sensor);
   const PoseTrust trust = pose_trust(scene.device_model, state->sensor);
   if (trust != PoseTrust::trusted) [[unlikely]] {
     hold_for_pose(trust, &state->safety.counters, &state->safety.position_hold);
@@ -151,22 +139,25 @@ template <int N, bool kFading, bool kScripts, PlanarFamily kFamily = PlanarFamil
 
   // Safety, then the motor command the board needs.
   state->output_N = apply_safety<N, !kSteady>(scene.safety, state->x_m, effects_N, &state->safety);
-  command_stage<kFamily>(scene.device_model, state->sensor, state->output_N, &state->command);
+  TickStagesOf<N>::template command<kVariant>(scene.device_model, state->sensor, state->output_N, &state->command);
   if (command_saturated(state->command)) ++state->safety.counters.motor_saturated_ticks;
   ++state->tick;
 }
 
-template <int N, bool kFading, bool kScripts, PlanarFamily kFamily = PlanarFamily::general>
+template <int N, bool kFading, bool kScripts, TickVariantOf<N> kVariant = TickStagesOf<N>::kGeneral>
 [[gnu::noinline]] void step_tick(const SceneOf<N>& scene, const typename SceneParts<N>::Reading& reading,
                                  TickStateOf<N>* state, const CrossfadeOf<N>* fade) noexcept {
-  tick_body<N, kFading, kScripts, kFamily>(scene, reading, state, fade);
+  tick_body<N, kFading, kScripts, kVariant>(scene, reading, state, fade);
 }
 
-// A 1-DOF tick in its steady state: the reading cannot be a flip of the sensor (within
-// the threshold of the flip counter's full window), and neither the soft start nor a held
-// position acts. Such a tick calls nothing (those are the rare paths that do).
-bool steady_tick(const SensorState& sensor, std::int32_t raw_counts, const SafetyState& safety) noexcept {
-  return sensor.flip_counter.within_window(raw_counts) && !ramp_acts(safety);
+// A tick in its steady state: the device model calls the reading steady (the capstan's:
+// it cannot be a flip of the sensor, within the threshold of the flip counter's full
+// window), and neither the soft start nor a held position acts. Such a tick calls nothing
+// (those are the rare paths that do).
+template <int N>
+bool steady_tick(const typename SceneParts<N>::SensorState& sensor, typename SceneParts<N>::Reading reading,
+                 const SafetyStateOf<N>& safety) noexcept {
+  return TickStagesOf<N>::steady_reading(sensor, reading) && !ramp_acts(safety);
 }
 
 }  // namespace
@@ -185,24 +176,20 @@ void step(const SceneOf<N>& scene, const typename SceneParts<N>::Reading& readin
   if (fade != nullptr) [[unlikely]] {
     step_tick<N, true, true>(scene, reading, state, fade);
   } else if (state->scripts.empty()) [[likely]] {
-    if constexpr (N == 2) {
-      // The variant compiled for the scene's device family (one branch, always the same).
-      switch (scene.device_model.model.family) {
-        case PlanarFamily::serial_encoders_linear:
-          step_tick<N, false, false, PlanarFamily::serial_encoders_linear>(scene, reading, state, nullptr);
-          return;
-        case PlanarFamily::five_bar_angles_torque:
-          step_tick<N, false, false, PlanarFamily::five_bar_angles_torque>(scene, reading, state, nullptr);
-          return;
-        case PlanarFamily::general:
-          break;
+    // The variant compiled for the scene's device family, when its model has one (one
+    // branch, always the same).
+    if constexpr (TickStagesOf<N>::kVariantsAhead) {
+      if (TickStagesOf<N>::dispatch(scene.device_model, [&]<TickVariantOf<N> kVariant>() {
+            step_tick<N, false, false, kVariant>(scene, reading, state, nullptr);
+          })) {
+        return;
       }
     }
-    if constexpr (N == 1) {
+    if constexpr (TickStagesOf<N>::kSteadyTick) {
       // The steady tick in line here: the common tick of built-in effects makes no call
       // at all, so it saves no registers (the others are tail calls).
-      if (steady_tick(state->sensor, reading, state->safety)) [[likely]] {
-        tick_body<N, false, false, PlanarFamily::general, true>(scene, reading, state, nullptr);
+      if (steady_tick<N>(state->sensor, reading, state->safety)) [[likely]] {
+        tick_body<N, false, false, TickStagesOf<N>::kGeneral, true>(scene, reading, state, nullptr);
         return;
       }
     }

@@ -87,4 +87,42 @@ inline PlanarMotorCommand motor_command(const PlanarTickModel& model, const Plan
 // Whether the command had to scale both motors down (one saturated), for the counters.
 inline bool command_saturated(const PlanarMotorCommand& command) noexcept { return command.saturated; }
 
+// The planar model's tick stages (device.hpp): the serial arm with encoders and a linear
+// duty law and the five-bar with angles and torques are compiled ahead, each with its
+// branches decided; any other family runs the general tick. No steady-reading tick.
+template <>
+struct TickStages<PlanarTickModel> {
+  using Variant = PlanarFamily;
+  static constexpr Variant kGeneral = PlanarFamily::general;
+  static constexpr bool kVariantsAhead = true;
+  template <typename F>
+  [[gnu::always_inline]] static bool dispatch(const PlanarTickModel& model, F&& f) noexcept {
+    switch (model.model.family) {
+      case PlanarFamily::serial_encoders_linear:
+        f.template operator()<PlanarFamily::serial_encoders_linear>();
+        return true;
+      case PlanarFamily::five_bar_angles_torque:
+        f.template operator()<PlanarFamily::five_bar_angles_torque>();
+        return true;
+      case PlanarFamily::general:
+        break;
+    }
+    return false;
+  }
+  template <Variant kFamily>
+  [[gnu::always_inline]] static Vec2 sense(const PlanarTickModel& model, const PlanarReading& reading,
+                                           PlanarTickSensor* sensor) noexcept {
+    return sense_position_m<kFamily>(model, reading, sensor);
+  }
+  template <Variant kFamily>
+  [[gnu::always_inline]] static void command(const PlanarTickModel& model, const PlanarTickSensor& sensor,
+                                             const Vec2& force_N, PlanarMotorCommand* command) noexcept {
+    motor_command<kFamily>(model, sensor, force_N, command);
+  }
+  static constexpr bool kSteadyTick = false;
+  static constexpr bool steady_reading(const PlanarTickSensor& /*sensor*/, const PlanarReading& /*reading*/) noexcept {
+    return false;
+  }
+};
+
 }  // namespace hapscene
