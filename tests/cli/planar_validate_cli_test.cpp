@@ -36,7 +36,9 @@ TEST_CASE("planar validate cli: the table and the quiet line of a passing lab sc
   CHECK(quiet.out.rfind("PASS haplink_box_inside (" + kBox + "): 66 checks", 0) == 0);
 }
 
-TEST_CASE("planar validate cli: the shipped lab scenes" * doctest::test_suite("threaded")) {
+// Every shipped lab scene through the command: a sweep (in-process, "planar validate:
+// every scenario builds from the scene and runs" reaches the same code under the sanitizers).
+TEST_CASE("planar validate cli: the shipped lab scenes" * doctest::test_suite("sweeps")) {
   // The Haplink's at 200 N/m, the 2DIY v3's at 300 N/m.
   const CliOutcome lab = run_cli(
       "validate --quiet environments/planar/haplink_box_inside.json environments/planar/haplink_box_outside.json "
@@ -62,8 +64,8 @@ TEST_CASE("planar validate cli: the maze passes at its shipped 200 N/m, its scri
   CHECK(maze.out.find("\nresult: pass (76 checks") != std::string::npos);
 }
 
-TEST_CASE("planar validate cli: the scripted scenes pass, the vortex fails passivity by design" *
-          doctest::test_suite("threaded")) {
+// Every shipped scripted scene through the command: a sweep, as the lab scenes above.
+TEST_CASE("planar validate cli: the shipped scripted scenes pass" * doctest::test_suite("sweeps")) {
   // The scripts' stored energy is credited (planar_script_potential.hpp): bumps releasing
   // its potential no longer counts it as created; the retuned puck stays under the limit.
   const CliOutcome scripted = run_cli(
@@ -76,6 +78,9 @@ TEST_CASE("planar validate cli: the scripted scenes pass, the vortex fails passi
   CHECK(scripted.out.find("FAIL") == std::string::npos);
   CHECK(scripted.out.find("PASS haplink_bumps") != std::string::npos);
   CHECK(scripted.out.find("PASS haplink_mass_spring") != std::string::npos);
+}
+
+TEST_CASE("planar validate cli: the vortex fails passivity by design" * doctest::test_suite("threaded")) {
   // The whirl adds energy: its push round the centre is no potential's slope.
   const CliOutcome vortex = run_cli("validate environments/planar/haplink_vortex.json --scenario release,free");
   CAPTURE(vortex.out);

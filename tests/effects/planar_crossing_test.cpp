@@ -15,6 +15,7 @@
 
 #include "engine/effects/wall.hpp"
 #include "tests/effects/planar_test_support.hpp"
+#include "tests/sanitizer_slowdown.hpp"
 
 using namespace hapscene;
 using namespace hapscene::planar_test;
@@ -138,13 +139,17 @@ bool crossing_holds(const Shape& shape, const std::string& name, const Vec2& sta
 TEST_CASE("planar shapes: no closed shape is crossed in one tick, at any speed, from any side") {
   const std::vector<double> jumps_m = {0.0005, 0.002, 0.01, 0.015, 0.022, 0.03, 0.045, 0.06, 0.09, 0.15};
   constexpr int kDirections = 48;
+  // Under a sanitizer (5 times slower) every fourth direction: the sanitizer looks for
+  // memory errors, which the same code paths show at 12 directions; the geometry's claim is
+  // checked at all 48 in the ordinary build's test stage.
+  constexpr int kDirectionStride = test::kSanitizerSlowdown > 1.0 ? 4 : 1;
   constexpr int kOffsets = 13;  // parallel paths across the shape, 3 cm wide
   int checked = 0;
   for (const std::string& json : closed_shapes()) {
     const Shape shape{parse_effect(json)};
     const bool cage = json.find("\"outside\"") != std::string::npos;
     CAPTURE(json);
-    for (int k = 0; k < kDirections; ++k) {
+    for (int k = 0; k < kDirections; k += kDirectionStride) {
       const double angle = 2.0 * std::numbers::pi * (k + 0.37) / kDirections;
       const Vec2 direction = v2(std::cos(angle), std::sin(angle));
       const Vec2 across = v2(-direction[1], direction[0]);
@@ -169,7 +174,7 @@ TEST_CASE("planar shapes: no closed shape is crossed in one tick, at any speed, 
       }
     }
   }
-  CHECK(checked == 10 * kDirections * kOffsets * 10);
+  CHECK(checked == 10 * (kDirections / kDirectionStride) * kOffsets * 10);
 }
 
 TEST_CASE("planar and 1-D walls: a jump deep into the solid side is pushed back the way it came") {
