@@ -3,9 +3,9 @@
 // loop. The loop pushes one sample per tick into an SpscRing allocated before the run; a
 // writer thread drains it into the file. A full ring drops the sample and counts it.
 //
-// CSV columns (the header line, exactly):
+// CSV columns (the header line, exactly; telemetry_columns below writes it):
 //   t_s,x_m,v_m_per_s,force_N,output_N,duty,direction
-// (written by telemetry_columns below). t_s tick time since the start; x_m measured handle position; v_m_per_s estimated
+// t_s tick time since the start; x_m measured handle position; v_m_per_s estimated
 // velocity (0 when the scene needs none); force_N what the effects asked for; output_N
 // what the device was commanded after safety; duty the PWM duty in [0, 1]; direction the
 // direction pin (1 high, 0 low). Numbers in their shortest exact form.
