@@ -25,11 +25,10 @@ struct SpecEnvironment {
   int axes = 1;
 };
 
-SpecEnvironment load_spec_environment(const std::string& spec_path) {
+SpecEnvironment load_spec_environment(const nlohmann::json& root, const std::string& spec_path) {
   SpecEnvironment out;
   std::string environment_path;
   try {
-    const nlohmann::json root = read_json_file(spec_path);
     ObjectReader r(root, "", spec_path);
     environment_path = spec_environment_path(r, spec_path);
   } catch (const InputError&) {
@@ -51,9 +50,9 @@ SpecEnvironment load_spec_environment(const std::string& spec_path) {
 // Reads the spec for an environment of N axes, and judges it on `environment` (nullptr:
 // the load failed, `load_error` says why).
 template <int N>
-void run_spec_of(const std::string& spec_path, const EnvironmentOf<N>* environment, const std::exception_ptr& load_error,
-                 SpecResult* result) {
-  const SpecOf<N> spec = parse_spec<N>(spec_path);
+void run_spec_of(const nlohmann::json& root, const std::string& spec_path, const EnvironmentOf<N>* environment,
+                 const std::exception_ptr& load_error, SpecResult* result) {
+  const SpecOf<N> spec = parse_spec<N>(root, spec_path);
   result->environment_path = spec.environment_path;
   if (environment == nullptr) {
     try {
@@ -71,12 +70,15 @@ SpecResult run_test_spec(const std::string& spec_path) {
   SpecResult result;
   result.spec_path = spec_path;
   try {
-    const SpecEnvironment environment = load_spec_environment(spec_path);
+    // The spec's JSON, read once (InputError, located, when it is not JSON).
+    const nlohmann::json root = read_json_file(spec_path);
+    const SpecEnvironment environment = load_spec_environment(root, spec_path);
     if (environment.loaded) {
-      std::visit([&](const auto& loaded) { run_spec_of(spec_path, &loaded, nullptr, &result); }, *environment.loaded);
+      std::visit([&](const auto& loaded) { run_spec_of(root, spec_path, &loaded, nullptr, &result); },
+                 *environment.loaded);
     } else {
 #define HAPSCENE_RUN_SPEC_OF(N) \
-  if (environment.axes == (N)) run_spec_of<N>(spec_path, nullptr, environment.load_error, &result);
+  if (environment.axes == (N)) run_spec_of<N>(root, spec_path, nullptr, environment.load_error, &result);
       HAPSCENE_FOR_EACH_AXES(HAPSCENE_RUN_SPEC_OF)
 #undef HAPSCENE_RUN_SPEC_OF
     }

@@ -99,13 +99,12 @@ struct SpecOf {
   }
 };
 
-// Reads the spec at `path` for an environment of N axes (InputError, located, for
-// anything invalid in it). The keys are read in the order the format lists them, so the
-// first problem of a spec is the one reported, in every kind.
+// Reads the spec `root` (the JSON of the file at `path`) for an environment of N axes
+// (InputError, located, for anything invalid in it). The keys are read in the order the
+// format lists them, so the first problem of a spec is the one reported, in every kind.
 template <int N>
-SpecOf<N> parse_spec(const std::string& path) {
+SpecOf<N> parse_spec(const nlohmann::json& root, const std::string& path) {
   using Kind = SpecKindOf<N>;
-  const nlohmann::json root = read_json_file(path);
   ObjectReader r(root, "", path);
   SpecOf<N> spec;
   spec.environment_path = spec_environment_path(r, path);
