@@ -106,6 +106,10 @@ static_assert(false HAPSCENE_FOR_EACH_AXES(HAPSCENE_IS_MAX), "kMaxAxes is the la
 constexpr double component(double value, int) noexcept { return value; }
 template <int N>
 constexpr double component(const AxisVector<N>& value, int i) noexcept { return value[i]; }
+// Sets component i of an axis value (for N = 1, the value itself).
+constexpr void set_component(double& value, int, double c) noexcept { value = c; }
+template <int N>
+constexpr void set_component(AxisVector<N>& value, int i, double c) noexcept { value[i] = c; }
 
 constexpr double dot(double a, double b) noexcept { return a * b; }
 template <int N>

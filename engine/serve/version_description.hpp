@@ -2,7 +2,7 @@
 // A version of the environment as the live view's page sees it: loaded from its text as a
 // reload loads the file, and described for GET /api/scene (its device, effects, slider
 // parameters, shapes and, in 1-D, the force curve at rest), on a job's thread
-// (engine/serve/live_view.cpp runs it).
+// (engine/serve/live_document.cpp runs it).
 #include <cstdint>
 #include <memory>
 #include <string>
