@@ -65,6 +65,36 @@ TEST_CASE("cli: bench labels a .lua environment and a mixed one by what they run
   CHECK(outcome.out.find("built-in (JSON)") == std::string::npos);
 }
 
+TEST_CASE("cli: bench treats a 2-D environment's rows as a 1-D one's: labelled by what they run, a fault reported") {
+  const hapscene::test::ScratchFolder folder("honest_bench_planar");
+  // Reads an undefined global only in the upper part of the Haplink's workspace.
+  folder.write("faulting_2d.lua",
+               "needs = {velocity = false, time = false}\n"
+               "function force(s)\n"
+               "  if s.y > 0.14 then return k * s.x, 0 end\n"
+               "  return -100 * s.x, 0\n"
+               "end\n");
+  const std::string faulting = folder.write(
+      "faulting_2d.json", R"({"name": "faulting_2d", "device": "haplink", "effects": [{"type": "script", "file": "faulting_2d.lua"}]})");
+  const auto outcome = run_cli("bench " + faulting + " --seconds 0.2 --passes 1");
+  CHECK(outcome.exit_code == 1);
+  CHECK(hapscene::test::occurrences(outcome.err, "faulting_2d.lua:3: undefined global 'k' (while timing faulting_2d, Lua script)\n") == 1);
+  CHECK(outcome.out.find("faulting_2d              Lua script ") != std::string::npos);
+  CHECK(outcome.out.find("built-in (JSON)") == std::string::npos);
+  CHECK(outcome.out.find("Lua rows: p99.9 <= 5x the median (no GC spikes): ") != std::string::npos);
+
+  // A built-in 2-D spring is timed beside its Lua twin, as a 1-D lab effect is.
+  const std::string spring = folder.write(
+      "spring_2d.json", R"({"name": "spring_2d", "device": "haplink", "effects": [{"type": "spring", "stiffness": 100, "center": [0, 0.12]}]})");
+  const auto twin = run_cli("bench " + spring + " --seconds 0.2 --passes 1");
+  CHECK(twin.exit_code == 0);
+  const std::size_t builtin = twin.out.find("spring_2d                built-in (JSON) ");
+  const std::size_t lua = twin.out.find("spring_2d                Lua script ");
+  REQUIRE(builtin != std::string::npos);
+  REQUIRE(lua != std::string::npos);
+  CHECK(builtin < lua);
+}
+
 TEST_CASE("cli: validate gives every file its verdict when one is invalid input") {
   const hapscene::test::ScratchFolder folder("honest_validate_many");
   const std::string bad = folder.write("bad.json", "{\"effects\": [");

@@ -52,7 +52,9 @@ TEST_CASE("validate kinds: every N reads its scenario list and options the same 
 #define HAPSCENE_CHECK_KIND(N) check_scenario_lists<N>();
   HAPSCENE_FOR_EACH_AXES(HAPSCENE_CHECK_KIND)
 #undef HAPSCENE_CHECK_KIND
-  CHECK(harness_options_problem<2>(HarnessOptions{.noise_counts = 0.5}) == "noise: not yet for a 2-DOF environment");
+  HarnessOptions noisy;
+  noisy.noise_counts = 0.5;
+  CHECK(harness_options_problem<2>(noisy) == "noise: not yet for a 2-DOF environment");
 }
 
 TEST_CASE("validate kinds: validate_environment judges by the file's validate block") {
