@@ -45,7 +45,7 @@ inline constexpr std::int64_t kMaxStraightLine = 256;
 
 enum class Phase { loading, running };
 
-// What a failed lookup left for the suggestion search (see globals.cpp).
+// What a failed lookup left for the suggestion search (see suggestions.cpp).
 struct PendingSuggestion {
   enum class Kind { none, global, params, state, library };
   Kind kind{Kind::none};
@@ -63,7 +63,7 @@ struct ScriptVm {
   Phase phase{Phase::loading};
   bool needs_velocity{true};
   bool needs_time{true};
-  std::vector<ScriptShape> shapes;  // the `shapes` global, checked (globals.cpp)
+  std::vector<ScriptShape> shapes;  // the `shapes` global, checked (script_shapes.cpp)
   int axes{1};       // of the scene: s has a position and a velocity per axis, force returns axes numbers
   int force_line{};  // line where force is defined, for messages about its return value
   std::int64_t force_straight_line{};  // force's length when it cannot loop, else 0
@@ -202,9 +202,14 @@ int open_sandbox(lua_State* L);
 // Gives the table at `index` a hidden metatable (getmetatable answers false) whose
 // __index and __newindex are the given functions: for strict globals and sealed params.
 void set_guard_metatable(lua_State* L, int index, lua_CFunction on_index, lua_CFunction on_newindex);
+// Suggestions (suggestions.cpp).
 // Makes the registry slot that holds the table of the last failed lookup (so noting one
 // never allocates).
 void prepare_suggestions(lua_State* L);
+// Raises "<place>: <format with name>" after noting the lookup (argument 1 is the table
+// looked up) for suggestion_for.
+int raise_lookup_error(lua_State* L, PendingSuggestion::Kind kind, const char* library, const char* format,
+                       const char* name);
 // When `message` is the error of the last failed lookup, searches that table for the
 // nearest name and writes the hint (" (did you mean 'stiffness'?)") into `out`; else
 // writes "". Runs once, when an error is reported, outside any protected call: one
@@ -218,6 +223,19 @@ int finish_load(lua_State* L);
 // Stores the first load error (printf-style) in vm->load_error; it is thrown as an
 // InputError once the Lua call returns. Never raises.
 void set_load_error(ScriptVm* vm, const char* format, ...) __attribute__((format(printf, 2, 3)));
+// params (params_table.cpp). lua_CFunction-style __newindex step of the global table for
+// `params = { ... }` while loading (stack: env, "params", table): resolves the declared
+// defaults with the overrides, writes the SI values back, seals and stores the table.
+int assign_params(lua_State* L);
+// After the chunk ran: a script without params gets an empty sealed table; one that
+// replaced its table after declaring it is refused. Pushes one value; false with
+// vm->load_error set.
+bool finish_params(lua_State* L, int env, ScriptVm* vm);
+// needs and s (state_table.cpp): checks the optional `needs` table (at `index`) into vm
+// (false, with vm->load_error set, on a bad one; never raises); pushes the read-only
+// proxy `s` and above it the hidden data table it reads through.
+bool check_needs(lua_State* L, int index, ScriptVm* vm) noexcept;
+void push_state_tables(lua_State* L, const ScriptVm* vm);
 // Shapes (script_shapes.cpp): checks the optional `shapes` list (at `index`) and stores
 // it in vm->shapes; false, with vm->load_error set, on the first bad entry.
 bool check_shapes(lua_State* L, int index, ScriptVm* vm);
