@@ -15,6 +15,9 @@
 #include "tests/devices/fake_board.hpp"
 #include "tests/support.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 using test::LoopbackLink;
 
@@ -310,3 +313,5 @@ TEST_CASE("board link: a realigned reading after a reset is judged for speed too
   CHECK(link.position_status() == PositionStatus::fresh);
   CHECK(link.counts() == 505);
 }
+
+}  // namespace HAPSCENE_TEST_FILE

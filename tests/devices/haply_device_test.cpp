@@ -22,6 +22,9 @@
 #include "engine/devices/haply/haply_device.hpp"
 #include "tests/devices/pty_haply_board.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 using hapscene::test::PtyHaplyBoard;
 
@@ -168,3 +171,5 @@ TEST_CASE("haply device: a board that answers the setup only with implausible an
   CHECK(board.with_board([](auto& b) { return b.torque_since_reset; }) == 0);
 }
 }
+
+}  // namespace HAPSCENE_TEST_FILE

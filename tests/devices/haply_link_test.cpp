@@ -14,6 +14,9 @@
 #include "engine/devices/planar/planar_profile.hpp"
 #include "tests/devices/fake_haply_board.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 
 namespace {
@@ -324,3 +327,5 @@ TEST_CASE("haply link: an implausible reply while running is counted and resynch
   CHECK(rig.board.torque_since_reset == 0);
   CHECK(rig.until_running(200, kTorque) > 0);
 }
+
+}  // namespace HAPSCENE_TEST_FILE

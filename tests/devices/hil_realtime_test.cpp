@@ -22,6 +22,9 @@
 #include "engine/load/environment.hpp"
 #include "engine/run/runner.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 
 namespace {
@@ -142,3 +145,5 @@ TEST_CASE("hil real time: the loop's own overrun still faults as a sustained ove
 }
 
 #endif  // HAPSCENE_HAVE_HIL
+
+}  // namespace HAPSCENE_TEST_FILE

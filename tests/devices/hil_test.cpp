@@ -15,6 +15,9 @@
 #include "engine/devices/simulated_hapkit.hpp"
 #include "engine/run/runner.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 using hapscene::test::scene_from;
 
@@ -236,3 +239,5 @@ TEST_CASE("hil: firmware-in-the-loop tests" * doctest::skip()) {
 }
 
 #endif
+
+}  // namespace HAPSCENE_TEST_FILE

@@ -9,6 +9,9 @@
 #include "engine/devices/planar/planar_plant.hpp"
 #include "engine/devices/planar/planar_plant_examples.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 
 namespace {
@@ -246,3 +249,5 @@ TEST_CASE("planar plant: runs are deterministic to the bit") {
   CHECK(a.q_dot_rad_per_s() == b.q_dot_rad_per_s());
   CHECK(a.t_s() == b.t_s());
 }
+
+}  // namespace HAPSCENE_TEST_FILE

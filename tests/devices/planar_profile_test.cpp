@@ -16,6 +16,9 @@
 #include "tests/devices/planar_support.hpp"
 #include "tests/support.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 
 namespace {
@@ -262,3 +265,5 @@ TEST_CASE("planar profile: the joint-space units") {
   CHECK(parse_quantity_as("3 mm", Quantity::angle_rad).error == "expected an angle (rad), got a length (\"3 mm\")");
   CHECK(parse_quantity_as("3 deg", Quantity::length_m).error == "expected a length (m), got an angle (\"3 deg\")");
 }
+
+}  // namespace HAPSCENE_TEST_FILE

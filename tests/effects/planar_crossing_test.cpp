@@ -17,8 +17,12 @@
 #include "tests/effects/planar_test_support.hpp"
 #include "tests/sanitizer_slowdown.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 using namespace hapscene::planar_test;
+using hapscene::planar_test::at;  // before a neighbour's at() in its unity batch
 
 namespace {
 
@@ -195,3 +199,5 @@ TEST_CASE("planar and 1-D walls: a jump deep into the solid side is pushed back 
     CHECK(lab.force_N(in) < 0.0);
   }
 }
+
+}  // namespace HAPSCENE_TEST_FILE

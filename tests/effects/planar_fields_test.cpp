@@ -3,8 +3,12 @@
 
 #include "tests/effects/planar_test_support.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 using namespace hapscene::planar_test;
+using hapscene::planar_test::at;  // before a neighbour's at() in its unity batch
 
 TEST_CASE("planar spring: F = -K (x - c) per component") {
   const PlanarSpring spring{.stiffness_N_per_m = 200.0, .center_m = v2(0.01, -0.02)};
@@ -53,3 +57,5 @@ TEST_CASE("planar texture: spacing defaults to the width, bands along x with dir
   CHECK_FALSE(texture.in_band(v2(0.002, -3.0)));
   CHECK(texture.in_band(v2(0.004, 0.0)));
 }
+
+}  // namespace HAPSCENE_TEST_FILE

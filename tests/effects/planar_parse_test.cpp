@@ -6,8 +6,12 @@
 
 #include "tests/effects/planar_test_support.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 using namespace hapscene::planar_test;
+using hapscene::planar_test::at;  // before a neighbour's at() in its unity batch
 
 TEST_CASE("planar parse: vectors in m or unit strings, defaults") {
   const PlanarSpring spring = parse_as<PlanarSpring>(R"({"type": "spring", "stiffness": "0.2 N/mm", "center": ["10 mm", 0.14]})");
@@ -155,3 +159,5 @@ TEST_CASE("planar effect types: the table, the bank and its proxies") {
   CHECK(closed[1] == doctest::Approx(-100.0 * (0.101 - 0.12) + 400.0 * -0.001));
   CHECK(closed == bank.open_loop_force_N(pressed));
 }
+
+}  // namespace HAPSCENE_TEST_FILE

@@ -7,8 +7,12 @@
 
 #include "tests/effects/planar_test_support.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 using namespace hapscene::planar_test;
+using hapscene::planar_test::at;  // before a neighbour's at() in its unity batch
 
 namespace {
 
@@ -267,3 +271,5 @@ TEST_CASE("planar shapes: can_act_within a rectangular workspace") {
   CHECK_FALSE(PlanarCircle{.center_m = v2(0.0, 0.1), .radius_m = 0.2, .stiffness_N_per_m = 1.0, .solid_inside = false}
                   .can_act_within(low, high));
 }
+
+}  // namespace HAPSCENE_TEST_FILE

@@ -20,6 +20,9 @@
 #include "tests/scratch_folder.hpp"
 #include "tests/support.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 
 namespace {
@@ -307,3 +310,5 @@ TEST_CASE("planar trace: bounded memory, a long run keeps each bucket's first ti
   // No shape traced: the proxy is the handle.
   CHECK(trace.records()[5].proxy_m == trace.records()[5].x_m);
 }
+
+}  // namespace HAPSCENE_TEST_FILE

@@ -12,6 +12,9 @@
 #include "engine/harness/validate.hpp"
 #include "tests/support.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 using hapscene::test::scene_from;
 
@@ -98,3 +101,5 @@ TEST_CASE("verdicts: a valid scene's report has no scene checks and a fixed fiel
   CHECK(report.field.behaviour.static_field());
   CHECK(report_to_json(report)["scene"]["static_field"] == true);
 }
+
+}  // namespace HAPSCENE_TEST_FILE

@@ -7,6 +7,9 @@
 #include "engine/harness/validate.hpp"
 #include "tests/support.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 using hapscene::test::scene_from;
 
@@ -125,3 +128,5 @@ TEST_CASE("load: a spring centred beyond the workspace by a plain number warns, 
   CHECK(only_warning(R"({"effects": [{"type": "spring", "stiffness": 100, "center": "10 m"}]})") == "0 warnings");
   CHECK(only_warning(R"({"effects": [{"type": "spring", "stiffness": 100, "center": 0.01}]})") == "0 warnings");
 }
+
+}  // namespace HAPSCENE_TEST_FILE

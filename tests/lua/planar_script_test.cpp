@@ -17,7 +17,7 @@
 #include "tests/lua/script_test_support.hpp"
 #include "tests/support.hpp"
 
-namespace hapscene {
+namespace hapscene::HAPSCENE_TEST_FILE {
 namespace {
 
 using test::read_script;
@@ -488,4 +488,4 @@ TEST_CASE("planar scripts: steady state allocates nothing per call") {
 }
 
 }  // namespace
-}  // namespace hapscene
+}  // namespace hapscene::HAPSCENE_TEST_FILE

@@ -7,7 +7,7 @@
 
 #include "tests/lua/script_test_support.hpp"
 
-namespace hapscene {
+namespace hapscene::HAPSCENE_TEST_FILE {
 namespace {
 
 using test::at;
@@ -62,4 +62,4 @@ TEST_CASE("benchmark: ns per call of the Lua lab spring and texture") {
 }
 
 }  // namespace
-}  // namespace hapscene
+}  // namespace hapscene::HAPSCENE_TEST_FILE

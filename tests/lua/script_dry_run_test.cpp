@@ -8,7 +8,7 @@
 
 #include "tests/lua/script_test_support.hpp"
 
-namespace hapscene {
+namespace hapscene::HAPSCENE_TEST_FILE {
 namespace {
 
 using test::at;
@@ -133,4 +133,4 @@ TEST_CASE("dry run: a translated force runs on any input, changes nothing, and i
 }
 
 }  // namespace
-}  // namespace hapscene
+}  // namespace hapscene::HAPSCENE_TEST_FILE

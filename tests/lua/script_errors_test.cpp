@@ -4,7 +4,7 @@
 
 #include "tests/lua/script_test_support.hpp"
 
-namespace hapscene {
+namespace hapscene::HAPSCENE_TEST_FILE {
 namespace {
 
 using test::at;
@@ -167,4 +167,4 @@ TEST_CASE("errors: a script's own checks of its params read as load errors") {
 }
 
 }  // namespace
-}  // namespace hapscene
+}  // namespace hapscene::HAPSCENE_TEST_FILE

@@ -5,7 +5,7 @@
 // unknown field of s is an error with the same message.
 #include "tests/lua/script_test_support.hpp"
 
-namespace hapscene {
+namespace hapscene::HAPSCENE_TEST_FILE {
 namespace {
 
 using test::at;
@@ -115,4 +115,4 @@ TEST_CASE("fast call: warming a script changes nothing it computes and allocates
 }
 
 }  // namespace
-}  // namespace hapscene
+}  // namespace hapscene::HAPSCENE_TEST_FILE

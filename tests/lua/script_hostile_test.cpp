@@ -13,7 +13,7 @@
 #include "engine/effects/script_effect.hpp"
 #include "tests/lua/script_test_support.hpp"
 
-namespace hapscene {
+namespace hapscene::HAPSCENE_TEST_FILE {
 namespace {
 
 using test::at;
@@ -415,4 +415,4 @@ TEST_CASE("hostile: params are checked in one pass over the source, however many
 }
 
 }  // namespace
-}  // namespace hapscene
+}  // namespace hapscene::HAPSCENE_TEST_FILE

@@ -13,6 +13,9 @@
 #include "engine/run/observer_list.hpp"
 #include "engine/run/runner.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 
 namespace {
@@ -94,3 +97,5 @@ TEST_CASE("planar hot swap: an offered scene cross-fades in at a tick boundary, 
   // The first scene's carrier came back to be destroyed off the loop.
   CHECK(exchange.take_retired() != nullptr);
 }
+
+}  // namespace HAPSCENE_TEST_FILE

@@ -22,6 +22,9 @@
 #include "engine/run/telemetry_ring.hpp"
 #include "tests/support.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 
 TEST_CASE("telemetry ring: capacity, order, full and empty") {
@@ -194,3 +197,5 @@ TEST_CASE("telemetry log: never written through a link planted at its path, nor 
   CHECK(header.starts_with("t_s,"));
   std::filesystem::remove_all(dir);
 }
+
+}  // namespace HAPSCENE_TEST_FILE

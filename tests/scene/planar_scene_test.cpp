@@ -18,6 +18,9 @@
 #include "tests/scratch_folder.hpp"
 #include "tests/support.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 
 namespace {
@@ -225,3 +228,5 @@ TEST_CASE("planar run: the box cage holds the hand in, and two runs are identica
   CHECK(deepest_m < 0.004);
   CHECK(first.summary.safety.nonfinite_faults == 0);
 }
+
+}  // namespace HAPSCENE_TEST_FILE

@@ -6,6 +6,9 @@
 
 #include "engine/scene/safety.hpp"
 
+// This file's own names, apart from its unity batch's neighbours (tests/CMakeLists.txt).
+namespace HAPSCENE_TEST_FILE {
+
 using namespace hapscene;
 
 namespace {
@@ -82,3 +85,5 @@ TEST_CASE("safety: soft start ramps force in when a run starts inside a force fi
   restart_soft_start(&calm);
   CHECK(apply_safety(config, 0.0, 2.0, &calm) == 0.0);
 }
+
+}  // namespace HAPSCENE_TEST_FILE

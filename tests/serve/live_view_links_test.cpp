@@ -9,7 +9,7 @@
 #include "tests/scratch_folder.hpp"
 #include "tests/serve/live_view_support.hpp"
 
-namespace hapscene {
+namespace hapscene::HAPSCENE_TEST_FILE {
 namespace {
 
 using nlohmann::json;
@@ -113,4 +113,4 @@ TEST_CASE("live view: --device hil link counters need simavr and the firmware" *
 
 }  // TEST_SUITE("threaded")
 
-}  // namespace hapscene
+}  // namespace hapscene::HAPSCENE_TEST_FILE

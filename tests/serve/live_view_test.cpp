@@ -14,7 +14,7 @@
 #include "tests/scratch_folder.hpp"
 #include "tests/serve/live_view_support.hpp"
 
-namespace hapscene {
+namespace hapscene::HAPSCENE_TEST_FILE {
 namespace {
 
 using nlohmann::json;
@@ -357,4 +357,4 @@ TEST_CASE("live view: a 2-D run streams x and y, both forces per axis and the sh
 
 }  // TEST_SUITE("threaded")
 
-}  // namespace hapscene
+}  // namespace hapscene::HAPSCENE_TEST_FILE
