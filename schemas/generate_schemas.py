@@ -662,6 +662,30 @@ def report_schema():
     return open_for_additions(schema)
 
 
+def test_results_schema():
+    expectation = all_required({"what": {"type": "string", "description": "the JSON pointer of the expectation in the spec"},
+                                "pass": BOOLEAN,
+                                "message": {"type": "string", "description": "what was expected and what was found"}})
+    spec = all_required({
+        "spec": {"type": "string", "description": "the spec file, as given or found"},
+        "environment": {"type": ["string", "null"], "description": "the environment it tests (null: the spec did not load)"},
+        "verdict": {"enum": ["pass", "fail", "invalid"],
+                    "description": "invalid: the spec or its environment is invalid input (exit 2)"},
+        "error": {"type": ["string", "null"], "description": "the error printed for the spec, when there was one"},
+        "seconds": {"type": "number", "minimum": 0, "description": "the wall time the spec took"},
+        "expectations": {"type": "array", "items": {"$ref": "#/$defs/expectation"}},
+    }, description="one spec as run")
+    summary = all_required({"specs": COUNT, "passed": COUNT, "failed": COUNT, "invalid": COUNT, "expectations": COUNT})
+    body = all_required({"format": {"const": "hapscene-test/1"}, "summary": summary,
+                         "specs": {"type": "array", "items": {"$ref": "#/$defs/spec"}}})
+    schema = root("test-results", "hapscene test results (hapscene-test/1)",
+                  "What `hapscene test --json FILE` writes (docs/reference/test-specs.md): every spec's verdict and "
+                  "expectations, in the order run. Fields are only ever added to hapscene-test/1, so objects here allow "
+                  "keys they do not list; the test json_schemas checks that they list every key hapscene writes today.",
+                  [], body, {"expectation": expectation, "spec": spec})
+    return open_for_additions(schema)
+
+
 def open_for_additions(node):
     """Drops every "additionalProperties": false (a report of a later hapscene may add keys)."""
     if isinstance(node, dict):
@@ -689,6 +713,7 @@ def schemas(source_dir, hapscene):
         "device-profile.schema.json": profile_schema(),
         "test-spec.schema.json": spec_schema(),
         "validate-report.schema.json": report_schema(),
+        "test-results.schema.json": test_results_schema(),
     }
 
 

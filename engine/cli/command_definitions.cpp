@@ -187,8 +187,12 @@ constexpr std::string_view kCalibrateExamples[] = {"calibrate --device serial:/d
 // ---- test
 constexpr OptionDefinition kTestOptions[] = {
     {"verbose", 'v', "", "print every expectation, not only the unmet ones"},
+    {"json", 0, "FILE.json", "every spec's verdict and expectations as JSON (hapscene-test/1)", "", nullptr, nullptr, "",
+     C::output},
+    {"junit", 0, "FILE.xml", "the same as JUnit XML, for CI servers' test reports", "", nullptr, nullptr, "", C::output},
 };
-constexpr std::string_view kTestExamples[] = {"test", "test environments/spring.test.json", "test scripts"};
+constexpr std::string_view kTestExamples[] = {"test", "test environments/spring.test.json", "test scripts",
+                                              "test class/ --junit results.xml"};
 
 // ---- plot
 constexpr OptionDefinition kPlotOptions[] = {

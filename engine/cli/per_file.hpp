@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
@@ -21,17 +22,22 @@ inline int worst_exit_code(int a, int b) {
 
 // Runs `work` (which returns the file's exit code); an error it throws is printed on
 // stderr (after what stdout has so far, so the lines stay in order) and becomes the code.
+// `error_text`, when given, receives the error's printable text.
 template <class Work>
-int run_for_file(Work&& work) {
+int run_for_file(Work&& work, std::string* error_text = nullptr) {
   try {
     return work();
   } catch (const InputError& error) {
     flush_out();
-    std::fprintf(stderr, "error: %s\n", printable(error.what()).c_str());
+    const std::string text = printable(error.what());
+    std::fprintf(stderr, "error: %s\n", text.c_str());
+    if (error_text != nullptr) *error_text = text;
     return kExitInvalidInput;
   } catch (const std::exception& error) {
     flush_out();
-    std::fprintf(stderr, "hapscene: %s\n", printable(error.what()).c_str());
+    const std::string text = printable(error.what());
+    std::fprintf(stderr, "hapscene: %s\n", text.c_str());
+    if (error_text != nullptr) *error_text = text;
     return kExitFailure;
   }
 }

@@ -139,6 +139,36 @@ with tempfile.TemporaryDirectory() as scratch:
         expect_valid(strict_report, load(out), f"validate report of {scene}, every key described")
         counts["reports"] += 1
 
+# Fresh test results (--json) of a passing spec, a failing one and one that does not load,
+# and the same run's JUnit XML, read by Python's XML parser.
+results = validator("test-results.schema.json")
+strict_results = jsonschema.Draft202012Validator(closed_everywhere(load(SOURCE / "schemas" / "test-results.schema.json")))
+with tempfile.TemporaryDirectory() as scratch:
+    folder = pathlib.Path(scratch)
+    failing = folder / "failing.test.json"
+    failing.write_text(json.dumps({"environment": str((SOURCE / "environments" / "spring.json").resolve()),
+                                   "forces": [{"x": "10 mm", "force": "9 N"}]}), encoding="utf-8")
+    broken = folder / "broken.test.json"
+    broken.write_text("{\"environment\": ", encoding="utf-8")
+    out, xml_out = folder / "results.json", folder / "results.xml"
+    run = subprocess.run([HAPSCENE, "test", "environments/spring.test.json", str(failing), str(broken),
+                          "--json", str(out), "--junit", str(xml_out)], cwd=SOURCE, capture_output=True, text=True)
+    if run.returncode != 2 or not out.exists() or not xml_out.exists():
+        fail(f"hapscene test --json --junit: exit {run.returncode}, expected 2 and both files: {run.stderr.strip()}")
+    else:
+        expect_valid(results, load(out), "test results")
+        expect_valid(strict_results, load(out), "test results, every key described")
+        verdicts = [s["verdict"] for s in load(out)["specs"]]
+        if verdicts != ["pass", "fail", "invalid"]:
+            fail(f"test results: verdicts {verdicts}, expected pass, fail, invalid")
+        import xml.etree.ElementTree as ElementTree
+        suites = ElementTree.parse(xml_out).getroot()
+        if suites.tag != "testsuites" or len(suites) != 3:
+            fail(f"test results JUnit: {suites.tag} with {len(suites)} suites, expected testsuites with 3")
+        elif (suites[0].get("failures"), suites[1].get("failures"), suites[2].get("errors")) != ("0", "1", "1"):
+            fail("test results JUnit: the failures and errors per suite are not 0, 1 and an error")
+        counts["reports"] += 1
+
 # 3. Wrong files, refused by the schema; the environments among them by hapscene too.
 def edited(instance, change):
     result = copy.deepcopy(instance)
