@@ -190,9 +190,13 @@ constexpr OptionDefinition kTestOptions[] = {
     {"json", 0, "FILE.json", "every spec's verdict and expectations as JSON (hapscene-test/1)", "", nullptr, nullptr, "",
      C::output},
     {"junit", 0, "FILE.xml", "the same as JUnit XML, for CI servers' test reports", "", nullptr, nullptr, "", C::output},
+    {"jobs", 'j', "N", "specs run at once, each in a process of its own (0: one per core)", "1", nullptr,
+     &option::test_jobs},
+    {"spec-timeout", 0, "T", "stop a spec that runs longer, as failed (runs it in a process of its own)", "none",
+     &option::test_spec_timeout},
 };
 constexpr std::string_view kTestExamples[] = {"test", "test environments/spring.test.json", "test scripts",
-                                              "test class/ --junit results.xml"};
+                                              "test class/ --jobs 0 --junit results.xml"};
 
 // ---- plot
 constexpr OptionDefinition kPlotOptions[] = {

@@ -59,6 +59,10 @@ inline constexpr QuantityOption probe_velocity = from_range("v", value_range::pr
 // probe --t: the run time each point is evaluated at (from fresh script instances)
 inline constexpr QuantityOption probe_time{"t", Quantity::time_s, 0.0, kDay_s};
 
+// test: specs run at once in processes of their own (0: one per core), and how long one may take
+inline constexpr WholeOption test_jobs{"jobs", 0, 256, "a whole number of processes (0: one per core)"};
+inline constexpr QuantityOption test_spec_timeout{"spec-timeout", Quantity::time_s, 0.0, kDay_s, true};
+
 // bench (tick cost tables)
 inline constexpr QuantityOption bench_seconds{"seconds", Quantity::time_s, 0.0, 600.0, true};
 inline constexpr WholeOption bench_passes{"passes", 1, 1000};

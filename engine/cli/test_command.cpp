@@ -3,9 +3,11 @@
 // when there are none, under the current folder).
 // Prints PASS/FAIL per spec and each unmet expectation. Exit 0 when all pass, 1 when any fails, 2 when any spec (or its
 // environment) is invalid input; the other specs still run. --json FILE and --junit FILE
-// write every spec's verdict for tools and CI servers (engine/harness/test_report.hpp).
-#include <chrono>
+// write every spec's verdict for tools and CI servers (engine/harness/test_report.hpp);
+// --jobs runs several at once, each in a process of its own (engine/cli/spec_runs.hpp).
+#include <algorithm>
 #include <cstdio>
+#include <thread>
 #include <filesystem>
 #include <optional>
 
@@ -14,7 +16,9 @@
 #include "engine/cli/arguments.hpp"
 #include "engine/cli/commands.hpp"
 #include "engine/cli/output_file.hpp"
+#include "engine/cli/option_definitions.hpp"
 #include "engine/cli/per_file.hpp"
+#include "engine/cli/spec_runs.hpp"
 #include "engine/cli/standard_output.hpp"
 #include "engine/harness/test_report.hpp"
 #include "engine/harness/test_spec.hpp"
@@ -26,6 +30,12 @@ int test_command(std::vector<std::string> args) {
   const bool verbose = arguments.take_flag("verbose");
   const std::optional<std::string> json_path = arguments.take_value("json");
   const std::optional<std::string> junit_path = arguments.take_value("junit");
+  // --jobs N: N specs at once, each in a process of its own (0: one per core); --spec-timeout.
+  const auto jobs_given = arguments.take(option::test_jobs);
+  const std::optional<double> timeout_s = arguments.take(option::test_spec_timeout);
+  const int jobs = !jobs_given ? 1
+                   : *jobs_given == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))
+                                      : static_cast<int>(*jobs_given);
   // Spec files as given; a folder stands for every *.test.json under it.
   std::vector<std::string> specs;
   for (const std::string& given : arguments.positionals()) {
@@ -54,39 +64,39 @@ int test_command(std::vector<std::string> args) {
 
   // Each spec its own verdict: one that cannot be loaded (the spec or its environment)
   // prints its error and a FAIL line, and the others still run (engine/cli/per_file.hpp).
+  // Printed in the specs' order however they ran (engine/cli/spec_runs.hpp).
   int exit_code = kExitOk;
   int failed = 0;
   std::size_t expectations = 0;
   std::vector<SpecRecord> records;
-  for (const std::string& spec : specs) {
-    SpecRecord record;
-    record.spec_path = printable(spec);
-    const auto start = std::chrono::steady_clock::now();
-    const int spec_code = run_for_file(
-        [&] {
-          SpecResult r = run_test_spec(spec);
-          // Paths, pointers and messages carry text from files and scripts: printable.
-          print_out("%s %s (%zu expectations)\n", r.pass ? "PASS" : "FAIL", printable(r.spec_path).c_str(),
-                    r.outcomes.size());
-          expectations += r.outcomes.size();
-          for (const SpecOutcome& o : r.outcomes) {
-            if (!o.pass || verbose) {
-              print_out("  %s %s: %s\n", o.pass ? "ok  " : "FAIL", printable(o.what).c_str(), printable(o.message).c_str());
-            }
-          }
-          record.environment_path = printable(r.environment_path);
-          record.outcomes = std::move(r.outcomes);
-          return r.pass ? kExitOk : kExitFailure;
-        },
-        &record.error);
-    record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    record.verdict = spec_code == kExitOk ? SpecVerdict::pass
-                     : spec_code == kExitInvalidInput ? SpecVerdict::invalid
-                                                      : SpecVerdict::fail;
-    if (spec_code == kExitInvalidInput) print_out("FAIL %s: invalid input (see the error above)\n", printable(spec).c_str());
-    failed += spec_code == kExitOk ? 0 : 1;
-    exit_code = worst_exit_code(exit_code, spec_code);
-    records.push_back(std::move(record));
+  const auto report = [&](SpecRun& run) {
+    const SpecRecord& r = run.record;
+    if (!run.stderr_text.empty()) {
+      flush_out();
+      std::fputs(run.stderr_text.c_str(), stderr);
+    }
+    if (r.error.empty()) {
+      print_out("%s %s (%zu expectations)\n", r.verdict == SpecVerdict::pass ? "PASS" : "FAIL", r.spec_path.c_str(),
+                r.outcomes.size());
+      for (const SpecOutcome& o : r.outcomes) {
+        if (!o.pass || verbose) print_out("  %s %s: %s\n", o.pass ? "ok  " : "FAIL", o.what.c_str(), o.message.c_str());
+      }
+    } else {
+      print_out("FAIL %s: %s (see the error above)\n", r.spec_path.c_str(),
+                r.verdict == SpecVerdict::invalid ? "invalid input" : "no verdict");
+    }
+    expectations += r.outcomes.size();
+    failed += run.exit_code == kExitOk ? 0 : 1;
+    exit_code = worst_exit_code(exit_code, run.exit_code);
+    records.push_back(std::move(run.record));
+  };
+  if (jobs == 1 && !timeout_s) {
+    for (const std::string& spec : specs) {
+      SpecRun run = run_spec_here(spec);
+      report(run);
+    }
+  } else {
+    run_specs_in_processes(specs, jobs, timeout_s.value_or(0.0), [&](std::size_t, SpecRun& run) { report(run); });
   }
   print_out("%zu specs, %zu expectations: %s\n", specs.size(), expectations,
             failed == 0 ? "all pass" : (std::to_string(failed) + " specs failed").c_str());

@@ -267,7 +267,7 @@ TEST_CASE("command line: every option in the help is one its command reads") {
       {"t", "0"}, {"scenario", "hold"}, {"grid", "10"}, {"width", "500"}, {"seconds", "0.1"}, {"passes", "1"},
       {"scripts", "scripts"}, {"rate", "1000"}, {"axes", "1"}, {"ticks", "10000"}, {"impl", "builtin"},
       {"ui", "8080"}, {"timeout", "1s"}, {"profile", "hapkit3"}, {"travel-time", "2s"}, {"pulse-force", "0.5"},
-      {"simulated-kit", "nowhere.json"}, {"json", out + ".json"}, {"junit", out + ".xml"}};
+      {"simulated-kit", "nowhere.json"}, {"json", out + ".json"}, {"junit", out + ".xml"}, {"jobs", "2"}, {"spec-timeout", "10s"}};
   std::size_t checked = 0;
   for (const char* command : kCommands) {
     std::istringstream help(run_cli(std::string("help ") + command).out);

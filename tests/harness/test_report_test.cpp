@@ -83,5 +83,40 @@ TEST_CASE("test report: hapscene test --json and --junit write after every spec 
   CHECK(full.err.find("/dev/full: write failed") != std::string::npos);
 }
 
+TEST_CASE("test jobs: specs run in processes of their own print the same bytes as one after another") {
+  const test::ScratchFolder folder("test_jobs_same");
+  folder.write("broken.test.json", "{\"environment\": ");
+  const std::string specs = "environments/spring.test.json environments/planar/haplink_box_inside.test.json " +
+                            (folder.dir / "broken.test.json").string() + " environments/wall.test.json";
+  const test::CliOutcome serial = test::run_cli("test " + specs);
+  const test::CliOutcome parallel = test::run_cli("test " + specs + " --jobs 3");
+  CHECK(serial.exit_code == 2);
+  CHECK(parallel.exit_code == 2);
+  CHECK(parallel.out == serial.out);
+  CHECK(parallel.err == serial.err);
+  CHECK(serial.out.find("FAIL " + (folder.dir / "broken.test.json").string() + ": invalid input (see the error above)") !=
+        std::string::npos);
+}
+
+TEST_CASE("test jobs: a spec past --spec-timeout is stopped and failed, and the others still get their verdicts") {
+  const test::ScratchFolder folder("test_jobs_timeout");
+  // Forces only: milliseconds. The maze's spec runs validate's scenarios: seconds.
+  const std::string quick = folder.write(
+      "quick.test.json", std::string(R"({"environment": ")") + HAPSCENE_SOURCE_DIR +
+                             R"(/environments/spring.json", "forces": [{"x": "10 mm", "force": "-1 N"}]})");
+  const std::string json_path = (folder.dir / "results.json").string();
+  const test::CliOutcome outcome = test::run_cli("test environments/planar/haplink_maze.test.json " + quick +
+                                                 " --spec-timeout 1s --json " + json_path);
+  CHECK(outcome.exit_code == 1);
+  CHECK(outcome.out.find("FAIL environments/planar/haplink_maze.test.json: no verdict (see the error above)\n") !=
+        std::string::npos);
+  CHECK(outcome.err.find("hapscene: environments/planar/haplink_maze.test.json: ran longer than --spec-timeout 1 s: "
+                         "stopped\n") != std::string::npos);
+  CHECK(outcome.out.find("PASS " + quick + " (1 expectations)") != std::string::npos);
+  const nlohmann::json results = nlohmann::json::parse(test::slurp_file(json_path));
+  CHECK(results["specs"][0]["verdict"] == "fail");
+  CHECK(results["specs"][1]["verdict"] == "pass");
+}
+
 }  // namespace
 }  // namespace hapscene::HAPSCENE_TEST_FILE
