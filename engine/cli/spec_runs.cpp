@@ -21,6 +21,13 @@
 #include "engine/cli/standard_output.hpp"
 
 namespace hapscene {
+namespace {
+
+SpecVerdict verdict_of(int exit_code) {
+  return exit_code == kExitOk ? SpecVerdict::pass : exit_code == kExitInvalidInput ? SpecVerdict::invalid : SpecVerdict::fail;
+}
+
+}  // namespace
 
 SpecRun run_spec_here(const std::string& spec) {
   SpecRun run;
@@ -40,9 +47,7 @@ SpecRun run_spec_here(const std::string& spec) {
       },
       &record.error);
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  record.verdict = run.exit_code == kExitOk            ? SpecVerdict::pass
-                   : run.exit_code == kExitInvalidInput ? SpecVerdict::invalid
-                                                        : SpecVerdict::fail;
+  record.verdict = verdict_of(run.exit_code);
   return run;
 }
 
@@ -70,9 +75,7 @@ std::optional<SpecRun> run_from_json(const std::string& spec, const std::string&
     for (const nlohmann::json& o : j.at("outcomes")) {
       run.record.outcomes.push_back({o.at(0).get<std::string>(), o.at(1).get<bool>(), o.at(2).get<std::string>()});
     }
-    run.record.verdict = run.exit_code == kExitOk            ? SpecVerdict::pass
-                         : run.exit_code == kExitInvalidInput ? SpecVerdict::invalid
-                                                              : SpecVerdict::fail;
+    run.record.verdict = verdict_of(run.exit_code);
     return run;
   } catch (const std::exception&) {
     return std::nullopt;

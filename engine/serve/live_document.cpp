@@ -80,12 +80,17 @@ void LiveDocumentOf<N>::refresh_from_file() {
 }
 
 template <int N>
+json LiveDocumentOf<N>::described() const {
+  json out = scene_json_;
+  out["unsaved"] = text_ != file_text_;
+  return out;
+}
+
+template <int N>
 json LiveDocumentOf<N>::scene(const AddRunState& add_state) {
   std::lock_guard lock(mutex_);
   refresh_from_file();
-  json out = scene_json_;
-  out["unsaved"] = text_ != file_text_;
-  return add_state(std::move(out));
+  return add_state(described());
 }
 
 template <int N>
@@ -120,9 +125,7 @@ void LiveDocumentOf<N>::change(const std::string& request_body, httplib::Respons
     }
     take(std::move(prepared->description));
     text_ = candidate;
-    json out = scene_json_;
-    out["unsaved"] = text_ != file_text_;
-    res.set_content(add_state(std::move(out)).dump(), "application/json");
+    res.set_content(add_state(described()).dump(), "application/json");
   } catch (const std::exception& error) {
     error_response(res, 400, error.what());
   }

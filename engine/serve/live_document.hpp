@@ -67,6 +67,9 @@ class LiveDocumentOf {
   std::optional<PreparedVersion<N>> prepare(const std::string& candidate);
   // With mutex_ held; every request calls it first.
   void refresh_from_file();
+  // The running version's scene body, with whether the values differ from the file's
+  // (mutex_ held).
+  nlohmann::json described() const;
 
   std::string path_;
   std::string base_dir_;
