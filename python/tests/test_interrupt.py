@@ -41,12 +41,13 @@ scene = hapscene.load({env!r})
 print("started", flush=True)
 started = time.monotonic()
 try:
-    {call}
+    # Called again whenever it returns: a validate or test that ends early on its "pace"
+    # check (a timing judgement, earlier on a busy machine) leaves the signal to the next.
+    while True:
+        {call}
 except KeyboardInterrupt:
     print("interrupted", time.monotonic(), time.monotonic() - started, flush=True)
     sys.exit(0)
-print("finished", time.monotonic() - started, flush=True)
-sys.exit(3)
 """
 
 
@@ -61,7 +62,7 @@ def test_ctrl_c_interrupts_a_long_call_promptly(what, tmp_path):
         cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         assert child.stdout.readline().strip() == "started"
-        time.sleep(0.5)  # well inside the call
+        time.sleep(0.5)  # well inside the (first) call
         sent = time.monotonic()
         child.send_signal(signal.SIGINT)
         out, err = child.communicate(timeout=5.0)  # the watchdog
