@@ -17,6 +17,7 @@
 
 #include "engine/base/errors.hpp"
 #include "engine/base/format.hpp"
+#include "engine/base/object_reader.hpp"
 #include "engine/cli/per_file.hpp"
 #include "engine/cli/standard_output.hpp"
 
@@ -184,16 +185,12 @@ SpecRun finish_child(const std::string& spec, Child& child, double timeout_s) {
     run->record.spec_path = printable(spec);
     run->record.verdict = SpecVerdict::fail;
     run->exit_code = kExitFailure;
-    char why[160];
-    if (child.timed_out) {
-      std::snprintf(why, sizeof why, "ran longer than --spec-timeout %s s: stopped", format_number(timeout_s).c_str());
-    } else if (WIFSIGNALED(status)) {
-      std::snprintf(why, sizeof why, "its process ended on signal %d (%s) before its verdict", WTERMSIG(status),
-                    strsignal(WTERMSIG(status)));
-    } else {
-      std::snprintf(why, sizeof why, "its process ended (status %d) before its verdict",
-                    WIFEXITED(status) ? WEXITSTATUS(status) : -1);
-    }
+    const std::string why =
+        child.timed_out ? "ran longer than --spec-timeout " + format_number(timeout_s) + " s: stopped"
+        : WIFSIGNALED(status)
+            ? printf_string("its process ended on signal %d (%s) before its verdict", WTERMSIG(status),
+                            strsignal(WTERMSIG(status)))
+            : printf_string("its process ended (status %d) before its verdict", WIFEXITED(status) ? WEXITSTATUS(status) : -1);
     run->record.error = printable(spec) + ": " + why;
     run->record.seconds = std::chrono::duration<double>(SpecClock::now() - child.start).count();
     child.output += "hapscene: " + run->record.error + "\n";

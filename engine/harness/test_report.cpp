@@ -1,7 +1,5 @@
 #include "engine/harness/test_report.hpp"
 
-#include <cstdio>
-
 #include "engine/base/format.hpp"
 
 namespace hapscene {
@@ -74,16 +72,6 @@ std::string xml_escaped(std::string_view text) {
   return out;
 }
 
-namespace {
-
-std::string seconds_text(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3f", seconds);
-  return text;
-}
-
-}  // namespace
-
 std::string test_results_junit(const std::vector<SpecRecord>& records) {
   std::size_t cases = 0, failures = 0, errors = 0;
   double total_s = 0.0;
@@ -120,11 +108,11 @@ std::string test_results_junit(const std::vector<SpecRecord>& records) {
     errors += suite_errors;
     suites += "  <testsuite name=\"" + name + "\" tests=\"" + std::to_string(suite_cases) + "\" failures=\"" +
               std::to_string(suite_failures) + "\" errors=\"" + std::to_string(suite_errors) + "\" time=\"" +
-              seconds_text(r.seconds) + "\">\n" + body + "  </testsuite>\n";
+              printf_string("%.3f", r.seconds) + "\">\n" + body + "  </testsuite>\n";
   }
   return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"hapscene test\" tests=\"" +
          std::to_string(cases) + "\" failures=\"" + std::to_string(failures) + "\" errors=\"" + std::to_string(errors) +
-         "\" time=\"" + seconds_text(total_s) + "\">\n" + suites + "</testsuites>\n";
+         "\" time=\"" + printf_string("%.3f", total_s) + "\">\n" + suites + "</testsuites>\n";
 }
 
 }  // namespace hapscene
